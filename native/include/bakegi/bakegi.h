@@ -1,0 +1,242 @@
+/*
+ * bakegi.h — the only door into the bakegi core.
+ *
+ * Rules of this interface:
+ *  - Every function returns a status (or a value that cannot fail); none throws,
+ *    aborts or prints. On error, bakegi_last_error() returns a message for the
+ *    calling thread that says what was wrong and where (e.g. "mesh 2, vertex 17:
+ *    position is NaN").
+ *  - Handles are opaque. Every *_create/_read has a matching *_destroy; passing
+ *    NULL to *_destroy is allowed.
+ *  - All quantities are radiometric and in SI units (metres, W, W/sr, W/m^2,
+ *    W/(m^2 sr)); the conversion from Blender's light settings lives in the
+ *    add-on (addon/bakegi/light_units.py), not here.
+ *  - The output quantity of every bake is what Cycles writes for a Diffuse bake
+ *    with only Indirect enabled and Color disabled: E_indirect / pi, so that the
+ *    outgoing diffuse radiance is albedo x value (W/(m^2 sr)).
+ *  - Input arrays are copied; the caller may free them after the call returns.
+ */
+#ifndef BAKEGI_H
+#define BAKEGI_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32)
+#define BAKEGI_API __declspec(dllexport)
+#else
+#define BAKEGI_API __attribute__((visibility("default")))
+#endif
+
+/* ---- version ---------------------------------------------------------------------------- */
+
+#define BAKEGI_VERSION_MAJOR 0
+#define BAKEGI_VERSION_MINOR 1
+#define BAKEGI_VERSION_PATCH 0
+
+/* Packed as major * 10000 + minor * 100 + patch. */
+BAKEGI_API uint32_t bakegi_version(void);
+/* e.g. "0.1.0 (embree 3.13.5, tbb 2021.8)". Static storage. */
+BAKEGI_API const char* bakegi_version_string(void);
+
+/* ---- errors ----------------------------------------------------------------------------- */
+
+typedef enum bakegi_status {
+  BAKEGI_OK = 0,
+  BAKEGI_ERROR_INVALID_ARGUMENT = 1, /* NULL pointer, bad enum, bad size, unknown option */
+  BAKEGI_ERROR_INVALID_SCENE = 2,    /* NaN, degenerate or out-of-range geometry, no light */
+  BAKEGI_ERROR_OUT_OF_MEMORY = 3,    /* allocation failed or the memory budget is exceeded */
+  BAKEGI_ERROR_CANCELLED = 4,        /* the job was cancelled */
+  BAKEGI_ERROR_IO = 5,               /* file could not be read or written */
+  BAKEGI_ERROR_BAD_FILE = 6,         /* file is not a bakegi scene file or is corrupt */
+  BAKEGI_ERROR_NOT_READY = 7,        /* the job has not finished yet */
+  BAKEGI_ERROR_RAY_TRACER = 8,       /* Embree reported an error */
+  BAKEGI_ERROR_INTERNAL = 9          /* a bug: please report with the scene file */
+} bakegi_status;
+
+/* Short constant name of a status, e.g. "BAKEGI_ERROR_INVALID_SCENE". Static storage. */
+BAKEGI_API const char* bakegi_status_string(bakegi_status status);
+/* Message of the last failed call on this thread ("" if none). Valid until the next
+ * failing call on this thread. */
+BAKEGI_API const char* bakegi_last_error(void);
+
+/* ---- scene ------------------------------------------------------------------------------ */
+
+typedef struct bakegi_scene bakegi_scene;
+
+BAKEGI_API bakegi_status bakegi_scene_create(bakegi_scene** out_scene);
+BAKEGI_API void bakegi_scene_destroy(bakegi_scene* scene);
+
+/* Texture: linear (not sRGB) RGB float pixels, row-major, row 0 at v = 0 (bottom, as in
+ * Blender), sampled bilinearly with repeat wrapping. */
+BAKEGI_API bakegi_status bakegi_scene_add_texture(bakegi_scene* scene, uint32_t width,
+                                                  uint32_t height, const float* rgb_pixels,
+                                                  uint32_t* out_texture);
+
+#define BAKEGI_NO_TEXTURE 0xFFFFFFFFu
+
+typedef struct bakegi_material_desc {
+  float albedo[3];           /* diffuse reflectance in [0,1], linear RGB */
+  uint32_t albedo_texture;   /* BAKEGI_NO_TEXTURE, or a texture that multiplies albedo */
+  float emission[3];         /* emitted radiance W/(m^2 sr), linear RGB; 0 = not emissive */
+  uint32_t emission_two_sided; /* 1: emits from both sides (Cycles 3.4 mesh emission) */
+} bakegi_material_desc;
+
+BAKEGI_API bakegi_status bakegi_scene_add_material(bakegi_scene* scene,
+                                                   const bakegi_material_desc* material,
+                                                   uint32_t* out_material);
+
+/* A triangle mesh in world space. Per-corner data has 3 entries per triangle, in the
+ * order of indices. Optional arrays may be NULL. */
+typedef struct bakegi_mesh_desc {
+  const float* positions;            /* 3 * vertex_count */
+  uint32_t vertex_count;
+  const uint32_t* indices;           /* 3 * triangle_count, each < vertex_count */
+  uint32_t triangle_count;
+  const float* corner_normals;       /* optional, 9 * triangle_count; NULL = face normals */
+  const float* corner_uvs;           /* optional, 6 * triangle_count; needed for textures */
+  const uint32_t* triangle_materials; /* optional, triangle_count; NULL = all use `material` */
+  uint32_t material;
+  uint32_t object_id;                /* the caller's id, reported back in messages */
+} bakegi_mesh_desc;
+
+BAKEGI_API bakegi_status bakegi_scene_add_mesh(bakegi_scene* scene, const bakegi_mesh_desc* mesh,
+                                               uint32_t* out_mesh);
+
+typedef enum bakegi_light_type {
+  BAKEGI_LIGHT_POINT = 0, /* sphere light: position, radius, intensity */
+  BAKEGI_LIGHT_SPOT = 1,  /* point light restricted to a cone: + direction, cone, blend */
+  BAKEGI_LIGHT_SUN = 2,   /* distant light: direction, angular diameter, irradiance */
+  BAKEGI_LIGHT_AREA = 3   /* one-sided planar emitter: position, axes, shape, size, radiance */
+} bakegi_light_type;
+
+typedef enum bakegi_area_shape {
+  BAKEGI_AREA_SQUARE = 0,
+  BAKEGI_AREA_RECTANGLE = 1,
+  BAKEGI_AREA_DISK = 2,
+  BAKEGI_AREA_ELLIPSE = 3
+} bakegi_area_shape;
+
+typedef struct bakegi_light_desc {
+  bakegi_light_type type;
+  float position[3];  /* point, spot, area: world position */
+  float direction[3]; /* spot, area: the direction light is emitted towards (the light's -Z);
+                         sun: the direction light travels (towards the scene) */
+  float axis_u[3];    /* area: the light's local X axis (size_x along it) */
+  float color[3];     /* point, spot: intensity W/sr; sun: irradiance W/m^2 on a surface
+                         facing it; area: radiance W/(m^2 sr) */
+  float radius;       /* point, spot: radius of the emitting sphere (0 = a true point) */
+  float spot_size;    /* spot: full cone angle, radians in (0, pi] */
+  float spot_blend;   /* spot: softness of the cone edge, [0,1], Cycles' convention */
+  float angle;        /* sun: angular diameter, radians in [0, pi) */
+  bakegi_area_shape shape; /* area */
+  float size_x;       /* area: side length or diameter along axis_u (metres) */
+  float size_y;       /* area: along direction x axis_u; ignored for SQUARE and DISK */
+} bakegi_light_desc;
+
+BAKEGI_API bakegi_status bakegi_scene_add_light(bakegi_scene* scene,
+                                                const bakegi_light_desc* light,
+                                                uint32_t* out_light);
+
+/* Constant world (background) radiance W/(m^2 sr), seen by rays that leave the scene. */
+BAKEGI_API bakegi_status bakegi_scene_set_world(bakegi_scene* scene, const float radiance[3]);
+
+/* Checks the whole scene (also done when a job starts). Errors name the mesh and
+ * element. Warnings (e.g. triangles dropped as degenerate) go into job reports. */
+BAKEGI_API bakegi_status bakegi_scene_validate(const bakegi_scene* scene);
+
+/* Counts, for reports and tests. */
+BAKEGI_API uint64_t bakegi_scene_triangle_count(const bakegi_scene* scene);
+BAKEGI_API uint32_t bakegi_scene_light_count(const bakegi_scene* scene);
+
+/* ---- bake points ------------------------------------------------------------------------ */
+
+/* Where the indirect field is evaluated: a position and the (shading) normal of the
+ * surface there. object_ids is optional (NULL = 0 for all). */
+typedef struct bakegi_points bakegi_points;
+
+BAKEGI_API bakegi_status bakegi_points_create(const float* positions, const float* normals,
+                                              const uint32_t* object_ids, uint64_t count,
+                                              bakegi_points** out_points);
+BAKEGI_API void bakegi_points_destroy(bakegi_points* points);
+BAKEGI_API uint64_t bakegi_points_count(const bakegi_points* points);
+/* Copies the points out (any output pointer may be NULL). */
+BAKEGI_API bakegi_status bakegi_points_get(const bakegi_points* points, float* positions,
+                                           float* normals, uint32_t* object_ids);
+
+/* ---- scene files ------------------------------------------------------------------------ */
+
+/* A .bgs file holds exactly what the API received: the scene and, optionally, a set of
+ * bake points. Little-endian binary, versioned, with a checksum. */
+BAKEGI_API bakegi_status bakegi_file_write(const char* path, const bakegi_scene* scene,
+                                           const bakegi_points* points /* may be NULL */);
+/* out_points may be NULL; *out_points is NULL if the file holds none. */
+BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_scene,
+                                          bakegi_points** out_points);
+
+/* ---- settings --------------------------------------------------------------------------- */
+
+/* Key/value settings for a bake, validated when a job starts (unknown keys, wrong types
+ * and out-of-range values are errors). Keys understood now:
+ *   "method"       string  "pathtrace" (default) | "direct" (direct light, E_direct/pi,
+ *                          for checking light units against Cycles)
+ *   "samples"      int     samples per bake point, >= 1 (default 64)
+ *   "seed"         int     >= 0 (default 0); results are deterministic for a seed
+ *   "threads"      int     0 = all cores (default 0)
+ *   "max_bounces"  int     >= 1, path length cap for indirect light (default 64; Russian
+ *                          roulette ends most paths far sooner)
+ *   "memory_budget_mb" int >= 1 (default 4096): a bake whose estimate exceeds it is refused
+ */
+typedef struct bakegi_settings bakegi_settings;
+
+BAKEGI_API bakegi_status bakegi_settings_create(bakegi_settings** out_settings);
+BAKEGI_API void bakegi_settings_destroy(bakegi_settings* settings);
+BAKEGI_API bakegi_status bakegi_settings_set_int(bakegi_settings* settings, const char* key,
+                                                 int64_t value);
+BAKEGI_API bakegi_status bakegi_settings_set_float(bakegi_settings* settings, const char* key,
+                                                   double value);
+BAKEGI_API bakegi_status bakegi_settings_set_string(bakegi_settings* settings, const char* key,
+                                                    const char* value);
+
+/* ---- bake jobs -------------------------------------------------------------------------- */
+
+/* A bake runs on the core's own threads. The job keeps its own copy of scene, points and
+ * settings, so the caller may destroy them right after bakegi_job_start. */
+typedef struct bakegi_job bakegi_job;
+
+BAKEGI_API bakegi_status bakegi_job_start(const bakegi_scene* scene, const bakegi_points* points,
+                                          const bakegi_settings* settings, bakegi_job** out_job);
+/* Fraction done in [0,1]; never decreases. */
+BAKEGI_API double bakegi_job_progress(const bakegi_job* job);
+/* Short text of the current stage, e.g. "building BVH", "tracing 32/256 samples".
+ * Copies at most capacity-1 bytes plus NUL. */
+BAKEGI_API void bakegi_job_stage(const bakegi_job* job, char* buffer, size_t capacity);
+/* Asks the job to stop; returns at once. The job ends with BAKEGI_ERROR_CANCELLED. */
+BAKEGI_API void bakegi_job_cancel(bakegi_job* job);
+/* 1 if the job has ended (done, failed or cancelled), else 0. */
+BAKEGI_API int bakegi_job_is_done(const bakegi_job* job);
+/* Blocks until the job ends; returns its final status (and sets the thread's last error
+ * to the job's message if it failed). */
+BAKEGI_API bakegi_status bakegi_job_wait(bakegi_job* job);
+/* After success: copies 3 * count floats (RGB per bake point, the output quantity above).
+ * count must equal the number of bake points. */
+BAKEGI_API bakegi_status bakegi_job_get_result(const bakegi_job* job, float* out_rgb,
+                                               uint64_t count);
+/* A JSON object describing the finished (or failed) job: seconds per stage, bake points,
+ * method, settings, rays traced, memory, warnings. Writes at most capacity bytes including
+ * the NUL and stores the full length (without NUL) in *out_length; call with capacity 0
+ * to ask for the length. */
+BAKEGI_API bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buffer,
+                                               size_t capacity, size_t* out_length);
+/* Cancels if still running, waits, and frees. */
+BAKEGI_API void bakegi_job_destroy(bakegi_job* job);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BAKEGI_H */

@@ -1,0 +1,24 @@
+// What a solver returns: indirect light that can be evaluated at any (position, normal),
+// in the output convention (E_indirect / pi). Output never depends on which solver made it.
+#pragma once
+
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "bake_points/bake_points.h"
+
+namespace bakegi {
+
+class JobContext;
+
+class IndirectField {
+ public:
+  virtual ~IndirectField() = default;
+  // Writes one RGB value per point. May be long (the path tracer traces here): reports
+  // progress and honours cancel through the context.
+  virtual void evaluate(const BakePoints& points, std::span<glm::vec3> out,
+                        JobContext& context) const = 0;
+};
+
+}  // namespace bakegi

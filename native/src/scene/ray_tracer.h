@@ -1,0 +1,48 @@
+// The one place that talks to Embree (3 on Debian 12; 4 builds through the same calls,
+// see ray_tracer.cpp). Solvers and the direct-light module see only this interface.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+namespace bakegi {
+
+struct Scene;
+
+struct Ray {
+  glm::vec3 origin;
+  glm::vec3 direction;  // need not be normalized; t is in units of |direction|
+  float tnear = 0.0f;
+  float tfar = 1e30f;
+};
+
+struct Hit {
+  bool hit = false;
+  float t = 0.0f;
+  uint32_t triangle = 0;  // index into Scene::triangles
+  float b1 = 0.0f, b2 = 0.0f;  // barycentrics of corners 1 and 2
+};
+
+class RayTracer {
+ public:
+  // Builds the BVH over scene.triangles. Throws bakegi::Error on Embree errors.
+  explicit RayTracer(const Scene& scene);
+  ~RayTracer();
+  RayTracer(const RayTracer&) = delete;
+  RayTracer& operator=(const RayTracer&) = delete;
+
+  Hit intersect(const Ray& ray) const;
+  bool occluded(const Ray& ray) const;  // any hit in (tnear, tfar)
+  // Packets of rays, for throughput benchmarks (the Embree limit).
+  void intersect_many(const Ray* rays, Hit* hits, size_t count) const;
+
+  size_t memory_bytes() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bakegi

@@ -1,0 +1,92 @@
+// The scene as the core holds it: flat world-space triangles with per-corner shading data,
+// materials, lights and world. Built by the C API (api/), read and written by scene_file,
+// checked by scene_validation, traced through RayTracer.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bakegi/bakegi.h"
+
+namespace bakegi {
+
+struct Texture {
+  uint32_t width = 0, height = 0;
+  std::vector<glm::vec3> pixels;  // linear RGB, row 0 at v = 0
+};
+
+struct Material {
+  glm::vec3 albedo{0.8f};
+  uint32_t albedo_texture = BAKEGI_NO_TEXTURE;
+  glm::vec3 emission{0.0f};  // radiance W/(m^2 sr)
+  bool emission_two_sided = true;
+
+  bool is_emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+};
+
+// One input mesh, kept as received (for scene files and messages).
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;              // 3 per triangle
+  std::vector<glm::vec3> corner_normals;      // empty or 3 per triangle
+  std::vector<glm::vec2> corner_uvs;          // empty or 3 per triangle
+  std::vector<uint32_t> triangle_materials;   // empty or 1 per triangle
+  uint32_t material = 0;
+  uint32_t object_id = 0;
+};
+
+struct Light {
+  bakegi_light_type type = BAKEGI_LIGHT_POINT;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};
+  glm::vec3 axis_u{1.0f, 0.0f, 0.0f};
+  glm::vec3 color{0.0f};
+  float radius = 0.0f;
+  float spot_size = 0.0f;
+  float spot_blend = 0.0f;
+  float angle = 0.0f;
+  bakegi_area_shape shape = BAKEGI_AREA_SQUARE;
+  float size_x = 0.0f;
+  float size_y = 0.0f;
+};
+
+// Everything the API received, before validation.
+struct SceneDescription {
+  std::vector<Texture> textures;
+  std::vector<Material> materials;
+  std::vector<Mesh> meshes;
+  std::vector<Light> lights;
+  glm::vec3 world_radiance{0.0f};
+};
+
+// A triangle ready for rendering: world positions, shading normals per corner, uvs.
+struct Triangle {
+  glm::vec3 p[3];
+  glm::vec3 n[3];          // shading normals (face normal where none were given)
+  glm::vec2 uv[3];         // (0,0) where none were given
+  glm::vec3 face_normal;   // unit geometric normal, counter-clockwise winding
+  float area = 0.0f;
+  uint32_t material = 0;
+  uint32_t mesh = 0;       // index into SceneDescription::meshes
+  uint32_t mesh_triangle = 0;
+};
+
+// The validated, flattened scene solvers work on. Degenerate triangles are dropped here
+// (with a warning); everything else that is wrong is an error (see scene_validation.h).
+struct Scene {
+  SceneDescription description;
+  std::vector<Triangle> triangles;
+  std::vector<uint32_t> emissive_triangles;  // indices into triangles
+  glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+  std::vector<std::string> warnings;
+
+  const Material& material_of(const Triangle& t) const { return description.materials[t.material]; }
+  float extent() const { return glm::length(bounds_max - bounds_min); }
+  // Diffuse albedo at a point of a triangle (texture applied), barycentrics (b1, b2).
+  glm::vec3 albedo_at(const Triangle& t, float b1, float b2) const;
+};
+
+}  // namespace bakegi

@@ -1,0 +1,38 @@
+// What long-running work needs from the job that runs it: progress, a stage name, the
+// cancel flag (checked often; work stops by throwing Cancelled) and the report.
+#pragma once
+
+#include <atomic>
+#include <mutex>
+#include <string>
+
+#include "util/report.h"
+
+namespace bakegi {
+
+class JobContext {
+ public:
+  // Progress of the current stage in [0,1]; the job maps stages onto overall progress.
+  void set_stage(const std::string& name, double begin, double end);
+  void set_stage_progress(double fraction);
+  double progress() const { return progress_.load(std::memory_order_relaxed); }
+  std::string stage() const;
+
+  void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
+  bool is_cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+  // Throws bakegi::Error(BAKEGI_ERROR_CANCELLED) if cancel was asked for.
+  void throw_if_cancelled() const;
+
+  Report& report() { return report_; }
+  const Report& report() const { return report_; }
+
+ private:
+  std::atomic<double> progress_{0.0};
+  std::atomic<bool> cancelled_{false};
+  double stage_begin_ = 0.0, stage_end_ = 1.0;
+  mutable std::mutex stage_mutex_;
+  std::string stage_;
+  Report report_;
+};
+
+}  // namespace bakegi
