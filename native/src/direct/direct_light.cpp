@@ -1,0 +1,137 @@
+#include "direct/direct_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "util/random.h"
+#include "util/sampling.h"
+
+namespace bakegi {
+
+namespace {
+
+// Relative to the scene size: large enough to leave the surface after float rounding of
+// hit points, small against any feature worth baking.
+constexpr float kRelativeRayEpsilon = 1e-5f;
+
+float scene_ray_epsilon(const Scene& scene) {
+  const glm::vec3 magnitude = glm::max(glm::abs(scene.bounds_min), glm::abs(scene.bounds_max));
+  const float scale = std::max({scene.extent(), max_component(magnitude), 1e-3f});
+  return kRelativeRayEpsilon * scale;
+}
+
+}  // namespace
+
+DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
+    : scene_(scene),
+      tracer_(tracer),
+      ray_epsilon_(scene_ray_epsilon(scene)),
+      emissive_triangles_(scene),
+      world_radiance_(scene.description.world_radiance) {
+  for (const Light& light : scene.description.lights) {
+    switch (light.type) {
+      case BAKEGI_LIGHT_POINT:
+      case BAKEGI_LIGHT_SPOT:
+        point_lights_.emplace_back(light);
+        break;
+      case BAKEGI_LIGHT_SUN:
+        sun_lights_.emplace_back(light);
+        break;
+      case BAKEGI_LIGHT_AREA:
+        area_lights_.emplace_back(light);
+        break;
+    }
+  }
+}
+
+glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+  // Light geometry is seen from the surface point itself; only the shadow ray starts off
+  // the surface, aimed at the sampled point, so the offset adds no bias to 1/d^2.
+  const glm::vec3 origin = ray_origin(x);
+  const float margin = 2.0f * ray_epsilon_;
+  glm::vec3 irradiance(0.0f);
+  auto gather = [&](const LightSample& s) {
+    const float cos_receiver = glm::dot(x.shading_normal, s.direction);
+    if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
+    const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, cos_receiver * kInvPi) : 1.0f;
+    if (!(weight > 0.0f)) return;
+    Ray shadow{origin, s.direction, 0.0f, 1e30f};
+    if (std::isfinite(s.distance)) {
+      const glm::vec3 to_light = x.position + s.direction * s.distance - origin;
+      const float distance = glm::length(to_light);
+      shadow.direction = to_light / distance;
+      shadow.tfar = distance - margin;
+    }
+    ++rays;
+    if (tracer_.occluded(shadow)) return;
+    irradiance += s.contribution * (cos_receiver * weight);
+  };
+  LightSample s;
+  for (const PointLight& light : point_lights_) {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    if (light.sample(x.position, u1, u2, s)) gather(s);
+  }
+  for (const AreaLight& light : area_lights_) {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    if (light.sample(x.position, u1, u2, s)) gather(s);
+  }
+  for (const SunLight& light : sun_lights_) {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    if (light.sample(u1, u2, s)) gather(s);
+  }
+  if (!emissive_triangles_.empty()) {
+    const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
+    if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) gather(s);
+  }
+  return irradiance;
+}
+
+glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3& direction,
+                                      const Hit& hit, float bsdf_pdf) const {
+  glm::vec3 radiance(0.0f);
+  const float t_max = hit.hit ? hit.t : 1e30f;
+  LightHit light_hit;
+  for (const PointLight& light : point_lights_) {
+    if (light.intersect(position, direction, t_max, light_hit)) {
+      radiance += light_hit.radiance * power_heuristic(bsdf_pdf, light_hit.pdf);
+    }
+  }
+  for (const AreaLight& light : area_lights_) {
+    if (light.intersect(position, direction, t_max, light_hit)) {
+      radiance += light_hit.radiance * power_heuristic(bsdf_pdf, light_hit.pdf);
+    }
+  }
+  if (hit.hit) {
+    if (emissive_triangles_.empty()) return radiance;
+    const glm::vec3 emitted = emissive_triangles_.emitted(hit.triangle, direction);
+    if (max_component(emitted) > 0.0f) {
+      const Triangle& t = scene_.triangles[hit.triangle];
+      const float cos_light = std::abs(glm::dot(t.face_normal, direction));
+      radiance += emitted * power_heuristic(
+                                bsdf_pdf, emissive_triangles_.pdf(hit.triangle, hit.t, cos_light));
+    }
+    return radiance;
+  }
+  for (const SunLight& light : sun_lights_) {
+    if (light.intersect(direction, light_hit)) {
+      radiance += light_hit.radiance * power_heuristic(bsdf_pdf, light_hit.pdf);
+    }
+  }
+  return radiance + world_radiance_;  // no light sampling for the world: weight 1
+}
+
+glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+  glm::vec3 irradiance = sample_lights(x, rng, rays);
+  const float u1 = rng.next_float(), u2 = rng.next_float();
+  const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
+  const glm::vec3 direction = Frame(x.shading_normal).to_world(local);
+  const float bsdf_pdf = local.z * kInvPi;
+  if (!(bsdf_pdf > 0.0f) || glm::dot(direction, x.geometric_normal) <= 0.0f) return irradiance;
+  const glm::vec3 origin = ray_origin(x);
+  ++rays;
+  const Hit hit = tracer_.intersect(Ray{origin, direction, 0.0f, 1e30f});
+  // E = integral of L cos; with density cos / pi, one sample estimates pi * L.
+  return irradiance + kPi * emission_along(x.position, direction, hit, bsdf_pdf);
+}
+
+}  // namespace bakegi

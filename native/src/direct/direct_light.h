@@ -1,0 +1,70 @@
+// Direct light at surface points: next-event estimation (one shadow-ray sample of every lamp
+// and one of the emissive triangles) combined by multiple importance sampling (power
+// heuristic) with cosine-weighted sampling of the diffuse BSDF, whose rays pick up emission
+// from area, sphere and sun lights, emissive triangles and the world.
+//
+// Split in two halves so the path tracer can use them at every vertex:
+//   sample_lights()   the light-sampling half (shadow rays included);
+//   emission_along()  the BSDF-sampling half for a ray already traced.
+// irradiance_sample() puts both together for one sample of E_direct at a point.
+//
+// All lights are in radiometric units (bakegi.h). Lamps are not geometry: they neither
+// occlude rays nor are hit by them except through emission_along (as in Cycles).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "direct/area_light.h"
+#include "direct/emissive_triangles.h"
+#include "direct/point_light.h"
+#include "direct/sun_light.h"
+#include "direct/surface_point.h"
+#include "scene/ray_tracer.h"
+
+namespace bakegi {
+
+class Pcg32;
+
+class DirectLight {
+ public:
+  DirectLight(const Scene& scene, const RayTracer& tracer);
+
+  // Offset of ray origins off surfaces, relative to the scene's size.
+  float ray_epsilon() const { return ray_epsilon_; }
+  glm::vec3 ray_origin(const SurfacePoint& x) const {
+    return x.position + x.geometric_normal * ray_epsilon_;
+  }
+
+  // Light-sampling estimate of the direct irradiance E (W/m^2) at x, each lamp's sample
+  // weighted against cosine-weighted BSDF sampling (delta lights get weight 1). Counts the
+  // shadow rays into `rays`.
+  glm::vec3 sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const;
+
+  // BSDF-sampling counterpart: the MIS-weighted radiance arriving at the surface point
+  // `position` along the unit `direction` (drawn with solid-angle density bsdf_pdf), given
+  // the hit of the ray traced from ray_origin(): lamp shapes crossed before the hit, the hit
+  // triangle's emission, or on a miss the sun and the world.
+  glm::vec3 emission_along(const glm::vec3& position, const glm::vec3& direction, const Hit& hit,
+                           float bsdf_pdf) const;
+
+  // One sample of the direct irradiance E at x: sample_lights plus one cosine-weighted ray.
+  glm::vec3 irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const;
+
+  const Scene& scene() const { return scene_; }
+  const RayTracer& tracer() const { return tracer_; }
+
+ private:
+  const Scene& scene_;
+  const RayTracer& tracer_;
+  float ray_epsilon_;
+  std::vector<PointLight> point_lights_;  // point and spot
+  std::vector<SunLight> sun_lights_;
+  std::vector<AreaLight> area_lights_;
+  EmissiveTriangles emissive_triangles_;
+  glm::vec3 world_radiance_;
+};
+
+}  // namespace bakegi

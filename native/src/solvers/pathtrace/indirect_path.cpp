@@ -1,0 +1,80 @@
+#include "solvers/pathtrace/indirect_path.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "direct/direct_light.h"
+#include "util/random.h"
+#include "util/sampling.h"
+
+namespace bakegi {
+
+namespace {
+
+// Roulette starts after this many reflecting vertices: early bounces carry most of the
+// light and would only gain variance from it.
+constexpr int kRouletteStartBounce = 3;
+// Survival probability sqrt(max throughput), as in Cycles: milder than the throughput
+// itself, which measured 1.4x (albedo 0.7) to 5x (albedo 0.3) less efficient (variance x
+// rays) in the closed sphere of test_pathtrace_sphere.cpp.
+float survival_probability(const glm::vec3& throughput) {
+  return std::min(1.0f, std::sqrt(max_component(throughput)));
+}
+
+struct DirectionSample {
+  glm::vec3 direction;
+  float pdf;
+};
+
+DirectionSample sample_cosine(const SurfacePoint& x, Pcg32& rng) {
+  const float u1 = rng.next_float(), u2 = rng.next_float();
+  const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
+  return {Frame(x.shading_normal).to_world(local), local.z * kInvPi};
+}
+
+}  // namespace
+
+glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, Pcg32& rng,
+                          int max_bounces, uint64_t& rays) {
+  const Scene& scene = direct.scene();
+  const RayTracer& tracer = direct.tracer();
+
+  DirectionSample first = sample_cosine(point, rng);
+  if (!(first.pdf > 0.0f)) return glm::vec3(0.0f);
+  glm::vec3 origin = direct.ray_origin(point);
+  glm::vec3 direction = first.direction;
+  ++rays;
+  Hit hit = tracer.intersect(Ray{origin, direction, 0.0f, 1e30f});
+
+  glm::vec3 radiance(0.0f);
+  glm::vec3 throughput(1.0f);
+  for (int bounce = 1; hit.hit; ++bounce) {
+    const SurfacePoint x = surface_at_hit(scene, hit, direction);
+    const Triangle& triangle = scene.triangles[hit.triangle];
+    const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
+    if (!(max_component(albedo) > 0.0f)) break;
+
+    // Next-event estimation: rho / pi * E_light.
+    radiance += throughput * albedo * (kInvPi * direct.sample_lights(x, rng, rays));
+
+    // BSDF sampling: rho / pi * (pi L) per cosine-weighted sample.
+    const DirectionSample next = sample_cosine(x, rng);
+    if (!(next.pdf > 0.0f) || glm::dot(next.direction, x.geometric_normal) <= 0.0f) break;
+    throughput *= albedo;
+    origin = direct.ray_origin(x);
+    direction = next.direction;
+    ++rays;
+    hit = tracer.intersect(Ray{origin, direction, 0.0f, 1e30f});
+    radiance += throughput * direct.emission_along(x.position, direction, hit, next.pdf);
+
+    if (bounce >= max_bounces) break;
+    if (bounce >= kRouletteStartBounce) {
+      const float survival = survival_probability(throughput);
+      if (rng.next_float() >= survival) break;
+      throughput /= survival;
+    }
+  }
+  return radiance;
+}
+
+}  // namespace bakegi

@@ -1,0 +1,36 @@
+#include "solvers/pathtrace/path_tracer.h"
+
+#include "direct/direct_light.h"
+#include "solvers/pathtrace/indirect_path.h"
+#include "util/job_context.h"
+#include "util/settings.h"
+
+namespace bakegi {
+
+PathTraceSettings PathTraceSettings::from(const Settings& settings) {
+  PathTraceSettings s;
+  s.sampling = SampleSettings::from(settings);
+  s.max_bounces = int(settings.get_int("max_bounces", 64, 1, 1 << 16));
+  return s;
+}
+
+PathTracedField::PathTracedField(const DirectLight& direct, const PathTraceSettings& settings)
+    : direct_(direct), settings_(settings) {}
+
+void PathTracedField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
+                               JobContext& context) const {
+  const int max_bounces = settings_.max_bounces;
+  estimate_at_points(
+      points, out, settings_.sampling,
+      [&](const SurfacePoint& x, Pcg32& rng, uint64_t& rays) {
+        return sample_indirect(direct_, x, rng, max_bounces, rays);
+      },
+      context);
+}
+
+std::unique_ptr<IndirectField> PathTracer::solve(const SolveInputs& inputs, JobContext& context) {
+  // Settings are read here so that a bad value fails before any tracing starts.
+  return std::make_unique<PathTracedField>(inputs.direct, PathTraceSettings::from(inputs.settings));
+}
+
+}  // namespace bakegi

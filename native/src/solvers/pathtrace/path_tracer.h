@@ -1,0 +1,37 @@
+// The Monte Carlo reference solver ("pathtrace"). Solving does no work: the returned field
+// traces paths at whatever points it is evaluated at (indirect_path.h).
+// Settings: samples (>= 1, default 64), seed, sample_offset, max_bounces (default 64).
+#pragma once
+
+#include <memory>
+
+#include "solvers/point_sampling.h"
+#include "solvers/solver.h"
+
+namespace bakegi {
+
+struct PathTraceSettings {
+  SampleSettings sampling;
+  int max_bounces = 64;
+
+  static PathTraceSettings from(const Settings& settings);
+};
+
+class PathTracedField : public IndirectField {
+ public:
+  // `direct` (and the scene and tracer it refers to) must outlive the field.
+  PathTracedField(const DirectLight& direct, const PathTraceSettings& settings);
+  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
+                JobContext& context) const override;
+
+ private:
+  const DirectLight& direct_;
+  PathTraceSettings settings_;
+};
+
+class PathTracer : public Solver {
+ public:
+  std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
+};
+
+}  // namespace bakegi

@@ -1,0 +1,40 @@
+// The Monte Carlo loop shared by the sampling solvers: for every bake point, average a
+// one-sample estimator over samples [offset, offset + count), each sample with its own
+// random stream (util/random.h), so results are bit-identical for any thread count and
+// chunks of samples average to one run. Parallel over blocks of points with TBB; checks
+// cancel and reports progress every few samples; counts rays into the report.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "bake_points/bake_points.h"
+#include "direct/surface_point.h"
+
+namespace bakegi {
+
+class JobContext;
+class Pcg32;
+class Settings;
+
+struct SampleSettings {
+  int64_t samples = 64;
+  int64_t seed = 0;
+  int64_t sample_offset = 0;
+
+  // Reads "samples", "seed" and "sample_offset" with their ranges.
+  static SampleSettings from(const Settings& settings);
+};
+
+// One sample of a quantity at a surface point; adds the rays it traced to `rays`.
+using PointSampleEstimator =
+    std::function<glm::vec3(const SurfacePoint& point, Pcg32& rng, uint64_t& rays)>;
+
+void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
+                        const SampleSettings& sampling, const PointSampleEstimator& estimator,
+                        JobContext& context);
+
+}  // namespace bakegi

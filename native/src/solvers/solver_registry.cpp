@@ -1,0 +1,18 @@
+#include <memory>
+#include <string>
+
+#include "solvers/direct_only/direct_only_solver.h"
+#include "solvers/pathtrace/path_tracer.h"
+#include "solvers/solver.h"
+#include "util/error.h"
+
+namespace bakegi {
+
+std::unique_ptr<Solver> make_solver(const std::string& method) {
+  if (method == "pathtrace") return std::make_unique<PathTracer>();
+  if (method == "direct") return std::make_unique<DirectOnlySolver>();
+  throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+              "unknown method '" + method + "' (known: pathtrace, direct)");
+}
+
+}  // namespace bakegi

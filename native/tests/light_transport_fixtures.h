@@ -1,0 +1,172 @@
+// Scenes and a bake runner shared by the light-transport tests (direct light, path tracer).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bake_points/bake_points.h"
+#include "direct/direct_light.h"
+#include "scene/ray_tracer.h"
+#include "scene/scene.h"
+#include "scene/scene_validation.h"
+#include "solvers/solver.h"
+#include "util/job_context.h"
+#include "util/settings.h"
+
+namespace bakegi::test {
+
+inline uint32_t add_material(SceneDescription& d, glm::vec3 albedo, glm::vec3 emission = {},
+                             bool two_sided = true) {
+  Material m;
+  m.albedo = albedo;
+  m.emission = emission;
+  m.emission_two_sided = two_sided;
+  d.materials.push_back(m);
+  return uint32_t(d.materials.size() - 1);
+}
+
+// A quad centred at `center` spanning center +- half_u * u +- half_v * v, as two triangles
+// wound counter-clockwise around u x v (the face normal).
+inline void add_quad(SceneDescription& d, glm::vec3 center, glm::vec3 u, glm::vec3 v, float half_u,
+                     float half_v, uint32_t material) {
+  Mesh mesh;
+  mesh.positions = {center - u * half_u - v * half_v, center + u * half_u - v * half_v,
+                    center + u * half_u + v * half_v, center - u * half_u + v * half_v};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  mesh.material = material;
+  d.meshes.push_back(std::move(mesh));
+}
+
+// An icosphere: the icosahedron subdivided `subdivisions` times, vertices projected onto
+// the sphere; 20 * 4^subdivisions triangles wound counter-clockwise seen from outside.
+inline Mesh make_icosphere(glm::vec3 center, float radius, int subdivisions, uint32_t material) {
+  const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                              {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                              {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (auto& p : v) p = glm::normalize(p);
+  std::vector<std::array<uint32_t, 3>> faces = {
+      {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto it = midpoints.find(key);
+      if (it != midpoints.end()) return it->second;
+      v.push_back(glm::normalize(v[a] + v[b]));
+      const uint32_t index = uint32_t(v.size() - 1);
+      midpoints.emplace(key, index);
+      return index;
+    };
+    std::vector<std::array<uint32_t, 3>> next;
+    for (const auto& f : faces) {
+      const uint32_t a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
+      next.push_back({f[0], a, c});
+      next.push_back({f[1], b, a});
+      next.push_back({f[2], c, b});
+      next.push_back({a, b, c});
+    }
+    faces = std::move(next);
+  }
+  Mesh mesh;
+  for (const auto& p : v) mesh.positions.push_back(center + p * radius);
+  for (const auto& f : faces) mesh.indices.insert(mesh.indices.end(), f.begin(), f.end());
+  mesh.material = material;
+  return mesh;
+}
+
+inline Light point_light(glm::vec3 position, glm::vec3 intensity, float radius = 0.0f) {
+  Light l;
+  l.type = BAKEGI_LIGHT_POINT;
+  l.position = position;
+  l.color = intensity;
+  l.radius = radius;
+  return l;
+}
+
+inline Light area_light(bakegi_area_shape shape, glm::vec3 position, glm::vec3 direction,
+                        glm::vec3 axis_u, float size_x, float size_y, glm::vec3 radiance) {
+  Light l;
+  l.type = BAKEGI_LIGHT_AREA;
+  l.shape = shape;
+  l.position = position;
+  l.direction = direction;
+  l.axis_u = axis_u;
+  l.size_x = size_x;
+  l.size_y = size_y;
+  l.color = radiance;
+  return l;
+}
+
+inline BakePoints make_points(const std::vector<glm::vec3>& positions,
+                              const std::vector<glm::vec3>& normals) {
+  BakePoints p;
+  p.positions = positions;
+  for (const auto& n : normals) p.normals.push_back(glm::normalize(n));
+  p.object_ids.assign(positions.size(), 0);
+  return p;
+}
+
+struct BakeOptions {
+  std::string method = "pathtrace";
+  int64_t samples = 64;
+  int64_t seed = 0;
+  int64_t sample_offset = 0;
+  int64_t max_bounces = 64;
+};
+
+// Runs a solver at the points the way a bake job does (scene, tracer, direct light, solve,
+// evaluate), on the calling thread's task arena.
+class Baker {
+ public:
+  explicit Baker(const SceneDescription& description)
+      : scene_(build_scene(description)), tracer_(scene_), direct_(scene_, tracer_) {}
+
+  std::vector<glm::vec3> bake(const BakePoints& points, const BakeOptions& options,
+                              uint64_t* rays = nullptr) {
+    Settings settings;
+    settings.set("samples", options.samples);
+    settings.set("seed", options.seed);
+    settings.set("sample_offset", options.sample_offset);
+    if (options.method == "pathtrace") settings.set("max_bounces", options.max_bounces);
+    JobContext context;
+    auto solver = make_solver(options.method);
+    auto field = solver->solve(SolveInputs{scene_, tracer_, direct_, settings}, context);
+    std::vector<glm::vec3> out(points.size());
+    field->evaluate(points, out, context);
+    if (rays) *rays = context.report().count("rays");
+    return out;
+  }
+
+  const Scene& scene() const { return scene_; }
+  const DirectLight& direct() const { return direct_; }
+
+ private:
+  Scene scene_;
+  RayTracer tracer_;
+  DirectLight direct_;
+};
+
+inline double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s / double(v.size());
+}
+
+inline double standard_deviation(const std::vector<double>& v) {
+  const double m = mean(v);
+  double s = 0.0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / double(v.size() - 1));
+}
+
+}  // namespace bakegi::test
