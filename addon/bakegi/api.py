@@ -1,0 +1,73 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The scripting API, re-exported by the package:
+
+    import bakegi
+    report = bakegi.bake(method="pathtrace", samples=64, target="CORNER", objects="VISIBLE")
+    bakegi.export_scene_file("/tmp/scene.bgs", target="CORNER", objects="VISIBLE")
+    bakegi.remove_bake()
+
+bake() runs synchronously (timers do not run in background mode) through the same
+session.BakeSession as the Bake Indirect operator.
+"""
+
+import time
+
+import bpy
+
+from . import export, operators, session, writeback
+from .native import BakeGIError
+
+
+def _context(context):
+    return context if context is not None else bpy.context
+
+
+def bake(method="pathtrace", samples=64, seed=0, target="CORNER", objects="SELECTED",
+         threads=0, hook_materials=True, context=None):
+    """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes.
+
+    objects: 'SELECTED', 'VISIBLE', or a list of objects (or their names). Every visible
+    object takes part in the light transport; only the targets receive the attribute.
+    Returns the report: seconds per stage (export, bake, writeback, total and the core's
+    own), bake_points, method, settings, warnings, memory, rays, objects.
+    Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
+    scene is changed."""
+    context = _context(context)
+    report = session.BakeSession(context, method=method, samples=samples, seed=seed,
+                                 target=target, objects=objects, threads=threads,
+                                 hook_materials=hook_materials).run()
+    scene = context.scene
+    if hasattr(scene, "bakegi"):
+        operators.store_report(scene, report)
+    return report
+
+
+def export_scene_file(path, target="CORNER", objects="SELECTED", context=None):
+    """Writes the evaluated scene and the targets' bake points to a .bgs file (what the
+    CLI and the sweep read). Returns a dict with counts, seconds, warnings and, per
+    target object, its slice of the bake points."""
+    context = _context(context)
+    start = time.perf_counter()
+    exported = export.export_scene(context, target, objects)
+    try:
+        exported.scene.write(str(path), exported.points)
+    finally:
+        exported.close()
+    return {"path": str(path), "seconds": time.perf_counter() - start,
+            "counts": exported.counts, "warnings": exported.warnings + exported.skipped,
+            "targets": [{"object": t.object_name, "domain": t.domain, "start": t.start,
+                         "count": t.count} for t in exported.targets]}
+
+
+def remove_bake(objects=None, context=None):
+    """Removes BakeGI_Indirect and restores hooked materials. objects: None (every mesh in
+    the file), 'SELECTED', 'VISIBLE', or a list of objects or names.
+    Returns {"objects": [names cleared], "materials": [names restored]}."""
+    context = _context(context)
+    if objects in ("SELECTED", "VISIBLE"):
+        objects, _ = export.resolve_targets(context, objects)
+    elif isinstance(objects, str):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"objects must be None, 'SELECTED', 'VISIBLE' or a list, not "
+                          f"{objects!r}")
+    return writeback.remove_bake(context.blend_data, objects)

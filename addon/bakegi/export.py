@@ -1,0 +1,540 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The evaluated Blender scene -> a core Scene, and the targets' bake points.
+
+What is exported is what the viewport's depsgraph holds: modifiers applied, world
+transforms, instances (depsgraph.object_instances). Meshes are triangulated
+(loop_triangles) with the corner normals Blender shades with (smooth, flat, custom).
+Lights go through light_units, materials through materials.read_material.
+
+Bake points live on the ORIGINAL mesh's domain (the attribute is written there): one per
+face corner ('CORNER') or per vertex ('POINT'). When the evaluated mesh has the original's
+element counts, its positions and normals are used (deforming modifiers, armatures);
+when modifiers change the topology, the original mesh is baked in world space (with a
+warning).
+
+Nothing here changes the Blender data: evaluated meshes come from to_mesh() and are
+cleared again.
+"""
+
+import math
+import re
+import time
+from dataclasses import dataclass, field
+from typing import Dict, List
+
+import numpy as np
+
+from . import light_units, materials, native
+from .native import BakeGIError
+
+MESH_LIKE = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+TARGET_DOMAINS = ("CORNER", "POINT")
+
+
+@dataclass
+class BakeTarget:
+    """One object whose mesh receives the bake, and its slice of the bake points."""
+
+    # Names, not references: the result is written after the bake, and references do not
+    # survive an undo (or a deletion) in between.
+    object_name: str
+    mesh_name: str  # name_full of the original mesh, where the attribute goes
+    domain: str
+    start: int
+    count: int
+
+
+@dataclass
+class ExportedScene:
+    scene: native.Scene
+    points: native.Points
+    targets: List[BakeTarget]
+    # name_full of original materials -> what was read from them (for the hook).
+    materials: Dict[str, object] = field(default_factory=dict)
+    warnings: List[str] = field(default_factory=list)
+    skipped: List[str] = field(default_factory=list)
+    counts: Dict[str, int] = field(default_factory=dict)
+    seconds: float = 0.0
+    object_names: List[str] = field(default_factory=list)  # by the core's object id
+
+    def close(self):
+        self.scene.close()
+        self.points.close()
+
+
+def name_objects(message, object_names):
+    """Puts Blender object names into a core message: "(object 3)" -> "(object 'Cube')"."""
+    def name(match):
+        i = int(match.group(1))
+        return f"object '{object_names[i]}'" if i < len(object_names) else match.group(0)
+    return re.sub(r"\bobject (\d+)", name, message)
+
+
+def _invalid(message):
+    return BakeGIError("BAKEGI_ERROR_INVALID_SCENE", message)
+
+
+# ---- which objects ----------------------------------------------------------------------
+
+
+def resolve_targets(context, objects):
+    """objects: 'SELECTED', 'VISIBLE' or a list of objects or names.
+    Returns (mesh objects to bake, [reasons for skipped objects])."""
+    view_layer = context.view_layer
+    if objects == "SELECTED":
+        candidates = list(context.selected_objects)
+    elif objects == "VISIBLE":
+        # (None entries: objects removed since the view layer was last updated)
+        candidates = [o for o in view_layer.objects
+                      if o is not None and o.visible_get(view_layer=view_layer)]
+    elif isinstance(objects, str):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"objects must be 'SELECTED', 'VISIBLE' or a list, not {objects!r}")
+    else:
+        candidates = []
+        data_objects = context.blend_data.objects
+        for item in objects:
+            obj = data_objects.get(item) if isinstance(item, str) else item
+            if obj is None:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {item!r}")
+            candidates.append(obj)
+    targets, skipped, meshes = [], [], {}
+    for obj in candidates:
+        if obj.type != "MESH":
+            if objects != "VISIBLE":
+                skipped.append(f"'{obj.name}' skipped: a {obj.type.lower()}, not a mesh")
+            continue
+        if view_layer.objects.get(obj.name) is None or not obj.visible_get(
+                view_layer=view_layer):
+            skipped.append(f"'{obj.name}' skipped: not visible in the view layer")
+            continue
+        mesh = obj.data
+        if mesh.library is not None or getattr(mesh, "override_library", None) is not None:
+            skipped.append(f"'{obj.name}' skipped: its mesh is linked from a library")
+            continue
+        if len(mesh.polygons) == 0:
+            skipped.append(f"'{obj.name}' skipped: its mesh has no faces")
+            continue
+        if mesh.name_full in meshes:
+            skipped.append(f"'{obj.name}' skipped: shares mesh '{mesh.name}' with "
+                           f"'{meshes[mesh.name_full]}', which is baked")
+            continue
+        meshes[mesh.name_full] = obj.name
+        targets.append(obj)
+    return targets, skipped
+
+
+# ---- mesh arrays ------------------------------------------------------------------------
+
+
+def _get(collection, attr, count, dtype, width=1):
+    out = np.empty(count * width, dtype)
+    if count:
+        collection.foreach_get(attr, out)
+    return out.reshape(-1, width) if width > 1 else out
+
+
+def corner_normals(mesh):
+    """(loops, 3) normals as Blender shades each face corner (smooth/flat/custom)."""
+    n = len(mesh.loops)
+    if hasattr(mesh, "corner_normals"):  # Blender 4.1+: always up to date
+        return _get(mesh.corner_normals, "vector", n, np.float32, 3)
+    mesh.calc_normals_split()  # Blender < 4.1 (the mesh here is a temporary one)
+    return _get(mesh.loops, "normal", n, np.float32, 3)
+
+
+def _matrix(m):
+    return np.array([list(row) for row in m], dtype=np.float64)
+
+
+def _positions_to_world(matrix, positions):
+    p = positions.astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+    return p.astype(np.float32)
+
+
+def _normals_to_world(matrix, normals):
+    """Normals transform with the inverse transpose: n' = n^T M^-1, then renormalized."""
+    m3 = matrix[:3, :3]
+    try:
+        normal_matrix = np.linalg.inv(m3)
+    except np.linalg.LinAlgError:
+        normal_matrix = m3
+    n = normals.astype(np.float64) @ normal_matrix
+    length = np.linalg.norm(n, axis=1, keepdims=True)
+    n = np.where(length > 0, n / np.maximum(length, 1e-30), 0.0)
+    return n.astype(np.float32)
+
+
+def _check_finite(name, positions, what="vertex"):
+    finite = np.isfinite(positions).all(axis=1)
+    if not finite.all():
+        i = int(np.argmin(finite))
+        x, y, z = (float(v) for v in positions[i])
+        raise _invalid(f"object '{name}': {what} {i} has a non-finite position "
+                       f"({x:g}, {y:g}, {z:g}); fix the mesh (or its modifiers) and bake again")
+
+
+@dataclass
+class _LocalMesh:
+    """A triangulated evaluated mesh in object space, cached per object for instances."""
+
+    positions: np.ndarray  # (V, 3)
+    tri_vertices: np.ndarray  # (T, 3)
+    normals: np.ndarray  # (T*3, 3) corner normals of the triangles' corners
+    uvs: np.ndarray  # (T*3, 2) or None
+    tri_materials: np.ndarray  # (T,) core material ids
+
+
+class SceneExporter:
+    """Builds the core Scene from a depsgraph."""
+
+    def __init__(self, depsgraph, warnings):
+        self.depsgraph = depsgraph
+        self.warnings = warnings
+        self.scene = native.Scene()
+        self.material_ids = {}  # original material name_full (or None) -> core id
+        self.material_infos = {}  # original material name_full -> MaterialInfo
+        self.texture_ids = {}  # (image name_full) -> core texture id
+        self.local_meshes = {}
+        self.triangles = 0
+        self.meshes = 0
+        self.lights = 0
+        self.object_names = []
+
+    # materials
+    def _texture(self, image):
+        key = image.name_full
+        if key not in self.texture_ids:
+            rgb = materials.image_linear_rgb(image, self.warnings)
+            self.texture_ids[key] = None if rgb is None else self.scene.add_texture(rgb)
+        return self.texture_ids[key]
+
+    def material(self, material):
+        """(core material id, MaterialInfo) of an (evaluated or original) material."""
+        original = material.original if material is not None else None
+        key = original.name_full if original is not None else None
+        if key not in self.material_ids:
+            info = materials.read_material(material)
+            self.warnings.extend(info.warnings)
+            texture = self._texture(info.texture.image) if info.texture is not None else None
+            if info.texture is not None and texture is None:
+                info.texture = None
+            self.material_ids[key] = self.scene.add_material(info.albedo, info.emission,
+                                                             texture, emission_two_sided=True)
+            if original is not None:
+                self.material_infos[key] = info
+        info = self.material_infos[key] if key is not None else materials.MaterialInfo()
+        return self.material_ids[key], info
+
+    # meshes
+    def _local_mesh(self, obj):
+        # Instances of one object share its mesh; geometry-nodes instances carry their own
+        # data under the instancer's name, hence the data pointer in the key.
+        key = (obj.name_full, obj.data.as_pointer() if obj.data is not None else 0)
+        if key in self.local_meshes:
+            return self.local_meshes[key]
+        try:
+            mesh = obj.to_mesh()
+        except RuntimeError as error:
+            self.warnings.append(f"'{obj.name}' left out: it has no mesh ({error})")
+            self.local_meshes[key] = None
+            return None
+        try:
+            local = self._read_mesh(obj, mesh) if mesh is not None else None
+        finally:
+            obj.to_mesh_clear()
+        self.local_meshes[key] = local
+        return local
+
+    def _read_mesh(self, obj, mesh):
+        mesh.calc_loop_triangles()
+        tris = mesh.loop_triangles
+        t = len(tris)
+        if t == 0:
+            return None
+        positions = _get(mesh.vertices, "co", len(mesh.vertices), np.float32, 3)
+        _check_finite(obj.name, positions)
+        tri_vertices = _get(tris, "vertices", t, np.int32, 3)
+        tri_loops = _get(tris, "loops", t, np.int32, 3).reshape(-1)
+        normals = corner_normals(mesh)[tri_loops]
+        slot_index = _get(tris, "material_index", t, np.int32)
+
+        slots = [s.material for s in obj.material_slots] or list(mesh.materials)
+        if not slots:
+            slots = [None]
+        ids, infos = [], []
+        for m in slots:
+            core_id, info = self.material(m)
+            ids.append(core_id)
+            infos.append(info)
+        slot_index = np.clip(slot_index, 0, len(slots) - 1)
+        tri_materials = np.asarray(ids, np.uint32)[slot_index]
+
+        uvs = None
+        textured = [i for i, info in enumerate(infos) if info.texture is not None]
+        if textured:
+            uvs = np.zeros((t * 3, 2), np.float32)
+            layers = mesh.uv_layers
+            active = next((l for l in layers if l.active_render), None)
+            for i in textured:
+                wanted = infos[i].texture.uv_map
+                layer = layers.get(wanted) if wanted else active
+                if layer is None:
+                    self.warnings.append(
+                        f"object '{obj.name}': UV map '{wanted or '(active)'}' of material "
+                        f"'{slots[i].name if slots[i] else ''}' not found; its texture is sampled at (0, 0)")
+                    continue
+                loop_uv = _get(layer.data, "uv", len(mesh.loops), np.float32, 2)
+                corner = np.repeat(slot_index == i, 3)
+                uvs[corner] = loop_uv[tri_loops[corner]]
+        return _LocalMesh(positions, tri_vertices, normals, uvs, tri_materials)
+
+    def add_instance(self, obj, matrix_world):
+        local = self._local_mesh(obj)
+        if local is None:
+            return
+        matrix = _matrix(matrix_world)
+        positions = _positions_to_world(matrix, local.positions)
+        normals = _normals_to_world(matrix, local.normals)
+        _check_finite(obj.name, positions)
+        object_id = len(self.object_names)
+        self.object_names.append(obj.name)
+        try:
+            self.scene.add_mesh(positions, local.tri_vertices, corner_normals=normals,
+                                corner_uvs=local.uvs, triangle_materials=local.tri_materials,
+                                object_id=object_id)
+        except BakeGIError as error:
+            raise BakeGIError(error.status, name_objects(error.message, self.object_names))
+        self.meshes += 1
+        self.triangles += len(local.tri_vertices)
+
+    # lights
+    def add_light(self, obj, matrix_world):
+        light = obj.data
+        settings = light_units.BlenderLight(
+            name=obj.name, type=light.type, color=tuple(light.color), energy=light.energy,
+            matrix_world=[list(row) for row in matrix_world],
+            shadow_soft_size=getattr(light, "shadow_soft_size", 0.0),
+            spot_size=getattr(light, "spot_size", 0.0),
+            spot_blend=getattr(light, "spot_blend", 0.0),
+            angle=getattr(light, "angle", 0.0),
+            shape=getattr(light, "shape", "SQUARE"),
+            size=getattr(light, "size", 0.0),
+            size_y=getattr(light, "size_y", 0.0),
+            spread=getattr(light, "spread", math.pi),
+            use_nodes=bool(getattr(light, "use_nodes", False)),
+            node_tree_is_default=_light_tree_is_default(light))
+        conversion = light_units.convert_light(settings)
+        self.warnings.extend(conversion.warnings)
+        if conversion.light is not None:
+            self.scene.add_light(**vars(conversion.light))
+            self.lights += 1
+
+    def set_world(self, world):
+        self.scene.set_world(world_radiance(world, self.warnings))
+
+
+def _light_tree_is_default(light):
+    tree = getattr(light, "node_tree", None)
+    if not getattr(light, "use_nodes", False) or tree is None:
+        return True
+    kinds = sorted(n.type for n in tree.nodes)
+    if kinds != ["EMISSION", "OUTPUT_LIGHT"]:
+        return False
+    emission = next(n for n in tree.nodes if n.type == "EMISSION")
+    color, strength = emission.inputs["Color"], emission.inputs["Strength"]
+    return (not color.is_linked and not strength.is_linked and
+            tuple(color.default_value)[:3] == (1.0, 1.0, 1.0) and
+            strength.default_value == 1.0)
+
+
+def world_radiance(world, warnings):
+    """Constant background radiance of a world: color x strength (a textured world is
+    replaced by its mean colour, with a warning)."""
+    if world is None:
+        return (0.0, 0.0, 0.0)
+    what = f"world '{world.name}'"
+    if not world.use_nodes or world.node_tree is None:
+        return tuple(float(c) for c in world.color[:3])
+    tree = world.node_tree
+    outputs = [n for n in tree.nodes if n.type == "OUTPUT_WORLD"]
+    output = next((n for n in outputs if n.is_active_output), outputs[0] if outputs else None)
+    if output is None:
+        return (0.0, 0.0, 0.0)
+    source = materials._linked_from(output.inputs["Surface"])
+    if source is None:
+        return (0.0, 0.0, 0.0)
+    node = source.node
+    if node.type != "BACKGROUND":
+        warnings.append(f"{what}: a '{node.bl_label}' node is not a Background; the world is "
+                        "read as black")
+        return (0.0, 0.0, 0.0)
+    strength_socket = node.inputs["Strength"]
+    if strength_socket.is_linked:
+        warnings.append(f"{what}: a linked strength is read as its default value")
+    strength = float(strength_socket.default_value)
+    color_socket = node.inputs["Color"]
+    color = tuple(float(c) for c in color_socket.default_value[:3])
+    color_source = materials._linked_from(color_socket)
+    if color_source is not None:
+        tex = color_source.node
+        if tex.type == "TEX_ENVIRONMENT" and tex.image is not None:
+            rgb = materials.image_linear_rgb(tex.image, warnings)
+            if rgb is not None:
+                # Mean radiance over the sphere of an equirectangular map: rows weighted by
+                # the solid angle they cover (cos of latitude).
+                h = rgb.shape[0]
+                latitude = (np.arange(h) + 0.5) / h * np.pi - np.pi / 2
+                weights = np.cos(latitude)
+                color = tuple(float(c) for c in
+                              (rgb.mean(axis=1) * weights[:, None]).sum(axis=0) / weights.sum())
+                warnings.append(f"{what}: the environment texture is replaced by its mean "
+                                "color (a constant world)")
+        elif color_source.node.type == "RGB":
+            color = tuple(float(c) for c in color_source.default_value[:3])
+        else:
+            warnings.append(f"{what}: the '{tex.bl_label}' node on the background color is not "
+                            "evaluated; its default color is used")
+    return light_units.world_radiance(color, strength)
+
+
+# ---- bake points --------------------------------------------------------------------------
+
+
+def _original_corner_normals(mesh):
+    """Corner normals of an original mesh read without changing it (custom normals are not
+    read): the vertex normal on smooth faces, the face normal on flat ones."""
+    loops = len(mesh.loops)
+    vertex_normals = _get(mesh.vertices, "normal", len(mesh.vertices), np.float32, 3)
+    loop_vertex = _get(mesh.loops, "vertex_index", loops, np.int32)
+    polys = len(mesh.polygons)
+    face_normals = _get(mesh.polygons, "normal", polys, np.float32, 3)
+    smooth = _get(mesh.polygons, "use_smooth", polys, bool)
+    totals = _get(mesh.polygons, "loop_total", polys, np.int32)
+    loop_face = np.repeat(np.arange(polys), totals)
+    return np.where(smooth[loop_face][:, None], vertex_normals[loop_vertex],
+                    face_normals[loop_face])
+
+
+# How far a bake point moves from its vertex towards the centre of its face(s), as a fraction
+# of that distance. A corner on a concave junction (a floor corner at the foot of a wall) lies
+# exactly in the plane of the neighbouring surface; rays leaving it then hit or miss that
+# surface by float rounding, and the value came out 36% dark there against Cycles. Moved this
+# little into its own face, the point gives the limit from inside the face, which is what
+# Cycles' bake returns there, and the value moves by a negligible 0.2% of a face's size.
+INWARD_FRACTION = 2e-3
+
+
+def nudge_into_faces(positions, inward_targets):
+    """Moves each bake point INWARD_FRACTION of the way towards its target point."""
+    return positions + INWARD_FRACTION * (inward_targets - positions)
+
+
+def _mean_face_center_per_vertex(vertices, loop_vertex, loop_face_center):
+    """Mean of the centres of the faces around each vertex (the vertex itself if loose)."""
+    sums = np.zeros_like(vertices, dtype=np.float64)
+    np.add.at(sums, loop_vertex, loop_face_center)
+    counts = np.bincount(loop_vertex, minlength=len(vertices))[:, None]
+    return np.where(counts > 0, sums / np.maximum(counts, 1), vertices).astype(np.float32)
+
+
+def target_points(obj, depsgraph, domain, warnings):
+    """World-space (positions, normals) of one target's bake points on its original mesh's
+    domain."""
+    original = obj.data
+    obj_eval = obj.evaluated_get(depsgraph)
+    matrix = _matrix(obj_eval.matrix_world)
+    want = len(original.loops) if domain == "CORNER" else len(original.vertices)
+    mesh = obj_eval.to_mesh()
+    try:
+        same = (mesh is not None and len(mesh.vertices) == len(original.vertices) and
+                len(mesh.loops) == len(original.loops))
+        source = mesh if same else original
+        if not same:
+            warnings.append(f"'{obj.name}': modifiers change its topology; the bake is made on "
+                            "the mesh without them (placed in world space)")
+        vertices = _get(source.vertices, "co", len(source.vertices), np.float32, 3)
+        loop_vertex = _get(source.loops, "vertex_index", len(source.loops), np.int32)
+        polys = len(source.polygons)
+        face_centers = _get(source.polygons, "center", polys, np.float32, 3)
+        loop_face = np.repeat(np.arange(polys),
+                              _get(source.polygons, "loop_total", polys, np.int32))
+        if domain == "CORNER":
+            positions = vertices[loop_vertex]
+            inward = face_centers[loop_face]
+            normals = corner_normals(source) if same else _original_corner_normals(source)
+        else:
+            positions = vertices
+            inward = _mean_face_center_per_vertex(vertices, loop_vertex, face_centers[loop_face])
+            normals = _get(source.vertices, "normal", want, np.float32, 3)
+        positions = nudge_into_faces(positions, inward)
+    finally:
+        obj_eval.to_mesh_clear()
+    _check_finite(obj.name, positions, "vertex" if domain == "POINT" else "face corner")
+    return _positions_to_world(matrix, positions), _normals_to_world(matrix, normals)
+
+
+# ---- the whole export ---------------------------------------------------------------------
+
+
+def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None):
+    """Exports the evaluated scene and the bake points of the target objects.
+
+    Raises BakeGIError (with the object and element named) for invalid input; the Blender
+    data is left as it was."""
+    start = time.perf_counter()
+    if target not in TARGET_DOMAINS:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"target must be one of {TARGET_DOMAINS}, not {target!r}")
+    targets, skipped = resolve_targets(context, objects)
+    if not targets:
+        why = "; ".join(skipped) if skipped else "no mesh object is " + (
+            "selected" if objects == "SELECTED" else "visible" if objects == "VISIBLE" else
+            "given")
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"nothing to bake: {why}")
+    if depsgraph is None:
+        depsgraph = context.evaluated_depsgraph_get()
+    warnings = []
+    exporter = SceneExporter(depsgraph, warnings)
+    points = None
+    try:
+        for instance in depsgraph.object_instances:
+            obj = instance.object
+            if obj.type in MESH_LIKE:
+                exporter.add_instance(obj, instance.matrix_world)
+            elif obj.type == "LIGHT":
+                exporter.add_light(obj, instance.matrix_world)
+        exporter.set_world(context.scene.world)
+
+        positions, normals, ids, bake_targets = [], [], [], []
+        offset = 0
+        for index, obj in enumerate(targets):
+            p, n = target_points(obj, depsgraph, target, warnings)
+            positions.append(p)
+            normals.append(n)
+            ids.append(np.full(len(p), index, np.uint32))
+            bake_targets.append(BakeTarget(obj.name, obj.data.name_full, target, offset, len(p)))
+            offset += len(p)
+        points = native.Points(np.concatenate(positions), np.concatenate(normals),
+                               np.concatenate(ids))
+    except BaseException:
+        exporter.scene.close()
+        if points is not None:
+            points.close()
+        raise
+    counts = {"meshes": exporter.meshes, "triangles": exporter.triangles,
+              "lights": exporter.lights, "materials": len(exporter.material_ids),
+              "textures": sum(1 for v in exporter.texture_ids.values() if v is not None),
+              "bake_points": offset, "targets": len(bake_targets)}
+    return ExportedScene(exporter.scene, points, bake_targets, exporter.material_infos,
+                         _unique(warnings), skipped, counts, time.perf_counter() - start,
+                         exporter.object_names)
+
+
+def _unique(items):
+    seen, out = set(), []
+    for item in items:
+        if item not in seen:
+            seen.add(item)
+            out.append(item)
+    return out

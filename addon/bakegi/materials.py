@@ -1,0 +1,397 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Blender materials: what the core needs to know of them, and the Material Preview hook.
+
+read_material(material) -> MaterialInfo: diffuse albedo (a constant times an optional
+image texture sampled at a UV map) and emitted radiance, from the node tree:
+  - Principled BSDF: base color x (1 - metallic) x (1 - transmission); emission color x
+    emission strength;
+  - Diffuse BSDF: its color; Emission shader: an emitter with black albedo;
+  - Mix / Add Shader: mixed best-effort, with a warning;
+  - an Image Texture linked (directly or through reroutes) into the color is sampled,
+    with the UV map of its vector input (default: the mesh's active render UV map);
+  - anything else: the node's unlinked (default) color, with a warning.
+
+hook(material, info) / unhook(material): the non-destructive Material Preview hook. The
+hook adds nodes named "BakeGI_*" that compute albedo x BakeGI_Indirect (an Attribute
+node reading the baked color attribute) and emit it through an Emission shader whose
+strength is Light Path "Is Camera Ray" (so in Cycles the baked light is not fed to other
+surfaces), added with an Add Shader to whatever was plugged into the Material Output's
+Surface. The original link is stored on the material (ID property "bakegi_hook");
+unhook removes the added nodes and restores that link exactly.
+
+A material is hooked once, whatever number of objects use it. Objects that use a hooked
+material but carry no BakeGI_Indirect attribute read black from the Attribute node, so
+they look exactly as before.
+
+This module does not import bpy: it only reads and edits the objects it is given, so the
+pure parts (colour-space conversion) can be tested without Blender.
+"""
+
+from dataclasses import dataclass, field
+from typing import List, Optional, Tuple
+
+import numpy as np
+
+from . import light_units
+
+ATTRIBUTE_NAME = "BakeGI_Indirect"
+NODE_PREFIX = "BakeGI_"
+HOOK_PROPERTY = "bakegi_hook"
+
+# Cycles' default surface for faces without a material.
+DEFAULT_ALBEDO = (0.8, 0.8, 0.8)
+
+LINEAR_COLORSPACES = {"Linear", "Linear Rec.709", "Linear Rec.2020", "Linear ACES",
+                      "Linear ACEScg", "ACEScg", "Non-Color", "Raw", "XYZ", "Linear CIE-XYZ E",
+                      "Linear CIE-XYZ D65", "Linear FilmLight E-Gamut", "Linear DCI-P3 D65"}
+SRGB_COLORSPACES = {"sRGB", "sRGB OETF", "Filmic sRGB", "AgX Base sRGB"}
+
+
+@dataclass
+class TextureRef:
+    """An image to sample and the UV map to sample it with ("" = active render UV map)."""
+
+    image: object
+    uv_map: str = ""
+
+
+@dataclass
+class MaterialInfo:
+    albedo: Tuple[float, float, float] = DEFAULT_ALBEDO
+    texture: Optional[TextureRef] = None  # multiplies albedo
+    emission: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    warnings: List[str] = field(default_factory=list)
+    # For the hook: (node name, output index) of the socket that gives the base color
+    # (None: the constant albedo). Names, not references: the hook is made after the bake,
+    # and references into node trees do not survive an undo in between.
+    color_source: Optional[Tuple[str, int]] = None
+    albedo_factor: float = 1.0  # what multiplies color_source's color to give the albedo
+
+
+# ---- colour -----------------------------------------------------------------------------
+
+
+def srgb_to_linear(values):
+    """The sRGB transfer function, inverted (IEC 61966-2-1), elementwise on an array."""
+    v = np.asarray(values, dtype=np.float32)
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4).astype(np.float32)
+
+
+def image_linear_rgb(image, warnings):
+    """(height, width, 3) float32 linear RGB of a Blender image, row 0 at the bottom.
+
+    image.pixels holds float images in scene-linear already; byte images hold their
+    encoded values (/255), which are decoded here according to the image's colour space.
+    """
+    width, height = int(image.size[0]), int(image.size[1])
+    channels = int(image.channels)
+    if width == 0 or height == 0 or channels == 0:
+        warnings.append(f"image '{image.name}' has no pixels (missing file?); its texture "
+                        "is ignored")
+        return None
+    flat = np.empty(width * height * channels, np.float32)
+    image.pixels.foreach_get(flat)
+    pixels = flat.reshape(height, width, channels)
+    if channels >= 3:
+        rgb = pixels[:, :, :3]
+    else:  # grey (or grey + alpha)
+        rgb = np.repeat(pixels[:, :, :1], 3, axis=2)
+    rgb = np.ascontiguousarray(rgb, dtype=np.float32)
+    if not image.is_float:
+        space = image.colorspace_settings.name
+        if space in LINEAR_COLORSPACES:
+            pass
+        elif space in SRGB_COLORSPACES:
+            rgb = srgb_to_linear(rgb)
+        else:
+            warnings.append(f"image '{image.name}': colour space '{space}' is read as sRGB")
+            rgb = srgb_to_linear(rgb)
+    if not np.all(np.isfinite(rgb)):
+        warnings.append(f"image '{image.name}' has non-finite pixels; they are read as 0")
+        rgb = np.nan_to_num(rgb, nan=0.0, posinf=0.0, neginf=0.0)
+    return rgb
+
+
+# ---- reading node trees ------------------------------------------------------------------
+
+
+def _input(node, *names):
+    """The first input socket with one of `names` (names changed in Blender 4.0)."""
+    for name in names:
+        socket = node.inputs.get(name)
+        if socket is not None:
+            return socket
+    return None
+
+
+def _linked_from(socket):
+    """The output socket linked into `socket`, through reroutes, or None."""
+    seen = 0
+    while socket is not None and socket.is_linked and seen < 64:
+        link = socket.links[0]
+        if not link.is_valid or getattr(link, "is_muted", False):
+            return None
+        node = link.from_node
+        if node.type == "REROUTE":
+            socket = node.inputs[0]
+            seen += 1
+            continue
+        return link.from_socket
+    return None
+
+
+def _color_value(socket):
+    v = socket.default_value
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
+def _float_input(node, names, fallback, info, what):
+    socket = _input(node, *names)
+    if socket is None:
+        return fallback
+    if socket.is_linked:
+        info.warnings.append(f"{what}: a linked '{socket.name}' is read as its default value")
+    return float(socket.default_value)
+
+
+def _texture_uv_map(tex_node, info, what):
+    vector = tex_node.inputs.get("Vector")
+    source = _linked_from(vector) if vector is not None else None
+    if source is None:
+        return ""
+    node = source.node
+    if node.type == "UVMAP":
+        return node.uv_map
+    if node.type == "TEX_COORD" and source.name == "UV":
+        return ""
+    info.warnings.append(f"{what}: texture coordinates from a '{node.name}' node are read as "
+                         "the active UV map")
+    return ""
+
+
+def _read_color(socket, info, what):
+    """(constant rgb, TextureRef or None, socket giving the colour or None)."""
+    source = _linked_from(socket)
+    if source is None:
+        return _color_value(socket), None, None
+    node = source.node
+    if node.type == "TEX_IMAGE" and node.image is not None:
+        return (1.0, 1.0, 1.0), TextureRef(node.image, _texture_uv_map(node, info, what)), source
+    if node.type == "RGB":
+        return _color_value(source), None, source
+    info.warnings.append(f"{what}: the '{node.name}' node feeding '{socket.name}' is not "
+                         "evaluated; its default color is used")
+    return _color_value(socket), None, None
+
+
+def _scaled(c, s):
+    return (c[0] * s, c[1] * s, c[2] * s)
+
+
+def _read_shader(socket_out, info, what, depth=0):
+    """Reads the shader behind output socket `socket_out`; returns
+    (albedo, texture, emission, color_socket, albedo_factor)."""
+    black = (0.0, 0.0, 0.0)
+    node = socket_out.node
+    kind = node.type
+    if depth > 16:
+        info.warnings.append(f"{what}: shader tree too deep; read as black")
+        return black, None, black, None, 1.0
+    if kind == "BSDF_PRINCIPLED":
+        base, texture, color_socket = _read_color(_input(node, "Base Color"), info, what)
+        metallic = _float_input(node, ("Metallic",), 0.0, info, what)
+        transmission = _float_input(node, ("Transmission Weight", "Transmission"), 0.0, info,
+                                    what)
+        factor = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
+        emission = black
+        em_socket = _input(node, "Emission Color", "Emission")
+        if em_socket is not None:
+            if _linked_from(em_socket) is not None:
+                info.warnings.append(f"{what}: a linked emission color is read as its default")
+            strength = _float_input(node, ("Emission Strength",), 1.0, info, what)
+            emission = light_units.emission_radiance(_color_value(em_socket), strength)
+        return _scaled(base, factor), texture, emission, color_socket, factor
+    if kind == "BSDF_DIFFUSE":
+        base, texture, color_socket = _read_color(node.inputs["Color"], info, what)
+        return base, texture, black, color_socket, 1.0
+    if kind == "EMISSION":
+        color, texture, _ = _read_color(node.inputs["Color"], info, what)
+        if texture is not None:
+            info.warnings.append(f"{what}: a textured emission color is read as white")
+        strength = _float_input(node, ("Strength",), 1.0, info, what)
+        return black, None, light_units.emission_radiance(color, strength), None, 1.0
+    if kind in ("MIX_SHADER", "ADD_SHADER"):
+        shader_inputs = [s for s in node.inputs if s.type == "SHADER"]
+        parts = []
+        for s in shader_inputs:
+            src = _linked_from(s)
+            parts.append(_read_shader(src, info, what, depth + 1) if src is not None
+                         else (black, None, black, None, 1.0))
+        if kind == "MIX_SHADER":
+            fac = min(max(_float_input(node, ("Fac",), 0.5, info, what), 0.0), 1.0)
+            weights = (1.0 - fac, fac)
+        else:
+            weights = (1.0, 1.0)
+        info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) is approximated by a "
+                             "weighted sum of its shaders")
+        albedo = [0.0, 0.0, 0.0]
+        emission = [0.0, 0.0, 0.0]
+        for w, part in zip(weights, parts):
+            for k in range(3):
+                albedo[k] += w * part[0][k]
+                emission[k] += w * part[2][k]
+        albedo = tuple(min(a, 1.0) for a in albedo)
+        # Keep the texture of the part that weighs most, scaled by its weight.
+        best = max(range(len(parts)), key=lambda i: weights[i] * max(parts[i][0]), default=None)
+        if best is not None and parts[best][1] is not None:
+            w = weights[best]
+            return (_scaled(parts[best][0], w), parts[best][1], tuple(emission), parts[best][3],
+                    parts[best][4] * w)
+        return albedo, None, tuple(emission), None, 1.0
+    # Any other shader: its colour input's default value, as diffuse.
+    color = _input(node, "Color", "Base Color")
+    info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) is approximated as a diffuse "
+                         "surface")
+    if color is None or not hasattr(color.default_value, "__len__"):
+        return DEFAULT_ALBEDO, None, black, None, 1.0
+    base, texture, color_socket = _read_color(color, info, what)
+    return base, texture, black, color_socket, 1.0
+
+
+def active_output(tree):
+    """The Material Output node Cycles would use."""
+    outputs = [n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"]
+    for preferred in ("CYCLES", "ALL"):
+        for n in outputs:
+            if n.is_active_output and n.target == preferred:
+                return n
+    for n in outputs:
+        if n.target in ("CYCLES", "ALL"):
+            return n
+    return outputs[0] if outputs else None
+
+
+def read_material(material):
+    """What the core needs of a Blender material (None: Cycles' default grey)."""
+    info = MaterialInfo()
+    if material is None:
+        return info
+    what = f"material '{material.name}'"
+    if not material.use_nodes or material.node_tree is None:
+        c = material.diffuse_color
+        info.albedo = (float(c[0]), float(c[1]), float(c[2]))
+        return info
+    output = active_output(material.node_tree)
+    if output is None:
+        info.warnings.append(f"{what}: no Material Output node; read as black")
+        info.albedo = (0.0, 0.0, 0.0)
+        return info
+    surface = _linked_from(output.inputs["Surface"])
+    if surface is not None and surface.node.name.startswith(NODE_PREFIX):
+        # Hooked by an earlier bake: read the material as it was before the hook.
+        surface = _linked_from(surface.node.inputs[0])
+    if surface is None:
+        info.albedo = (0.0, 0.0, 0.0)  # Cycles renders an unconnected surface black
+        return info
+    albedo, texture, emission, color_socket, factor = _read_shader(surface, info, what)
+    info.albedo = tuple(min(max(float(a), 0.0), 1.0) for a in albedo)
+    info.texture = texture
+    info.emission = tuple(max(float(e), 0.0) for e in emission)
+    if color_socket is not None:
+        node = color_socket.node
+        info.color_source = (node.name, list(node.outputs).index(color_socket))
+    info.albedo_factor = factor
+    if any(a > 1.0 for a in albedo):
+        info.warnings.append(f"{what}: albedo above 1 is clamped to 1")
+    return info
+
+
+# ---- the Material Preview hook -----------------------------------------------------------
+
+
+def is_hooked(material):
+    return material is not None and material.get(HOOK_PROPERTY) is not None
+
+
+def can_hook(material, info):
+    return (material is not None and material.use_nodes and material.node_tree is not None
+            and active_output(material.node_tree) is not None and
+            (info.color_source is not None or max(info.albedo) > 0.0))
+
+
+def hook(material, info):
+    """Adds albedo x BakeGI_Indirect as camera-only emission. Returns True if hooked now."""
+    if is_hooked(material) or not can_hook(material, info):
+        return False
+    tree = material.node_tree
+    output = active_output(tree)
+    surface_input = output.inputs["Surface"]
+    # The link into Surface as it is (possibly from a reroute), to restore it exactly.
+    direct = surface_input.links[0] if surface_input.is_linked else None
+    record = {"output": output.name, "from_node": "", "from_socket": -1}
+    if direct is not None:
+        record["from_node"] = direct.from_node.name
+        record["from_socket"] = list(direct.from_node.outputs).index(direct.from_socket)
+
+    x, y = output.location.x, output.location.y
+    nodes, links = tree.nodes, tree.links
+
+    def new(kind, name, dx, dy):
+        node = nodes.new(kind)
+        node.name = NODE_PREFIX + name
+        node.label = "BakeGI " + name.replace("_", " ")
+        node.location = (x + dx, y + dy)
+        return node
+
+    attribute = new("ShaderNodeAttribute", "Indirect", -900, -300)
+    attribute.attribute_type = "GEOMETRY"
+    attribute.attribute_name = ATTRIBUTE_NAME
+    times_albedo = new("ShaderNodeVectorMath", "Times_Albedo", -650, -300)
+    times_albedo.operation = "MULTIPLY"
+    links.new(attribute.outputs["Color"], times_albedo.inputs[0])
+    color_node = tree.nodes.get(info.color_source[0]) if info.color_source else None
+    if color_node is not None and info.color_source[1] < len(color_node.outputs):
+        links.new(color_node.outputs[info.color_source[1]], times_albedo.inputs[1])
+        f = float(info.albedo_factor)
+        if f != 1.0:
+            times_factor = new("ShaderNodeVectorMath", "Times_Factor", -450, -300)
+            times_factor.operation = "SCALE"
+            links.new(times_albedo.outputs["Vector"], times_factor.inputs[0])
+            times_factor.inputs["Scale"].default_value = f
+            albedo_out = times_factor.outputs["Vector"]
+        else:
+            albedo_out = times_albedo.outputs["Vector"]
+    else:
+        times_albedo.inputs[1].default_value = tuple(info.albedo)
+        albedo_out = times_albedo.outputs["Vector"]
+    light_path = new("ShaderNodeLightPath", "Light_Path", -450, -520)
+    emission = new("ShaderNodeEmission", "Emission", -250, -300)
+    links.new(albedo_out, emission.inputs["Color"])
+    links.new(light_path.outputs["Is Camera Ray"], emission.inputs["Strength"])
+    add = new("ShaderNodeAddShader", "Add", -80, -120)
+    if direct is not None:
+        links.new(direct.from_socket, add.inputs[0])
+    links.new(emission.outputs["Emission"], add.inputs[1])
+    links.new(add.outputs["Shader"], surface_input)
+    material[HOOK_PROPERTY] = record
+    return True
+
+
+def unhook(material):
+    """Removes the hook's nodes and restores the original Surface link. Returns True if the
+    material was hooked."""
+    if material is None or material.node_tree is None:
+        return False
+    record = material.get(HOOK_PROPERTY)
+    tree = material.node_tree
+    for node in [n for n in tree.nodes if n.name.startswith(NODE_PREFIX)]:
+        tree.nodes.remove(node)
+    if record is None:
+        return False
+    output = tree.nodes.get(record.get("output", ""))
+    from_node = tree.nodes.get(record.get("from_node", ""))
+    index = int(record.get("from_socket", -1))
+    if output is not None and from_node is not None and 0 <= index < len(from_node.outputs):
+        tree.links.new(from_node.outputs[index], output.inputs["Surface"])
+    del material[HOOK_PROPERTY]
+    return True

@@ -1,0 +1,533 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""ctypes binding of the bakegi core (native/include/bakegi/bakegi.h).
+
+Never imports bpy. Every C function is declared with its argument and result types; the
+handles are wrapped in classes (Scene, Points, Settings, Job) that free them in close(),
+on leaving a `with` block, or when garbage collected. A failing call raises BakeGIError
+with the core's status name and message.
+
+The library is looked up, in order: the path in the environment variable BAKEGI_LIBRARY,
+then lib/libbakegi.so next to this file (where the add-on zip puts it).
+"""
+
+import ctypes
+import json
+import os
+import sys
+import threading
+from ctypes import (POINTER, Structure, byref, c_char, c_char_p, c_double, c_float, c_int,
+                    c_int64, c_size_t, c_uint32, c_uint64, c_void_p)
+
+import numpy as np
+
+LIBRARY_ENV = "BAKEGI_LIBRARY"
+LIBRARY_NAME = {"win32": "bakegi.dll", "darwin": "libbakegi.dylib"}.get(sys.platform,
+                                                                       "libbakegi.so")
+NO_TEXTURE = 0xFFFFFFFF
+
+STATUS_NAMES = (
+    "BAKEGI_OK",
+    "BAKEGI_ERROR_INVALID_ARGUMENT",
+    "BAKEGI_ERROR_INVALID_SCENE",
+    "BAKEGI_ERROR_OUT_OF_MEMORY",
+    "BAKEGI_ERROR_CANCELLED",
+    "BAKEGI_ERROR_IO",
+    "BAKEGI_ERROR_BAD_FILE",
+    "BAKEGI_ERROR_NOT_READY",
+    "BAKEGI_ERROR_RAY_TRACER",
+    "BAKEGI_ERROR_INTERNAL",
+)
+OK = 0
+ERROR_CANCELLED = 4
+
+LIGHT_TYPES = {"POINT": 0, "SPOT": 1, "SUN": 2, "AREA": 3}
+AREA_SHAPES = {"SQUARE": 0, "RECTANGLE": 1, "DISK": 2, "ELLIPSE": 3}
+
+
+class BakeGIError(Exception):
+    """A failure reported by the core (or found by the add-on before calling it).
+
+    status: the core's status name, e.g. "BAKEGI_ERROR_INVALID_SCENE" (the add-on's own
+    checks use the same names); message: what was wrong and where."""
+
+    def __init__(self, status, message):
+        super().__init__(f"{message} [{status}]" if status else message)
+        self.status = status
+        self.message = message
+
+    @property
+    def cancelled(self):
+        return self.status == STATUS_NAMES[ERROR_CANCELLED]
+
+
+class MaterialDesc(Structure):
+    _fields_ = [
+        ("albedo", c_float * 3),
+        ("albedo_texture", c_uint32),
+        ("emission", c_float * 3),
+        ("emission_two_sided", c_uint32),
+    ]
+
+
+class MeshDesc(Structure):
+    _fields_ = [
+        ("positions", POINTER(c_float)),
+        ("vertex_count", c_uint32),
+        ("indices", POINTER(c_uint32)),
+        ("triangle_count", c_uint32),
+        ("corner_normals", POINTER(c_float)),
+        ("corner_uvs", POINTER(c_float)),
+        ("triangle_materials", POINTER(c_uint32)),
+        ("material", c_uint32),
+        ("object_id", c_uint32),
+    ]
+
+
+class LightDesc(Structure):
+    _fields_ = [
+        ("type", c_int),
+        ("position", c_float * 3),
+        ("direction", c_float * 3),
+        ("axis_u", c_float * 3),
+        ("color", c_float * 3),
+        ("radius", c_float),
+        ("spot_size", c_float),
+        ("spot_blend", c_float),
+        ("angle", c_float),
+        ("shape", c_int),
+        ("size_x", c_float),
+        ("size_y", c_float),
+    ]
+
+
+_P = c_void_p  # opaque handles
+_PP = POINTER(c_void_p)
+
+# name: (restype, argtypes)
+_SIGNATURES = {
+    "bakegi_version": (c_uint32, []),
+    "bakegi_version_string": (c_char_p, []),
+    "bakegi_status_string": (c_char_p, [c_int]),
+    "bakegi_last_error": (c_char_p, []),
+    "bakegi_scene_create": (c_int, [_PP]),
+    "bakegi_scene_destroy": (None, [_P]),
+    "bakegi_scene_add_texture": (c_int, [_P, c_uint32, c_uint32, POINTER(c_float),
+                                         POINTER(c_uint32)]),
+    "bakegi_scene_add_material": (c_int, [_P, POINTER(MaterialDesc), POINTER(c_uint32)]),
+    "bakegi_scene_add_mesh": (c_int, [_P, POINTER(MeshDesc), POINTER(c_uint32)]),
+    "bakegi_scene_add_light": (c_int, [_P, POINTER(LightDesc), POINTER(c_uint32)]),
+    "bakegi_scene_set_world": (c_int, [_P, POINTER(c_float)]),
+    "bakegi_scene_validate": (c_int, [_P]),
+    "bakegi_scene_triangle_count": (c_uint64, [_P]),
+    "bakegi_scene_light_count": (c_uint32, [_P]),
+    "bakegi_points_create": (c_int, [POINTER(c_float), POINTER(c_float), POINTER(c_uint32),
+                                     c_uint64, _PP]),
+    "bakegi_points_destroy": (None, [_P]),
+    "bakegi_points_count": (c_uint64, [_P]),
+    "bakegi_points_get": (c_int, [_P, POINTER(c_float), POINTER(c_float), POINTER(c_uint32)]),
+    "bakegi_file_write": (c_int, [c_char_p, _P, _P]),
+    "bakegi_file_read": (c_int, [c_char_p, _PP, _PP]),
+    "bakegi_settings_create": (c_int, [_PP]),
+    "bakegi_settings_destroy": (None, [_P]),
+    "bakegi_settings_set_int": (c_int, [_P, c_char_p, c_int64]),
+    "bakegi_settings_set_float": (c_int, [_P, c_char_p, c_double]),
+    "bakegi_settings_set_string": (c_int, [_P, c_char_p, c_char_p]),
+    "bakegi_job_start": (c_int, [_P, _P, _P, _PP]),
+    "bakegi_job_progress": (c_double, [_P]),
+    "bakegi_job_stage": (None, [_P, POINTER(c_char), c_size_t]),
+    "bakegi_job_cancel": (None, [_P]),
+    "bakegi_job_is_done": (c_int, [_P]),
+    "bakegi_job_wait": (c_int, [_P]),
+    "bakegi_job_get_result": (c_int, [_P, POINTER(c_float), c_uint64]),
+    "bakegi_job_get_report": (c_int, [_P, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
+    "bakegi_job_destroy": (None, [_P]),
+}
+
+_library = None
+_library_lock = threading.Lock()
+
+
+def default_library_path():
+    """Where the library is looked for: $BAKEGI_LIBRARY, else lib/ next to this file."""
+    env = os.environ.get(LIBRARY_ENV)
+    if env:
+        return env
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib", LIBRARY_NAME)
+
+
+def load_library(path=None):
+    """Loads (once) and returns the core library with every function declared."""
+    global _library
+    with _library_lock:
+        if _library is not None:
+            return _library
+        path = path or default_library_path()
+        if not os.path.isfile(path):
+            raise BakeGIError(
+                "BAKEGI_ERROR_IO",
+                f"the bakegi core library was not found at {path}; reinstall the add-on zip "
+                f"(it carries lib/{LIBRARY_NAME}) or set {LIBRARY_ENV} to its path")
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError as error:
+            raise BakeGIError("BAKEGI_ERROR_IO",
+                              f"the bakegi core library at {path} could not be loaded: {error}")
+        missing = []
+        for name, (restype, argtypes) in _SIGNATURES.items():
+            try:
+                function = getattr(lib, name)
+            except AttributeError:
+                missing.append(name)
+                continue
+            function.restype = restype
+            function.argtypes = argtypes
+        if missing:
+            raise BakeGIError("BAKEGI_ERROR_IO",
+                              f"the bakegi core library at {path} lacks {', '.join(missing)}; "
+                              "it does not match this add-on version")
+        _library = lib
+        return lib
+
+
+def library_loaded():
+    return _library is not None
+
+
+def _decode(raw):
+    return raw.decode("utf-8", "replace") if raw else ""
+
+
+def status_name(status):
+    if 0 <= status < len(STATUS_NAMES):
+        return STATUS_NAMES[status]
+    lib = load_library()
+    return _decode(lib.bakegi_status_string(status)) or f"BAKEGI_STATUS_{status}"
+
+
+def _check(status, what=""):
+    """Raises BakeGIError for a non-OK status with the thread's last error message."""
+    if status == OK:
+        return
+    message = _decode(load_library().bakegi_last_error())
+    if not message:
+        message = f"{what} failed" if what else "the bakegi core reported an error"
+    raise BakeGIError(status_name(status), message)
+
+
+def version():
+    lib = load_library()
+    return int(lib.bakegi_version())
+
+
+def version_string():
+    return _decode(load_library().bakegi_version_string())
+
+
+def _floats(array, columns, what):
+    """C-contiguous float32 array of shape (n, columns) (from anything array-like)."""
+    a = np.ascontiguousarray(np.asarray(array, dtype=np.float32).reshape(-1, columns))
+    return a
+
+
+def _uints(array, what):
+    a = np.asarray(array)
+    if a.size and (a.dtype.kind == "f" or (a.dtype.kind == "i" and a.min() < 0)):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"{what}: indices must be non-negative integers")
+    return np.ascontiguousarray(a.astype(np.uint32, copy=False).reshape(-1))
+
+
+def _fptr(a):
+    return None if a is None else a.ctypes.data_as(POINTER(c_float))
+
+
+def _uptr(a):
+    return None if a is None else a.ctypes.data_as(POINTER(c_uint32))
+
+
+def _triple(values, what):
+    v = [float(x) for x in values]
+    if len(v) != 3:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"{what} needs 3 values, got {len(v)}")
+    return (c_float * 3)(*v)
+
+
+class _Handle:
+    """Owns one core handle; frees it exactly once."""
+
+    _destroy_name = ""
+
+    def __init__(self, handle):
+        self._handle = handle
+
+    @property
+    def handle(self):
+        if not self._handle:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"{type(self).__name__} was already closed")
+        return self._handle
+
+    def close(self):
+        handle, self._handle = getattr(self, "_handle", None), None
+        if handle and _library is not None:
+            getattr(_library, self._destroy_name)(handle)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown: nothing sensible left to do
+            pass
+
+
+class Scene(_Handle):
+    """A scene being built for the core (bakegi_scene)."""
+
+    _destroy_name = "bakegi_scene_destroy"
+
+    def __init__(self, handle=None):
+        lib = load_library()
+        if handle is None:
+            out = c_void_p()
+            _check(lib.bakegi_scene_create(byref(out)), "bakegi_scene_create")
+            handle = out.value
+        super().__init__(handle)
+
+    def add_texture(self, rgb_pixels):
+        """rgb_pixels: (height, width, 3) linear float RGB, row 0 at v = 0. Returns its id."""
+        a = np.asarray(rgb_pixels, dtype=np.float32)
+        if a.ndim != 3 or a.shape[2] != 3:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"texture pixels must have shape (height, width, 3), got {a.shape}")
+        a = np.ascontiguousarray(a)
+        out = c_uint32()
+        _check(load_library().bakegi_scene_add_texture(self.handle, a.shape[1], a.shape[0],
+                                                       _fptr(a), byref(out)),
+               "bakegi_scene_add_texture")
+        return out.value
+
+    def add_material(self, albedo, emission=(0.0, 0.0, 0.0), albedo_texture=None,
+                     emission_two_sided=True):
+        desc = MaterialDesc()
+        desc.albedo = _triple(albedo, "albedo")
+        desc.albedo_texture = NO_TEXTURE if albedo_texture is None else int(albedo_texture)
+        desc.emission = _triple(emission, "emission")
+        desc.emission_two_sided = 1 if emission_two_sided else 0
+        out = c_uint32()
+        _check(load_library().bakegi_scene_add_material(self.handle, byref(desc), byref(out)),
+               "bakegi_scene_add_material")
+        return out.value
+
+    def add_mesh(self, positions, indices, corner_normals=None, corner_uvs=None,
+                 triangle_materials=None, material=0, object_id=0):
+        """positions (V,3); indices (T,3); corner_normals (T,3,3); corner_uvs (T,3,2);
+        triangle_materials (T,). World space. Returns the mesh id."""
+        p = _floats(positions, 3, "positions")
+        i = _uints(indices, "indices")
+        if i.size % 3:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              "indices must hold 3 entries per triangle")
+        n = None if corner_normals is None else _floats(corner_normals, 3, "corner_normals")
+        uv = None if corner_uvs is None else _floats(corner_uvs, 2, "corner_uvs")
+        tm = None if triangle_materials is None else _uints(triangle_materials,
+                                                            "triangle_materials")
+        triangles = i.size // 3
+        for name, array, rows in (("corner_normals", n, 3 * triangles),
+                                  ("corner_uvs", uv, 3 * triangles),
+                                  ("triangle_materials", tm, triangles)):
+            if array is not None and array.shape[0] != rows:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                                  f"{name} has {array.shape[0]} entries, expected {rows}")
+        desc = MeshDesc(_fptr(p), p.shape[0], _uptr(i), triangles, _fptr(n), _fptr(uv),
+                        _uptr(tm), int(material), int(object_id))
+        out = c_uint32()
+        _check(load_library().bakegi_scene_add_mesh(self.handle, byref(desc), byref(out)),
+               "bakegi_scene_add_mesh")
+        return out.value
+
+    def add_light(self, type, position=(0, 0, 0), direction=(0, 0, -1), axis_u=(1, 0, 0),
+                  color=(0, 0, 0), radius=0.0, spot_size=0.0, spot_blend=0.0, angle=0.0,
+                  shape="SQUARE", size_x=0.0, size_y=0.0):
+        """Arguments as in bakegi_light_desc; type and shape by name ('POINT', 'DISK'...).
+        light_units.CoreLight's fields can be passed with add_light(**vars(core_light))."""
+        if type not in LIGHT_TYPES:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown light type {type!r}")
+        if shape not in AREA_SHAPES:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown area shape {shape!r}")
+        desc = LightDesc(LIGHT_TYPES[type], _triple(position, "position"),
+                         _triple(direction, "direction"), _triple(axis_u, "axis_u"),
+                         _triple(color, "color"), radius, spot_size, spot_blend, angle,
+                         AREA_SHAPES[shape], size_x, size_y)
+        out = c_uint32()
+        _check(load_library().bakegi_scene_add_light(self.handle, byref(desc), byref(out)),
+               "bakegi_scene_add_light")
+        return out.value
+
+    def set_world(self, radiance):
+        _check(load_library().bakegi_scene_set_world(self.handle, _triple(radiance, "world")),
+               "bakegi_scene_set_world")
+
+    def validate(self):
+        _check(load_library().bakegi_scene_validate(self.handle), "bakegi_scene_validate")
+
+    @property
+    def triangle_count(self):
+        return int(load_library().bakegi_scene_triangle_count(self.handle))
+
+    @property
+    def light_count(self):
+        return int(load_library().bakegi_scene_light_count(self.handle))
+
+    def write(self, path, points=None):
+        """Writes a .bgs scene file (with the bake points if given)."""
+        _check(load_library().bakegi_file_write(os.fsencode(path), self.handle,
+                                                points.handle if points is not None else None),
+               "bakegi_file_write")
+
+    @classmethod
+    def read(cls, path):
+        """Reads a .bgs file; returns (Scene, Points or None)."""
+        lib = load_library()
+        scene, points = c_void_p(), c_void_p()
+        _check(lib.bakegi_file_read(os.fsencode(path), byref(scene), byref(points)),
+               "bakegi_file_read")
+        return cls(scene.value), (Points(handle=points.value) if points.value else None)
+
+
+class Points(_Handle):
+    """Bake points: where the indirect field is evaluated (bakegi_points)."""
+
+    _destroy_name = "bakegi_points_destroy"
+
+    def __init__(self, positions=None, normals=None, object_ids=None, handle=None):
+        lib = load_library()
+        if handle is None:
+            p = _floats(positions, 3, "positions")
+            n = _floats(normals, 3, "normals")
+            if p.shape != n.shape:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                                  f"{p.shape[0]} positions but {n.shape[0]} normals")
+            ids = None if object_ids is None else _uints(object_ids, "object_ids")
+            if ids is not None and ids.shape[0] != p.shape[0]:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                                  f"{p.shape[0]} positions but {ids.shape[0]} object ids")
+            out = c_void_p()
+            _check(lib.bakegi_points_create(_fptr(p), _fptr(n), _uptr(ids), p.shape[0],
+                                            byref(out)), "bakegi_points_create")
+            handle = out.value
+        super().__init__(handle)
+
+    def __len__(self):
+        return int(load_library().bakegi_points_count(self.handle))
+
+    @property
+    def count(self):
+        return len(self)
+
+    def get(self):
+        """Returns (positions (n,3) float32, normals (n,3) float32, object_ids (n,) uint32)."""
+        n = len(self)
+        p = np.empty((n, 3), np.float32)
+        nn = np.empty((n, 3), np.float32)
+        ids = np.empty(n, np.uint32)
+        _check(load_library().bakegi_points_get(self.handle, _fptr(p), _fptr(nn), _uptr(ids)),
+               "bakegi_points_get")
+        return p, nn, ids
+
+
+class Settings(_Handle):
+    """Key/value bake settings; Settings(method='pathtrace', samples=64, seed=0)."""
+
+    _destroy_name = "bakegi_settings_destroy"
+
+    def __init__(self, **values):
+        lib = load_library()
+        out = c_void_p()
+        _check(lib.bakegi_settings_create(byref(out)), "bakegi_settings_create")
+        super().__init__(out.value)
+        for key, value in values.items():
+            self.set(key, value)
+
+    def set(self, key, value):
+        lib = load_library()
+        k = key.encode("utf-8")
+        if isinstance(value, bool):
+            status = lib.bakegi_settings_set_int(self.handle, k, int(value))
+        elif isinstance(value, int):
+            status = lib.bakegi_settings_set_int(self.handle, k, value)
+        elif isinstance(value, float):
+            status = lib.bakegi_settings_set_float(self.handle, k, value)
+        elif isinstance(value, str):
+            status = lib.bakegi_settings_set_string(self.handle, k, value.encode("utf-8"))
+        else:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"setting {key!r}: unsupported value type {type(value).__name__}")
+        _check(status, f"setting {key!r}")
+
+
+class Job(_Handle):
+    """A bake running on the core's threads (bakegi_job)."""
+
+    _destroy_name = "bakegi_job_destroy"
+
+    def __init__(self, scene, points, settings):
+        lib = load_library()
+        out = c_void_p()
+        _check(lib.bakegi_job_start(scene.handle, points.handle, settings.handle, byref(out)),
+               "bakegi_job_start")
+        super().__init__(out.value)
+        self.point_count = len(points)
+
+    @property
+    def progress(self):
+        return float(load_library().bakegi_job_progress(self.handle))
+
+    @property
+    def stage(self):
+        buffer = ctypes.create_string_buffer(256)
+        load_library().bakegi_job_stage(self.handle, buffer, len(buffer))
+        return _decode(buffer.value)
+
+    @property
+    def is_done(self):
+        return bool(load_library().bakegi_job_is_done(self.handle))
+
+    def cancel(self):
+        if self._handle:
+            load_library().bakegi_job_cancel(self._handle)
+
+    def wait(self):
+        """Blocks until the job ends (the GIL is released); raises BakeGIError if it failed
+        or was cancelled."""
+        _check(load_library().bakegi_job_wait(self.handle), "bake")
+
+    def result(self):
+        """(n, 3) float32 RGB per bake point, after success."""
+        out = np.empty((self.point_count, 3), np.float32)
+        _check(load_library().bakegi_job_get_result(self.handle, _fptr(out), self.point_count),
+               "bakegi_job_get_result")
+        return out
+
+    def report_json(self):
+        lib = load_library()
+        length = c_size_t(0)
+        _check(lib.bakegi_job_get_report(self.handle, None, 0, byref(length)),
+               "bakegi_job_get_report")
+        buffer = ctypes.create_string_buffer(length.value + 1)
+        _check(lib.bakegi_job_get_report(self.handle, buffer, len(buffer), byref(length)),
+               "bakegi_job_get_report")
+        return _decode(buffer.value)
+
+    def report(self):
+        """The core's report as a dict (empty if it is not valid JSON)."""
+        try:
+            value = json.loads(self.report_json())
+        except ValueError:
+            return {}
+        return value if isinstance(value, dict) else {"core": value}

@@ -1,0 +1,228 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Bake Indirect and Remove Bake.
+
+Bake Indirect exports the scene, starts the core on its own threads and, in the UI,
+polls it from a window-manager timer (progress indicator and status-bar text with
+percentage, stage and time left; Esc or right-click cancels and leaves the scene exactly
+as it was). In background mode (timers do not run there) and from execute() it bakes
+synchronously. Both paths, and bakegi.bake(), go through session.BakeSession.
+"""
+
+import json
+
+import bpy
+
+from . import export, session, writeback
+from .native import BakeGIError
+
+# Runtime state shown by the panel (not saved, so a cancel or failure changes no data).
+runtime = {"running": False, "text": "", "fraction": 0.0}
+
+
+def summary(report):
+    seconds = report.get("seconds", {}).get("total", 0.0)
+    rays = report.get("rays")
+    if rays is None and isinstance(report.get("counts"), dict):
+        rays = report["counts"].get("rays")
+    rays_text = f", {rays:,} rays" if isinstance(rays, (int, float)) else ""
+    return (f"{report.get('method', '')}: {report.get('bake_points', 0):,} points in "
+            f"{seconds:.2f} s{rays_text}")
+
+
+def store_report(scene, report):
+    settings = scene.bakegi
+    settings.last_result = summary(report)
+    settings.last_report = json.dumps(report, default=str)
+
+
+def _has_mesh_target(context, objects):
+    if objects == "SELECTED":
+        return any(o.type == "MESH" for o in context.selected_objects)
+    view_layer = context.view_layer
+    return any(o is not None and o.type == "MESH" and o.visible_get(view_layer=view_layer)
+               for o in view_layer.objects)
+
+
+def _session_from_scene(context):
+    s = context.scene.bakegi
+    return session.BakeSession(context, method=s.resolved_method(), samples=s.samples,
+                               seed=s.seed, target=s.target, objects=s.objects,
+                               threads=s.threads, hook_materials=s.hook_materials)
+
+
+def _report_warnings(operator, report):
+    for warning in report.get("warnings", [])[:20]:
+        operator.report({"WARNING"}, str(warning))
+
+
+class BAKEGI_OT_bake_indirect(bpy.types.Operator):
+    """Bake the indirect light of the scene into the color attribute BakeGI_Indirect"""
+
+    bl_idname = "bakegi.bake_indirect"
+    bl_label = "Bake Indirect"
+    bl_options = {"REGISTER", "UNDO"}
+
+    _session = None
+    _timer = None
+
+    @classmethod
+    def poll(cls, context):
+        if runtime["running"]:
+            cls.poll_message_set("A bake is already running")
+            return False
+        if context.mode != "OBJECT":
+            cls.poll_message_set("Switch to Object Mode to bake")
+            return False
+        settings = getattr(context.scene, "bakegi", None)
+        objects = settings.objects if settings is not None else "SELECTED"
+        if not _has_mesh_target(context, objects):
+            cls.poll_message_set("No mesh object is " +
+                                 ("selected" if objects == "SELECTED" else "visible"))
+            return False
+        return True
+
+    def execute(self, context):
+        """Synchronous bake (background mode, scripts, F3 with EXEC_DEFAULT)."""
+        try:
+            bake = _session_from_scene(context)
+            report = bake.run()
+        except BakeGIError as error:
+            self.report({"ERROR"}, error.message)
+            return {"CANCELLED"}
+        store_report(context.scene, report)
+        _report_warnings(self, report)
+        self.report({"INFO"}, "BakeGI: " + summary(report))
+        return {"FINISHED"}
+
+    def invoke(self, context, event):
+        if bpy.app.background:
+            return self.execute(context)
+        try:
+            self._session = _session_from_scene(context)
+            self._session.start()
+        except BakeGIError as error:
+            self._session = None
+            self.report({"ERROR"}, error.message)
+            return {"CANCELLED"}
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.1, window=context.window)
+        wm.progress_begin(0, 100)
+        runtime.update(running=True, text="BakeGI: starting", fraction=0.0)
+        wm.modal_handler_add(self)
+        self._set_status(context, runtime["text"])
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        try:
+            return self._modal(context, event)
+        except Exception as error:  # never leave a bake running behind a dead operator
+            if self._session is not None:
+                self._session.cancel(wait=False)
+            self._end(context)
+            self.report({"ERROR"}, f"BakeGI: {error}; nothing was changed")
+            return {"CANCELLED"}
+
+    def _modal(self, context, event):
+        if event.type == "ESC" or (event.type == "RIGHTMOUSE" and event.value == "PRESS"):
+            self._session.cancel(wait=False)
+            self._end(context)
+            self.report({"INFO"}, "BakeGI: bake cancelled; nothing was changed")
+            return {"CANCELLED"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        progress = self._session.poll()
+        runtime.update(text=progress.text(), fraction=progress.fraction)
+        context.window_manager.progress_update(int(progress.fraction * 100))
+        if not progress.done:
+            self._set_status(context, progress.text())
+            self._redraw(context)
+            return {"PASS_THROUGH"}
+        if context.mode != "OBJECT":
+            self._set_status(context, "BakeGI: finished; return to Object Mode to write the "
+                             "bake (Esc discards it)")
+            return {"PASS_THROUGH"}
+        try:
+            report = self._session.finish(context.blend_data)
+        except BakeGIError as error:
+            self._end(context)
+            if error.cancelled:
+                self.report({"INFO"}, "BakeGI: bake cancelled; nothing was changed")
+            else:
+                self.report({"ERROR"}, error.message)
+            return {"CANCELLED"}
+        self._end(context)
+        store_report(context.scene, report)
+        _report_warnings(self, report)
+        self.report({"INFO"}, "BakeGI: " + summary(report))
+        return {"FINISHED"}
+
+    def cancel(self, context):
+        # Blender ends the modal operator (e.g. the file is closed): stop the core.
+        if self._session is not None:
+            self._session.cancel()
+        self._end(context)
+
+    def _end(self, context):
+        wm = context.window_manager
+        if self._timer is not None:
+            wm.event_timer_remove(self._timer)
+            self._timer = None
+            wm.progress_end()
+        runtime.update(running=False, text="", fraction=0.0)
+        self._set_status(context, None)
+        self._redraw(context)
+        self._session = None
+
+    @staticmethod
+    def _set_status(context, text):
+        workspace = getattr(context, "workspace", None)
+        if workspace is not None:
+            workspace.status_text_set(text)
+
+    @staticmethod
+    def _redraw(context):
+        screen = getattr(context, "screen", None)
+        if screen is None:
+            return
+        for area in screen.areas:
+            if area.type == "PROPERTIES":
+                area.tag_redraw()
+
+
+class BAKEGI_OT_remove_bake(bpy.types.Operator):
+    """Remove BakeGI_Indirect from the objects' meshes and restore their materials"""
+
+    bl_idname = "bakegi.remove_bake"
+    bl_label = "Remove Bake"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        if runtime["running"]:
+            cls.poll_message_set("A bake is running")
+            return False
+        if context.mode != "OBJECT":
+            cls.poll_message_set("Switch to Object Mode")
+            return False
+        return True
+
+    def execute(self, context):
+        objects = context.scene.bakegi.objects
+        targets, _ = export.resolve_targets(context, objects)
+        result = writeback.remove_bake(context.blend_data, targets)
+        self.report({"INFO"}, f"BakeGI: removed the bake from {len(result['objects'])} "
+                    f"object(s), restored {len(result['materials'])} material(s)")
+        return {"FINISHED"}
+
+
+classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake)
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

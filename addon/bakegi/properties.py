@@ -1,0 +1,70 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The bake settings stored on the scene: bpy.types.Scene.bakegi."""
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, IntProperty, StringProperty
+
+METHOD_ITEMS = [
+    ("pathtrace", "Path Tracing", "Monte Carlo reference: converges to the exact indirect "
+     "light; noise falls as samples grow"),
+]
+# Debug only: bakes the DIRECT light (to check light units against Cycles), not indirect.
+DEBUG_METHOD_ITEMS = METHOD_ITEMS + [
+    ("direct", "Direct Light (debug)", "Bakes direct light instead of indirect light, to "
+     "compare light units with Cycles"),
+]
+
+TARGET_ITEMS = [
+    ("CORNER", "Face Corners", "One value per face corner: hard edges stay hard"),
+    ("POINT", "Vertices", "One value per vertex: smooth across edges, fewer points"),
+]
+
+OBJECTS_ITEMS = [
+    ("SELECTED", "Selected", "Bake the selected mesh objects"),
+    ("VISIBLE", "All Visible", "Bake every visible mesh object"),
+]
+
+
+def _method_items(self, context):
+    return DEBUG_METHOD_ITEMS if self.show_debug else METHOD_ITEMS
+
+
+class BakeGISettings(bpy.types.PropertyGroup):
+    show_debug: BoolProperty(
+        name="Debug Methods", default=False,
+        description="Offer methods meant for checking the add-on rather than for baking")
+    method: EnumProperty(name="Method", items=_method_items,
+                         description="How the indirect light is computed")
+    samples: IntProperty(name="Samples", default=64, min=1, soft_max=4096,
+                         description="Paths per bake point: more is slower and less noisy")
+    seed: IntProperty(name="Seed", default=0, min=0,
+                      description="Random seed; a bake is repeatable for a seed")
+    target: EnumProperty(name="Target", items=TARGET_ITEMS, default="CORNER",
+                         description="Where the color attribute BakeGI_Indirect is stored")
+    objects: EnumProperty(name="Objects", items=OBJECTS_ITEMS, default="SELECTED",
+                          description="Which objects receive the bake (every visible object "
+                          "always takes part in the light transport)")
+    threads: IntProperty(name="Threads", default=0, min=0, max=1024,
+                         description="Threads of the bake; 0 uses every core")
+    hook_materials: BoolProperty(
+        name="Show in Material Preview", default=True,
+        description="Add nodes to the baked objects' materials so that Material Preview "
+        "shows albedo x (direct + baked indirect); Remove Bake restores them")
+    # Written by a successful bake (a cancelled or failed one leaves the scene untouched).
+    last_result: StringProperty(name="Last Result", default="",
+                                description="Summary of the last successful bake")
+    last_report: StringProperty(name="Last Report", default="",
+                                description="JSON report of the last successful bake")
+
+    def resolved_method(self):
+        return self.method if self.show_debug else "pathtrace"
+
+
+def register():
+    bpy.utils.register_class(BakeGISettings)
+    bpy.types.Scene.bakegi = bpy.props.PointerProperty(type=BakeGISettings)
+
+
+def unregister():
+    del bpy.types.Scene.bakegi
+    bpy.utils.unregister_class(BakeGISettings)

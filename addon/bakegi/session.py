@@ -1,0 +1,183 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""One bake from start to end: the single code path of the operator and of bakegi.bake().
+
+    session = BakeSession(context, method="pathtrace", samples=64, ...)
+    session.prepare()      # export (raises BakeGIError; changes nothing in Blender)
+    session.start()        # the core bakes on its own threads
+    session.poll()         # -> Progress(fraction, stage, eta_seconds, done)
+    session.finish()       # waits, writes the attribute, hooks materials -> report dict
+    session.cancel()       # stops the core; Blender data untouched
+
+run() does all of it synchronously (background mode and scripts).
+"""
+
+import threading
+import time
+from dataclasses import dataclass
+
+from . import export, native, writeback
+from .native import BakeGIError
+
+METHODS = ("pathtrace", "direct")
+
+
+@dataclass
+class Progress:
+    fraction: float
+    stage: str
+    eta_seconds: float  # < 0 while unknown
+    done: bool
+
+    def text(self):
+        eta = f", about {_duration(self.eta_seconds)} left" if self.eta_seconds >= 0 else ""
+        stage = f" {self.stage}" if self.stage else ""
+        return f"BakeGI: {self.fraction * 100:.0f}%{stage}{eta} (Esc to cancel)"
+
+
+def _duration(seconds):
+    if seconds >= 90:
+        return f"{seconds / 60:.0f} min"
+    return f"{max(seconds, 0):.0f} s"
+
+
+def validate_arguments(method, samples, seed, target, threads):
+    if method not in METHODS:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"method must be one of {METHODS}, not {method!r}")
+    for name, value, low in (("samples", samples, 1), ("seed", seed, 0), ("threads", threads, 0)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < low:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"{name} must be an integer >= {low}, not {value!r}")
+    if target not in export.TARGET_DOMAINS:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"target must be one of {export.TARGET_DOMAINS}, not {target!r}")
+
+
+class BakeSession:
+    def __init__(self, context, method="pathtrace", samples=64, seed=0, target="CORNER",
+                 objects="SELECTED", threads=0, hook_materials=True):
+        validate_arguments(method, samples, seed, target, threads)
+        self.context = context
+        self.method = method
+        self.samples = samples
+        self.seed = seed
+        self.target = target
+        self.objects = objects
+        self.threads = threads
+        self.hook_materials = hook_materials
+        self.exported = None
+        self.job = None
+        self.seconds = {}
+        self._started_at = None
+        self._created_at = time.perf_counter()
+
+    @property
+    def settings(self):
+        return {"method": self.method, "samples": self.samples, "seed": self.seed,
+                "threads": self.threads}
+
+    def prepare(self):
+        """Exports the scene. The context is used only here (and by finish() when no data
+        is given): a modal operator's context does not outlive the call that passed it."""
+        self.exported = export.export_scene(self.context, self.target, self.objects)
+        self.seconds["export"] = self.exported.seconds
+
+    def start(self):
+        if self.exported is None:
+            self.prepare()
+        self._started_at = time.perf_counter()
+        with native.Settings(**self.settings) as settings:
+            try:
+                self.job = native.Job(self.exported.scene, self.exported.points, settings)
+            except BakeGIError as error:
+                self._release_export()
+                raise self._named(error) from None
+            except BaseException:
+                self._release_export()
+                raise
+
+    def poll(self):
+        job = self.job
+        fraction = min(max(job.progress, 0.0), 1.0)
+        elapsed = time.perf_counter() - self._started_at
+        eta = elapsed * (1.0 - fraction) / fraction if 0.02 <= fraction < 1.0 else -1.0
+        return Progress(fraction, job.stage, eta, job.is_done)
+
+    def cancel(self, wait=True):
+        """Stops the bake; nothing in Blender is changed. wait=False returns at once and
+        lets a helper thread wait for the core's threads to wind down (the UI stays
+        responsive)."""
+        job, self.job = self.job, None
+        if job is not None:
+            job.cancel()
+            if wait:
+                job.close()
+            else:
+                threading.Thread(target=job.close, name="bakegi-cancel", daemon=True).start()
+        self._release_export()
+
+    def finish(self, data=None):
+        """Waits for the job, writes the result into `data` (bpy.data; default: the
+        context's) and hooks materials; returns the report. On failure raises BakeGIError
+        and leaves Blender untouched."""
+        try:
+            try:
+                self.job.wait()
+            except BakeGIError as error:
+                raise self._named(error) from None
+            self.seconds["bake"] = time.perf_counter() - self._started_at
+            rgb = self.job.result()
+            core_report = self.job.report()
+            t0 = time.perf_counter()
+            data = data if data is not None else self.context.blend_data
+            writeback.write_results(data, self.exported.targets, rgb)
+            hooked = (writeback.hook_materials(data, self.exported.materials,
+                                               self.exported.targets)
+                      if self.hook_materials else [])
+            self.seconds["writeback"] = time.perf_counter() - t0
+        finally:
+            if self.job is not None:
+                self.job.close()
+                self.job = None
+            targets = self.exported.targets if self.exported else []
+            self._release_export()
+        self.seconds["total"] = time.perf_counter() - self._created_at
+        return self._report(core_report, targets, hooked)
+
+    def run(self):
+        """The whole bake, synchronously."""
+        if self.job is None:
+            self.start()
+        return self.finish()
+
+    def _named(self, error):
+        names = self.exported.object_names if self.exported is not None else []
+        return BakeGIError(error.status, export.name_objects(error.message, names))
+
+    def _release_export(self):
+        if self.exported is not None:
+            self.exported.close()
+
+    def _report(self, core, targets, hooked):
+        report = dict(core)
+        core_seconds = report.get("seconds")
+        core_seconds = core_seconds if isinstance(core_seconds, dict) else {}
+        # The add-on's stages (export, bake, writeback, total: the whole call) beside the
+        # core's own; a core stage of the same name is kept as core_<name>.
+        seconds = {(f"core_{k}" if k in self.seconds else k): v
+                   for k, v in core_seconds.items()}
+        seconds.update(self.seconds)
+        report["seconds"] = seconds
+        report["method"] = self.method
+        report["settings"] = {**(core.get("settings") or {}), **self.settings,
+                              "target": self.target,
+                              "objects": self.objects if isinstance(self.objects, str) else
+                              [t.object_name for t in targets]}
+        report["bake_points"] = sum(t.count for t in targets)
+        report["objects"] = [t.object_name for t in targets]
+        report["hooked_materials"] = hooked
+        report["counts"] = dict(self.exported.counts) if self.exported else {}
+        core_warnings = core.get("warnings") if isinstance(core.get("warnings"), list) else []
+        report["warnings"] = (list(self.exported.warnings) + list(self.exported.skipped) +
+                              list(core_warnings))
+        return report
