@@ -1,0 +1,109 @@
+"""Error paths in Blender: a clear message, and the scene exactly as before.
+
+"Unchanged" is checked with common.scene_snapshot(): every mesh's attributes
+(names, domains, types, a checksum of their values, active colour), every
+material's nodes, socket values and links, and data-block counts.
+"""
+
+import math
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+import unittest  # noqa: E402
+
+import bpy  # noqa: E402
+
+import cornell_box  # noqa: E402
+
+
+class ErrorPaths(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        common.new_empty_scene()
+        cls.bakegi = common.enable_addon()
+
+    def setUp(self):
+        common.new_empty_scene()
+        self.objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+
+    def assertSceneUnchanged(self, before):
+        differences = common.snapshot_difference(before, common.scene_snapshot())
+        self.assertEqual(differences, [], "the scene changed:\n" + "\n".join(differences[:20]))
+
+    def test_nan_vertex_names_the_object(self):
+        self.objects["ShortBox"].data.vertices[5].co = (math.nan, 0.1, 0.2)
+        before = common.scene_snapshot()
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects="VISIBLE")
+        message = str(caught.exception)
+        print("NaN vertex message:", message)
+        self.assertIn("ShortBox", message)
+        self.assertTrue("nan" in message.lower() or "finite" in message.lower(), message)
+        self.assertSceneUnchanged(before)
+
+    def test_infinite_vertex_in_a_non_target_is_refused_too(self):
+        # The floor takes part in the light transport even when only the ceiling is baked.
+        self.objects["Floor"].data.vertices[0].co = (math.inf, 0.0, 0.0)
+        before = common.scene_snapshot()
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects=[self.objects["Ceiling"]])
+        self.assertIn("Floor", str(caught.exception))
+        self.assertSceneUnchanged(before)
+
+    def test_no_light_gives_a_clear_message(self):
+        bpy.data.objects.remove(self.objects["CeilingLight"])
+        before = common.scene_snapshot()
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects="VISIBLE")
+        message = str(caught.exception)
+        print("no light message:", message)
+        self.assertIn("light", message.lower())
+        self.assertSceneUnchanged(before)
+
+    def test_operator_reports_the_error_and_changes_nothing(self):
+        bpy.data.objects.remove(self.objects["CeilingLight"])
+        bpy.context.scene.bakegi.objects = "VISIBLE"
+        before = common.scene_snapshot()
+        with self.assertRaises(RuntimeError) as caught:  # an operator's ERROR report raises in scripts
+            bpy.ops.bakegi.bake_indirect()
+        self.assertIn("light", str(caught.exception).lower())
+        self.assertSceneUnchanged(before)
+
+    def test_cancel_leaves_the_scene_unchanged(self):
+        from bakegi.session import BakeSession
+
+        before = common.scene_snapshot()
+        # Far more work than can finish in the moments before cancel.
+        session = BakeSession(bpy.context, method="pathtrace", samples=1 << 20, seed=0, target="CORNER",
+                              objects="VISIBLE")
+        session.prepare()
+        session.start()
+        time.sleep(0.5)
+        progress = session.poll()
+        self.assertFalse(progress.done, "the bake finished before it could be cancelled")
+        self.assertLess(progress.fraction, 1.0)
+        start = time.perf_counter()
+        session.cancel()
+        cancel_seconds = time.perf_counter() - start
+        print(f"cancel returned after {cancel_seconds:.3f} s at {100 * progress.fraction:.2f}% progress")
+        self.assertLess(cancel_seconds, 2.0, "cancel is not prompt")
+        self.assertSceneUnchanged(before)
+        # A bake after a cancelled one works and writes the attribute.
+        self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects="VISIBLE")
+        self.assertIn(common.ATTRIBUTE, self.objects["Floor"].data.color_attributes)
+
+    def test_invalid_arguments(self):
+        before = common.scene_snapshot()
+        for arguments in ({"samples": 0}, {"method": "nonsense"}, {"target": "FACE"}, {"seed": -1}):
+            with self.subTest(arguments=arguments):
+                with self.assertRaises(self.bakegi.BakeGIError):
+                    self.bakegi.bake(objects="VISIBLE", **arguments)
+        self.assertSceneUnchanged(before)
+
+
+if __name__ == "__main__":
+    common.run_tests(__name__)

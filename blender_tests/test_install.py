@@ -1,0 +1,101 @@
+"""The add-on zip installs through Blender's add-on preferences and bakes, with nothing else.
+
+Builds the zip with tools/make_addon_zip.py from the library under test
+($BAKEGI_LIBRARY's folder, else build/), then starts a separate Blender with
+an empty user-scripts folder and config folder and WITHOUT $BAKEGI_LIBRARY,
+so the only way it can find the core is the library inside the zip. That
+Blender installs the zip with bpy.ops.preferences.addon_install, enables it,
+and bakes a tiny Cornell box.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+import unittest  # noqa: E402
+
+import bpy  # noqa: E402
+
+CHILD_SCRIPT = r'''
+import json, math, os, sys
+import addon_utils, bpy
+zip_path, scenes = sys.argv[sys.argv.index("--") + 1:]
+result = {}
+result["install"] = sorted(bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True))
+module = addon_utils.enable("bakegi", default_set=True, handle_error=None)
+import bakegi
+result["module_file"] = bakegi.__file__
+from bakegi import native
+native.load_library()
+result["library"] = native.default_library_path()
+sys.path.insert(0, scenes)
+import cornell_box
+cornell_box.build_cornell_box(subdivisions=2)
+report = bakegi.bake(method="pathtrace", samples=8, target="CORNER", objects="VISIBLE")
+values = []
+for obj in bpy.context.scene.objects:
+    if obj.type == "MESH":
+        attribute = obj.data.color_attributes["BakeGI_Indirect"]
+        values += [c for d in attribute.data for c in d.color[:3]]
+result["points"] = report["bake_points"]
+result["finite"] = all(math.isfinite(v) for v in values)
+result["mean"] = sum(values) / len(values)
+print("INSTALL_RESULT " + json.dumps(result), flush=True)
+'''
+
+
+def library_under_test():
+    library = os.environ.get("BAKEGI_LIBRARY") or os.path.join(common.ROOT, "build", "libbakegi.so")
+    return library if os.path.isfile(library) else None
+
+
+class InstallFromZip(unittest.TestCase):
+    def test_install_zip_and_bake(self):
+        library = library_under_test()
+        if library is None:
+            self.skipTest("no libbakegi.so to pack: run with blender_tests/run.py --library or build into build/")
+        scratch = tempfile.mkdtemp(prefix="bakegi_install_test_")
+        try:
+            dist = os.path.join(scratch, "dist")
+            packed = subprocess.run(
+                [shutil.which("python3") or "/usr/bin/python3", os.path.join(common.ROOT, "tools", "make_addon_zip.py"), "--build-dir", os.path.dirname(os.path.abspath(library)), "--out", dist],
+                capture_output=True, text=True, timeout=120)
+            self.assertEqual(packed.returncode, 0, packed.stdout + packed.stderr)
+            zips = [f for f in os.listdir(dist) if f.endswith(".zip")]
+            self.assertEqual(len(zips), 1, zips)
+            zip_path = os.path.join(dist, zips[0])
+
+            script = os.path.join(scratch, "child.py")
+            with open(script, "w") as f:
+                f.write(CHILD_SCRIPT)
+            env = {k: v for k, v in os.environ.items() if k not in ("BAKEGI_LIBRARY", "BLENDER_USER_SCRIPTS")}
+            env["BLENDER_USER_SCRIPTS"] = os.path.join(scratch, "scripts")
+            env["BLENDER_USER_CONFIG"] = os.path.join(scratch, "config")
+            child = subprocess.run(
+                [bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script,
+                 "--", zip_path, os.path.join(common.ROOT, "scenes")],
+                capture_output=True, text=True, timeout=300, env=env)
+            lines = [l for l in child.stdout.splitlines() if l.startswith("INSTALL_RESULT ")]
+            self.assertEqual(child.returncode, 0, child.stdout[-3000:] + child.stderr[-3000:])
+            self.assertEqual(len(lines), 1, child.stdout[-3000:])
+            result = json.loads(lines[0][len("INSTALL_RESULT "):])
+            print("installed:", result)
+            installed_root = os.path.realpath(env["BLENDER_USER_SCRIPTS"])
+            self.assertEqual(result["install"], ["FINISHED"])
+            self.assertTrue(os.path.realpath(result["module_file"]).startswith(installed_root), result)
+            self.assertTrue(os.path.realpath(result["library"]).startswith(installed_root), result)
+            self.assertGreater(result["points"], 0)
+            self.assertTrue(result["finite"])
+            self.assertGreater(result["mean"], 0.0)
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    common.run_tests(__name__)

@@ -1,0 +1,257 @@
+"""The UI for real: Blender with a window (under Xvfb), the operator run from it.
+
+    xvfb-run -a blender --factory-startup --enable-event-simulate -p 0 0 800 600 --python blender_tests/test_ui.py
+
+Steps, driven by an application timer (the window keeps drawing in between):
+1. build the small Cornell box, in the default layout's 3D viewport look
+   through the camera in Material Preview with the scene's light and world;
+2. screenshot the viewport once EEVEE has compiled its shaders;
+3. start Bake Indirect with INVOKE_DEFAULT (the timer-driven modal), wait
+   until it finishes, screenshot again;
+4. check that the ceiling got brighter by about what the bake predicts: the
+   classic light points down, so the ceiling has no direct light and shows
+   only albedo x baked indirect. The prediction is the ceiling's mean of
+   albedo x Cycles' indirect (the stored reference) x 2 (the scene's +1 stop
+   exposure); the measured increase must be at least half of it and at
+   most twice it (8-bit screenshots, EEVEE's display transform, corners
+   interpolated over faces). Before the bake the ceiling must be dark;
+5. start a long bake, press Esc (simulated event), and check the scene is
+   exactly as before that bake.
+Screenshots are saved in $BAKEGI_TEST_OUTPUT for the docs.
+"""
+
+import os
+import sys
+import time
+import traceback
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+import bpy  # noqa: E402
+import numpy  # noqa: E402
+from bpy_extras.view3d_utils import location_3d_to_region_2d  # noqa: E402
+
+import cornell_box  # noqa: E402
+import metrics  # noqa: E402
+
+DEADLINE_SECONDS = 420
+BAKE_WAIT_SECONDS = 120
+BAKE_SAMPLES = 256
+
+
+def srgb_to_linear(c):
+    c = numpy.asarray(c, dtype=numpy.float64)
+    return numpy.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+class UiTest:
+    def __init__(self):
+        self.cases = []
+        self.start = time.perf_counter()
+        self.output = common.output_dir()
+        self.steps = self.run()
+
+    # --- plumbing -------------------------------------------------------
+    def tick(self):
+        """Application timer: advance the test by one step; the value returned is the next delay."""
+        try:
+            if time.perf_counter() - self.start > DEADLINE_SECONDS:
+                raise TimeoutError(f"the UI test did not finish in {DEADLINE_SECONDS} s")
+            return next(self.steps)
+        except StopIteration:
+            self.finish()
+        except Exception:
+            self.cases.append({"name": "test_ui", "status": "error", "seconds": 0.0, "message": traceback.format_exc()})
+            print(traceback.format_exc())
+            self.finish()
+        return None
+
+    def finish(self):
+        summary = common.write_results(self.cases, time.perf_counter() - self.start)
+        for case in self.cases:
+            print(f"{case['status'].upper()}: {case['name']} ({case['seconds']:.1f} s) {case['message']}")
+        sys.stdout.flush()
+        os._exit(1 if summary["failures"] + summary["errors"] else 0)
+
+    def record(self, name, started, failures):
+        status = "failed" if failures else "passed"
+        self.cases.append({"name": name, "status": status, "seconds": round(time.perf_counter() - started, 2),
+                           "message": "; ".join(failures)})
+
+    def override(self):
+        return bpy.context.temp_override(window=self.window, area=self.area, region=self.region)
+
+    def screenshot(self, name):
+        path = os.path.join(self.output, name)
+        with bpy.context.temp_override(window=self.window, area=self.area):
+            bpy.ops.screen.screenshot_area(filepath=path)
+        image = bpy.data.images.load(path, check_existing=False)
+        width, height = image.size
+        pixels = numpy.empty(width * height * 4, dtype=numpy.float32)
+        image.pixels.foreach_get(pixels)
+        bpy.data.images.remove(image)
+        return pixels.reshape(height, width, 4)[:, :, :3]  # rows bottom-up, like window coordinates
+
+    def wait_for_viewport(self):
+        """Yield delays until EEVEE has compiled its shaders and the viewport image is stable."""
+        previous = None
+        for _ in range(120):
+            yield 1.0
+            if bpy.app.is_job_running("SHADER_COMPILATION"):
+                continue
+            pixels = self.screenshot("_probe.png")
+            if previous is not None and numpy.abs(pixels - previous).max() < 2.0 / 255.0:
+                return
+            previous = pixels
+
+    def ceiling_pixels(self):
+        """Area-image pixel positions of ceiling points away from its edges (the light is not drawn)."""
+        rv3d = self.area.spaces.active.region_3d
+        offset = numpy.array([self.region.x - self.area.x, self.region.y - self.area.y])
+        positions = []
+        for x in numpy.linspace(-0.8, 0.8, 9):
+            for y in numpy.linspace(-0.8, 0.8, 9):
+                p = location_3d_to_region_2d(self.region, rv3d, (x, y, 1.999))
+                if p is not None:
+                    positions.append(numpy.round(numpy.array(p) + offset).astype(int))
+        return positions
+
+    @staticmethod
+    def mean_linear(pixels, positions):
+        values = [srgb_to_linear(pixels[y, x]) for x, y in positions
+                  if 0 <= y < pixels.shape[0] and 0 <= x < pixels.shape[1]]
+        return float(numpy.mean([metrics.luminance(v)[0] for v in values])), len(values)
+
+    # --- the test -------------------------------------------------------
+    def run(self):
+        started = time.perf_counter()
+        bakegi = common.enable_addon()
+        from bakegi import operators
+
+        common.new_empty_scene()
+        objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+        scene = bpy.context.scene
+        scene.eevee.taa_samples = 8
+        scene.bakegi.objects = "VISIBLE"
+        scene.bakegi.samples = BAKE_SAMPLES
+        yield 0.5
+
+        self.window = bpy.context.window_manager.windows[0]
+        # Close the splash screen (a file given on the command line would skip it, but the
+        # scene is built here): Esc, through the event simulation the runner enables.
+        self.window.event_simulate(type="ESC", value="PRESS")
+        self.window.event_simulate(type="ESC", value="RELEASE")
+        yield 0.5
+        # The default layout's viewport (screen_full_area from a timer crashes Blender 3.4).
+        self.area = max((a for a in self.window.screen.areas if a.type == "VIEW_3D"), key=lambda a: a.width * a.height)
+        self.region = next(r for r in self.area.regions if r.type == "WINDOW")
+        space = self.area.spaces.active
+        space.shading.type = "MATERIAL"
+        space.shading.use_scene_lights = True
+        space.shading.use_scene_world = True
+        space.overlay.show_overlays = False
+        space.show_gizmo = False
+        space.show_region_toolbar = False
+        space.show_region_header = False
+        space.show_region_ui = False
+        space.show_region_tool_header = False
+        space.region_3d.view_perspective = "CAMERA"
+        with self.override():
+            bpy.ops.view3d.view_center_camera()
+        with self.override():
+            bpy.ops.ed.undo_push(message="Cornell box")  # the state undo must return to
+        yield from self.wait_for_viewport()
+
+        positions = self.ceiling_pixels()
+        before_pixels = self.screenshot("ui_before_bake.png")
+        before, count = self.mean_linear(before_pixels, positions)
+
+        before_bake_snapshot = common.scene_snapshot()
+        with self.override():
+            result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
+        failures = [] if result == {"RUNNING_MODAL"} else [f"operator returned {result}"]
+        saw_running = operators.runtime["running"]
+        bake_started = time.perf_counter()
+        while operators.runtime["running"] and time.perf_counter() - bake_started < BAKE_WAIT_SECONDS:
+            yield 0.2
+        bake_seconds = time.perf_counter() - bake_started
+        if operators.runtime["running"]:
+            failures.append(f"the operator still runs after {BAKE_WAIT_SECONDS} s")
+        if common.ATTRIBUTE not in objects["Ceiling"].data.color_attributes:
+            failures.append("no BakeGI_Indirect on the ceiling after the operator finished")
+        yield from self.wait_for_viewport()
+        after_pixels = self.screenshot("ui_after_bake.png")
+        after, _ = self.mean_linear(after_pixels, positions)
+
+        reference, sidecar = common.load_reference("cornell_indirect")
+        start = 0
+        for name, n in sidecar["objects"]:
+            if name == "Ceiling":
+                ceiling = reference[start:start + n]
+            start += n
+        albedo = numpy.array(cornell_box.WHITE)
+        predicted = float(metrics.luminance(ceiling * albedo).mean()) * 2.0 ** scene.view_settings.exposure
+        increase = after - before
+        print(f"ui: {count} ceiling samples; linear luminance before {before:.4f}, after {after:.4f}, "
+              f"predicted increase {predicted:.4f}; bake {bake_seconds:.1f} s (running seen: {saw_running})")
+        if count < 20:
+            failures.append(f"only {count} ceiling points on screen: the view is not the camera's")
+        if before > 0.25 * predicted:
+            failures.append(f"the ceiling is already bright before the bake ({before:.4f})")
+        if not 0.5 * predicted <= increase <= 2.0 * predicted:
+            failures.append(f"ceiling brightness rose by {increase:.4f}, predicted {predicted:.4f}")
+        changed = numpy.abs(after_pixels - before_pixels).max(axis=2) > 8.0 / 255.0
+        print(f"ui: {100 * changed.mean():.1f}% of the viewport's pixels changed")
+        self.record("test_ui.bake_from_window_changes_material_preview", started, failures)
+
+        # Undo (Ctrl+Z's operator, from the window) takes the bake back; redo brings it again.
+        started = time.perf_counter()
+        failures = []
+        after_bake_snapshot = common.scene_snapshot()
+        with self.override():
+            bpy.ops.ed.undo()
+        yield 0.5
+        differences = common.snapshot_difference(before_bake_snapshot, common.scene_snapshot())
+        if differences:
+            failures.append("undo did not restore the scene: " + "; ".join(differences[:10]))
+        with self.override():
+            bpy.ops.ed.redo()
+        yield 0.5
+        differences = common.snapshot_difference(after_bake_snapshot, common.scene_snapshot())
+        if differences:
+            failures.append("redo did not bring the bake back: " + "; ".join(differences[:10]))
+        self.record("test_ui.undo_and_redo_of_the_bake", started, failures)
+        scene = bpy.context.scene  # undo reloads data: old references are stale
+
+        # Esc cancels a running bake and leaves the scene exactly as it was.
+        started = time.perf_counter()
+        failures = []
+        scene.bakegi.samples = 1 << 22
+        before_snapshot = common.scene_snapshot()
+        with self.override():
+            result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
+        if result != {"RUNNING_MODAL"}:
+            failures.append(f"operator returned {result}")
+        yield 1.0
+        if not operators.runtime["running"]:
+            failures.append("the long bake is not running a second later")
+        self.window.event_simulate(type="ESC", value="PRESS")
+        self.window.event_simulate(type="ESC", value="RELEASE")
+        escape_at = time.perf_counter()
+        while operators.runtime["running"] and time.perf_counter() - escape_at < 10.0:
+            yield 0.1
+        cancel_seconds = time.perf_counter() - escape_at
+        if operators.runtime["running"]:
+            failures.append("the bake still runs 10 s after Esc")
+        differences = common.snapshot_difference(before_snapshot, common.scene_snapshot())
+        if differences:
+            failures.append("the scene changed after Esc: " + "; ".join(differences[:10]))
+        print(f"ui: Esc stopped the bake in {cancel_seconds:.2f} s")
+        self.record("test_ui.escape_cancels_and_changes_nothing", started, failures)
+        self.screenshot("ui_after_cancel.png")
+        os.remove(os.path.join(self.output, "_probe.png"))
+
+
+test = UiTest()
+bpy.app.timers.register(test.tick, first_interval=1.0)
