@@ -2,7 +2,9 @@
 // see ray_tracer.cpp). Solvers and the direct-light module see only this interface.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include <glm/glm.hpp>
@@ -21,14 +23,23 @@ struct Ray {
 struct Hit {
   bool hit = false;
   float t = 0.0f;
-  uint32_t triangle = 0;  // index into Scene::triangles
+  uint32_t triangle = 0;       // index into Scene::triangles
   float b1 = 0.0f, b2 = 0.0f;  // barycentrics of corners 1 and 2
+};
+
+struct RayTracerOptions {
+  // Embree's own allocations above this many bytes fail the build with OUT_OF_MEMORY
+  // (0 = no limit).
+  size_t memory_budget_bytes = 0;
+  // Called during the build with the fraction done; returning false stops the build
+  // (the constructor then throws Error(CANCELLED)). May be called from several threads.
+  std::function<bool(double)> progress;
 };
 
 class RayTracer {
  public:
   // Builds the BVH over scene.triangles. Throws bakegi::Error on Embree errors.
-  explicit RayTracer(const Scene& scene);
+  explicit RayTracer(const Scene& scene, const RayTracerOptions& options = {});
   ~RayTracer();
   RayTracer(const RayTracer&) = delete;
   RayTracer& operator=(const RayTracer&) = delete;
@@ -38,6 +49,7 @@ class RayTracer {
   // Packets of rays, for throughput benchmarks (the Embree limit).
   void intersect_many(const Ray* rays, Hit* hits, size_t count) const;
 
+  // Bytes Embree holds for this scene (counted by its memory monitor).
   size_t memory_bytes() const;
 
  private:

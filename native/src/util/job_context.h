@@ -12,9 +12,12 @@ namespace bakegi {
 
 class JobContext {
  public:
-  // Progress of the current stage in [0,1]; the job maps stages onto overall progress.
+  // Progress of the current stage in [0,1]; the job maps stages onto overall progress
+  // [begin, end]. Overall progress never decreases. Thread-safe.
   void set_stage(const std::string& name, double begin, double end);
   void set_stage_progress(double fraction);
+  // Changes only the stage text (e.g. "tracing 32/256 samples"), not the progress range.
+  void set_stage_text(const std::string& name);
   double progress() const { return progress_.load(std::memory_order_relaxed); }
   std::string stage() const;
 
@@ -27,9 +30,11 @@ class JobContext {
   const Report& report() const { return report_; }
 
  private:
+  void raise_progress(double value);
+
   std::atomic<double> progress_{0.0};
   std::atomic<bool> cancelled_{false};
-  double stage_begin_ = 0.0, stage_end_ = 1.0;
+  std::atomic<double> stage_begin_{0.0}, stage_end_{1.0};
   mutable std::mutex stage_mutex_;
   std::string stage_;
   Report report_;

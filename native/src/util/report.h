@@ -16,7 +16,13 @@ class Report {
   void set_number(const std::string& key, double value);
   void add_count(const std::string& key, uint64_t value);
   void set_text(const std::string& key, const std::string& value);
+  // A value that is already JSON (an object such as "settings"); written as is.
+  void set_json(const std::string& key, const std::string& json_value);
   void warn(const std::string& message);
+  std::vector<std::string> warnings() const;
+  uint64_t count(const std::string& key) const;  // 0 if never counted
+  // One JSON object: numbers, counts, texts and JSON values as top-level members,
+  // "seconds": {stage: s, ...} and "warnings": [...]. Non-finite numbers become null.
   std::string to_json() const;
 
  private:
@@ -25,7 +31,14 @@ class Report {
   std::map<std::string, double> numbers_;
   std::map<std::string, uint64_t> counts_;
   std::map<std::string, std::string> texts_;
+  std::map<std::string, std::string> json_values_;
   std::vector<std::string> warnings_;
 };
+
+// A JSON string literal for any UTF-8 text: quotes, backslashes and control characters
+// escaped.
+std::string json_quote(const std::string& text);
+// A JSON number; NaN and infinities (not representable in JSON) become null.
+std::string json_number(double value);
 
 }  // namespace bakegi

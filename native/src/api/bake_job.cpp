@@ -1,0 +1,247 @@
+#include "api/bake_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <tbb/task_arena.h>
+
+#include "direct/direct_light.h"
+#include "scene/ray_tracer.h"
+#include "scene/scene_validation.h"
+#include "solvers/solver.h"
+#include "util/error.h"
+
+namespace bakegi {
+
+namespace {
+
+// Embree's copies of vertices (36 bytes) and indices (12) per triangle plus its BVH built
+// with RTC_BUILD_QUALITY_HIGH: about 112 bytes per triangle in all on a regular grid
+// (test_ray_tracer); spatial splits duplicate references on irregular meshes, hence the
+// headroom.
+constexpr size_t kEmbreeBytesPerTriangle = 48 + 160;
+constexpr size_t kBytesPerPoint = sizeof(glm::vec3) * 2 + sizeof(uint32_t);
+constexpr size_t kBytesPerResult = sizeof(glm::vec3);
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string megabytes(size_t bytes) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f MB", double(bytes) / (1 << 20));
+  return buffer;
+}
+
+size_t description_bytes(const SceneDescription& d) {
+  size_t bytes = d.materials.size() * sizeof(Material) + d.lights.size() * sizeof(Light);
+  for (const Texture& t : d.textures) bytes += t.pixels.size() * sizeof(glm::vec3);
+  for (const Mesh& m : d.meshes) {
+    bytes += m.positions.size() * sizeof(glm::vec3) + m.indices.size() * sizeof(uint32_t) +
+             m.corner_normals.size() * sizeof(glm::vec3) + m.corner_uvs.size() * sizeof(glm::vec2) +
+             m.triangle_materials.size() * sizeof(uint32_t);
+  }
+  return bytes;
+}
+
+size_t triangle_count(const SceneDescription& d) {
+  size_t count = 0;
+  for (const Mesh& m : d.meshes) count += m.indices.size() / 3;
+  return count;
+}
+
+}  // namespace
+
+size_t BakeJob::estimate_memory(const SceneDescription& description, size_t point_count) {
+  // The Scene holds a second copy of the description next to its triangles.
+  return description_bytes(description) + estimate_scene_bytes(description) +
+         triangle_count(description) * kEmbreeBytesPerTriangle +
+         point_count * (kBytesPerPoint + kBytesPerResult);
+}
+
+BakeJob::BakeJob(SceneDescription description, BakePoints points, Settings settings)
+    : description_(std::move(description)),
+      points_(std::move(points)),
+      settings_(std::move(settings)) {
+  settings_.check_known_keys(known_setting_keys());
+  method_ = settings_.get_string("method", "pathtrace");
+  // Common keys are checked here so that a bad value fails at once; their defaults belong
+  // to the solvers, which read them again.
+  constexpr int64_t kMaxInt = std::numeric_limits<int64_t>::max();
+  if (settings_.has("samples")) settings_.get_int("samples", 1, 1, int64_t(1) << 30);
+  if (settings_.has("seed")) settings_.get_int("seed", 0, 0, kMaxInt);
+  if (settings_.has("sample_offset")) {
+    settings_.get_int("sample_offset", 0, 0, int64_t(1) << 40);
+  }
+  if (settings_.has("max_bounces")) settings_.get_int("max_bounces", 1, 1, 1 << 20);
+  threads_ = int(settings_.get_int("threads", 0, 0, 1024));
+  memory_budget_bytes_ = size_t(settings_.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30))
+                         << 20;
+  solver_ = make_solver(method_);
+
+  context_.report().set_text("method", method_);
+  context_.report().add_count("bake_points", points_.size());
+  context_.report().add_count("rays", 0);
+  context_.set_stage("queued", 0.0, 0.0);
+  thread_ = std::thread([this] { run(); });
+}
+
+BakeJob::~BakeJob() {
+  cancel();
+  try {
+    if (thread_.joinable()) thread_.join();
+  } catch (...) {
+    // join fails only if the thread is gone already; nothing is left to wait for.
+  }
+}
+
+bool BakeJob::is_done() const {
+  std::lock_guard lock(mutex_);
+  return done_;
+}
+
+bakegi_status BakeJob::wait(std::string& message) {
+  std::unique_lock lock(mutex_);
+  done_changed_.wait(lock, [this] { return done_; });
+  message = error_;
+  return status_;
+}
+
+bakegi_status BakeJob::status() const {
+  std::lock_guard lock(mutex_);
+  return status_;
+}
+
+std::string BakeJob::error() const {
+  std::lock_guard lock(mutex_);
+  return error_;
+}
+
+std::string BakeJob::report_json() const {
+  return context_.report().to_json();
+}
+
+void BakeJob::run() noexcept {
+  try {
+    execute();
+    finish(BAKEGI_OK, "");
+  } catch (const Error& e) {
+    finish(e.status(), e.what());
+  } catch (const std::bad_alloc&) {
+    finish(BAKEGI_ERROR_OUT_OF_MEMORY, "out of memory during the bake");
+  } catch (const std::exception& e) {
+    finish(BAKEGI_ERROR_INTERNAL, std::string("internal error: ") + e.what());
+  } catch (...) {
+    finish(BAKEGI_ERROR_INTERNAL, "internal error");
+  }
+}
+
+void BakeJob::execute() {
+  Report& report = context_.report();
+  const auto start = std::chrono::steady_clock::now();
+  tbb::task_arena arena(threads_ == 0 ? tbb::task_arena::automatic : threads_);
+  report.add_count("threads", uint64_t(arena.max_concurrency()));
+
+  arena.execute([&] {
+    context_.set_stage("validating", 0.0, 0.02);
+    auto stage_start = std::chrono::steady_clock::now();
+    const size_t estimate = estimate_memory(description_, points_.size());
+    report.add_count("memory_estimate_bytes", estimate);
+    if (estimate > memory_budget_bytes_) {
+      throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                  "the bake needs an estimated " + megabytes(estimate) + " (" +
+                      std::to_string(triangle_count(description_)) + " triangles, " +
+                      std::to_string(points_.size()) + " bake points), more than the budget of " +
+                      megabytes(memory_budget_bytes_) + " (setting memory_budget_mb)");
+    }
+    const Scene scene = build_scene(description_);
+    for (const std::string& warning : scene.warnings) report.warn(warning);
+    report.add_count("triangles", scene.triangles.size());
+    report.add_count("lights", scene.description.lights.size());
+    report.add_count("emissive_triangles", scene.emissive_triangles.size());
+    report.add_seconds("validate", seconds_since(stage_start));
+    context_.throw_if_cancelled();
+
+    context_.set_stage("building BVH", 0.02, 0.1);
+    stage_start = std::chrono::steady_clock::now();
+    RayTracerOptions options;
+    const size_t other_bytes = estimate - triangle_count(description_) * kEmbreeBytesPerTriangle;
+    options.memory_budget_bytes =
+        memory_budget_bytes_ > other_bytes ? memory_budget_bytes_ - other_bytes : 1;
+    options.progress = [this](double fraction) {
+      context_.set_stage_progress(fraction);
+      return !context_.is_cancelled();
+    };
+    const RayTracer tracer(scene, options);
+    report.add_seconds("bvh", seconds_since(stage_start));
+    context_.throw_if_cancelled();
+
+    context_.set_stage("solving", 0.1, 0.6);
+    stage_start = std::chrono::steady_clock::now();
+    const DirectLight direct(scene, tracer);
+    const SolveInputs inputs{scene, tracer, direct, settings_};
+    const std::unique_ptr<IndirectField> field = solver_->solve(inputs, context_);
+    if (!field) throw Error(BAKEGI_ERROR_INTERNAL, "solver '" + method_ + "' returned no field");
+    report.add_seconds("solve", seconds_since(stage_start));
+    context_.throw_if_cancelled();
+
+    // Whatever part of the solve range the solver did not report is skipped, so progress
+    // runs on smoothly from where it stands.
+    context_.set_stage("evaluating", context_.progress(), 1.0);
+    stage_start = std::chrono::steady_clock::now();
+    results_.assign(points_.size(), glm::vec3(0.0f));
+    field->evaluate(points_, results_, context_);
+    context_.throw_if_cancelled();
+    for (size_t i = 0; i < results_.size(); ++i) {
+      const glm::vec3& v = results_[i];
+      if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) {
+        throw Error(BAKEGI_ERROR_INTERNAL, "solver '" + method_ +
+                                               "' produced a non-finite value at bake point " +
+                                               std::to_string(i));
+      }
+    }
+    report.add_seconds("evaluate", seconds_since(stage_start));
+    report.add_count("memory_bytes", tracer.memory_bytes() + description_bytes(description_) +
+                                         scene.triangles.capacity() * sizeof(Triangle) +
+                                         points_.size() * (kBytesPerPoint + kBytesPerResult));
+  });
+  report.add_seconds("total", seconds_since(start));
+}
+
+void BakeJob::finish(bakegi_status status, const std::string& message) noexcept {
+  try {
+    Report& report = context_.report();
+    std::string settings = "{";
+    for (const auto& [key, value] : settings_.used_values()) {
+      if (settings.size() > 1) settings += ", ";
+      settings += json_quote(key) + ": " + setting_to_json(value);
+    }
+    report.set_json("settings", settings + "}");
+    report.set_text("status", bakegi_status_string(status));
+    report.set_text("error", message);
+    // Keys every report has, also when the job failed early.
+    for (const char* key : {"triangles", "lights", "memory_bytes"}) report.add_count(key, 0);
+    for (const char* stage : {"validate", "bvh", "solve", "evaluate", "total"}) {
+      report.add_seconds(stage, 0.0);
+    }
+    if (status == BAKEGI_OK) {
+      context_.set_stage("done", 1.0, 1.0);
+    } else {
+      context_.set_stage_text(status == BAKEGI_ERROR_CANCELLED ? "cancelled" : "failed");
+    }
+  } catch (...) {
+    // The report is incomplete; status and message below still reach the caller.
+  }
+  std::lock_guard lock(mutex_);
+  status_ = status;
+  try {
+    error_ = message;
+  } catch (...) {
+  }
+  done_ = true;
+  done_changed_.notify_all();
+}
+
+}  // namespace bakegi

@@ -1,0 +1,25 @@
+// What the C API's opaque handles hold: the core's own types, copied in at the door.
+#pragma once
+
+#include <memory>
+
+#include "api/bake_job.h"
+#include "bake_points/bake_points.h"
+#include "scene/scene.h"
+#include "util/settings.h"
+
+struct bakegi_scene {
+  bakegi::SceneDescription description;
+};
+
+struct bakegi_points {
+  bakegi::BakePoints points;
+};
+
+struct bakegi_settings {
+  bakegi::Settings settings;
+};
+
+struct bakegi_job {
+  std::unique_ptr<bakegi::BakeJob> job;
+};

@@ -1,0 +1,89 @@
+// bakegi_points_*: bake points enter the core here, checked and with unit normals.
+#include <cmath>
+#include <limits>
+
+#include "api/api_guard.h"
+#include "api/handles.h"
+
+using bakegi::Error;
+using bakegi::guarded;
+using bakegi::require;
+
+namespace {
+
+bool finite(const float* v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+const char* non_finite_word(const float* v) {
+  return std::isnan(v[0]) || std::isnan(v[1]) || std::isnan(v[2]) ? "NaN" : "infinite";
+}
+
+}  // namespace
+
+extern "C" {
+
+bakegi_status bakegi_points_create(const float* positions, const float* normals,
+                                   const uint32_t* object_ids, uint64_t count,
+                                   bakegi_points** out_points) {
+  return guarded(__func__, [&] {
+    require(out_points, "out_points");
+    *out_points = nullptr;
+    require(positions, "positions");
+    require(normals, "normals");
+    if (count == 0) throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "count is 0 (no bake points)");
+    // Keeps 3 * count * sizeof(float) and every later size computation from overflowing.
+    if (count > std::numeric_limits<uint64_t>::max() / 64) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "count " + std::to_string(count) + " is absurd");
+    }
+    auto handle = std::make_unique<bakegi_points>();
+    bakegi::BakePoints& points = handle->points;
+    points.positions.resize(count);
+    points.normals.resize(count);
+    points.object_ids.assign(count, 0);
+    for (uint64_t i = 0; i < count; ++i) {
+      const float* p = positions + 3 * i;
+      const float* n = normals + 3 * i;
+      const std::string name = "bake point " + std::to_string(i);
+      if (!finite(p)) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, name + ": position is " + non_finite_word(p));
+      }
+      if (!finite(n)) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, name + ": normal is " + non_finite_word(n));
+      }
+      const glm::dvec3 normal(n[0], n[1], n[2]);
+      const double length = glm::length(normal);
+      if (!(length > 1e-20)) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, name + ": normal is the zero vector");
+      }
+      points.positions[i] = {p[0], p[1], p[2]};
+      points.normals[i] = glm::vec3(normal / length);
+      if (object_ids) points.object_ids[i] = object_ids[i];
+    }
+    *out_points = handle.release();
+  });
+}
+
+void bakegi_points_destroy(bakegi_points* points) {
+  delete points;
+}
+
+uint64_t bakegi_points_count(const bakegi_points* points) {
+  return points ? points->points.size() : 0;
+}
+
+bakegi_status bakegi_points_get(const bakegi_points* points, float* positions, float* normals,
+                                uint32_t* object_ids) {
+  return guarded(__func__, [&] {
+    require(points, "points");
+    const bakegi::BakePoints& p = points->points;
+    for (size_t i = 0; i < p.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        if (positions) positions[3 * i + k] = p.positions[i][k];
+        if (normals) normals[3 * i + k] = p.normals[i][k];
+      }
+      if (object_ids) object_ids[i] = p.object_ids[i];
+    }
+  });
+}
+
+}  // extern "C"

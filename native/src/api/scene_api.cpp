@@ -1,0 +1,197 @@
+// bakegi_scene_*: copies what the caller passes into a SceneDescription, checking each
+// element at the door so that errors name the call that caused them.
+#include <cstring>
+#include <limits>
+
+#include "api/api_guard.h"
+#include "api/handles.h"
+#include "scene/scene_validation.h"
+
+using bakegi::Error;
+using bakegi::guarded;
+using bakegi::require;
+
+namespace {
+
+constexpr uint32_t kMaxElements = std::numeric_limits<uint32_t>::max() - 1;
+
+void check_room(size_t count, const char* what) {
+  if (count >= kMaxElements) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, std::string("too many ") + what);
+  }
+}
+
+}  // namespace
+
+extern "C" {
+
+bakegi_status bakegi_scene_create(bakegi_scene** out_scene) {
+  return guarded(__func__, [&] {
+    require(out_scene, "out_scene");
+    *out_scene = nullptr;
+    *out_scene = new bakegi_scene();
+  });
+}
+
+void bakegi_scene_destroy(bakegi_scene* scene) {
+  delete scene;
+}
+
+bakegi_status bakegi_scene_add_texture(bakegi_scene* scene, uint32_t width, uint32_t height,
+                                       const float* rgb_pixels, uint32_t* out_texture) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(rgb_pixels, "rgb_pixels");
+    const size_t index = scene->description.textures.size();
+    check_room(index, "textures");
+    if (width == 0 || height == 0) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "texture " + std::to_string(index) + ": size must be at least 1x1, got " +
+                      std::to_string(width) + "x" + std::to_string(height));
+    }
+    bakegi::Texture texture;
+    texture.width = width;
+    texture.height = height;
+    const size_t count = size_t(width) * height;
+    texture.pixels.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      texture.pixels[i] = {rgb_pixels[3 * i], rgb_pixels[3 * i + 1], rgb_pixels[3 * i + 2]};
+    }
+    bakegi::check_texture(texture, index);
+    scene->description.textures.push_back(std::move(texture));
+    if (out_texture) *out_texture = uint32_t(index);
+  });
+}
+
+bakegi_status bakegi_scene_add_material(bakegi_scene* scene, const bakegi_material_desc* material,
+                                        uint32_t* out_material) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(material, "material");
+    const size_t index = scene->description.materials.size();
+    check_room(index, "materials");
+    if (material->emission_two_sided > 1) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "material " + std::to_string(index) +
+                                                     ": emission_two_sided must be 0 or 1, got " +
+                                                     std::to_string(material->emission_two_sided));
+    }
+    bakegi::Material m;
+    m.albedo = {material->albedo[0], material->albedo[1], material->albedo[2]};
+    m.albedo_texture = material->albedo_texture;
+    m.emission = {material->emission[0], material->emission[1], material->emission[2]};
+    m.emission_two_sided = material->emission_two_sided == 1;
+    bakegi::check_material(m, index);
+    scene->description.materials.push_back(m);
+    if (out_material) *out_material = uint32_t(index);
+  });
+}
+
+bakegi_status bakegi_scene_add_mesh(bakegi_scene* scene, const bakegi_mesh_desc* mesh,
+                                    uint32_t* out_mesh) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(mesh, "mesh");
+    const size_t index = scene->description.meshes.size();
+    check_room(index, "meshes");
+    const std::string name =
+        "mesh " + std::to_string(index) + " (object " + std::to_string(mesh->object_id) + ")";
+    auto require_array = [&](const void* array, const char* what) {
+      if (!array) throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, name + ": " + what + " is NULL");
+    };
+    const size_t vertices = mesh->vertex_count, triangles = mesh->triangle_count;
+    if (vertices > 0) require_array(mesh->positions, "positions");
+    if (triangles > 0) require_array(mesh->indices, "indices");
+
+    bakegi::Mesh m;
+    m.material = mesh->material;
+    m.object_id = mesh->object_id;
+    m.positions.resize(vertices);
+    for (size_t v = 0; v < vertices; ++v) {
+      const float* p = mesh->positions + 3 * v;
+      m.positions[v] = {p[0], p[1], p[2]};
+    }
+    m.indices.assign(mesh->indices, mesh->indices + 3 * triangles);
+    if (mesh->corner_normals) {
+      m.corner_normals.resize(3 * triangles);
+      for (size_t c = 0; c < 3 * triangles; ++c) {
+        const float* n = mesh->corner_normals + 3 * c;
+        m.corner_normals[c] = {n[0], n[1], n[2]};
+      }
+    }
+    if (mesh->corner_uvs) {
+      m.corner_uvs.resize(3 * triangles);
+      for (size_t c = 0; c < 3 * triangles; ++c) {
+        m.corner_uvs[c] = {mesh->corner_uvs[2 * c], mesh->corner_uvs[2 * c + 1]};
+      }
+    }
+    if (mesh->triangle_materials) {
+      m.triangle_materials.assign(mesh->triangle_materials, mesh->triangle_materials + triangles);
+    }
+    bakegi::check_mesh(m, index);
+    scene->description.meshes.push_back(std::move(m));
+    if (out_mesh) *out_mesh = uint32_t(index);
+  });
+}
+
+bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_desc* light,
+                                     uint32_t* out_light) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(light, "light");
+    const size_t index = scene->description.lights.size();
+    check_room(index, "lights");
+    auto v3 = [](const float* v) { return glm::vec3(v[0], v[1], v[2]); };
+    // Read as integers: an out-of-range value must not be loaded as an enum.
+    uint32_t raw_type = 0, raw_shape = 0;
+    static_assert(sizeof(light->type) == sizeof raw_type &&
+                  sizeof(light->shape) == sizeof raw_shape);
+    std::memcpy(&raw_type, &light->type, sizeof raw_type);
+    std::memcpy(&raw_shape, &light->shape, sizeof raw_shape);
+    bakegi::Light l;
+    l.type = bakegi::light_type_from(raw_type, index);
+    l.position = v3(light->position);
+    l.direction = v3(light->direction);
+    l.axis_u = v3(light->axis_u);
+    l.color = v3(light->color);
+    l.radius = light->radius;
+    l.spot_size = light->spot_size;
+    l.spot_blend = light->spot_blend;
+    l.angle = light->angle;
+    l.shape = bakegi::area_shape_from(raw_shape, index);
+    l.size_x = light->size_x;
+    l.size_y = light->size_y;
+    bakegi::check_light(l, index);
+    scene->description.lights.push_back(l);
+    if (out_light) *out_light = uint32_t(index);
+  });
+}
+
+bakegi_status bakegi_scene_set_world(bakegi_scene* scene, const float radiance[3]) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(radiance, "radiance");
+    const glm::vec3 value(radiance[0], radiance[1], radiance[2]);
+    bakegi::check_world(value);
+    scene->description.world_radiance = value;
+  });
+}
+
+bakegi_status bakegi_scene_validate(const bakegi_scene* scene) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    bakegi::build_scene(scene->description);
+  });
+}
+
+uint64_t bakegi_scene_triangle_count(const bakegi_scene* scene) {
+  if (!scene) return 0;
+  uint64_t count = 0;
+  for (const bakegi::Mesh& mesh : scene->description.meshes) count += mesh.indices.size() / 3;
+  return count;
+}
+
+uint32_t bakegi_scene_light_count(const bakegi_scene* scene) {
+  return scene ? uint32_t(scene->description.lights.size()) : 0;
+}
+
+}  // extern "C"

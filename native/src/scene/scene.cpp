@@ -1,0 +1,44 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bakegi {
+
+namespace {
+
+// Bilinear lookup with repeat wrapping; texel (i, j) has its centre at ((i+0.5)/w,
+// (j+0.5)/h), as in Cycles' linear image interpolation.
+glm::vec3 sample_bilinear(const Texture& texture, glm::vec2 uv) {
+  const double w = texture.width, h = texture.height;
+  const double x = (uv.x - std::floor(double(uv.x))) * w - 0.5;
+  const double y = (uv.y - std::floor(double(uv.y))) * h - 0.5;
+  const double x0 = std::floor(x), y0 = std::floor(y);
+  const float fx = float(x - x0), fy = float(y - y0);
+  auto wrap = [](double i, uint32_t n) {
+    const int64_t m = int64_t(i) % int64_t(n);
+    return uint32_t(m < 0 ? m + n : m);
+  };
+  const uint32_t i0 = wrap(x0, texture.width), i1 = wrap(x0 + 1, texture.width);
+  const uint32_t j0 = wrap(y0, texture.height), j1 = wrap(y0 + 1, texture.height);
+  auto texel = [&](uint32_t i, uint32_t j) {
+    return texture.pixels[size_t(j) * texture.width + i];
+  };
+  const glm::vec3 bottom = glm::mix(texel(i0, j0), texel(i1, j0), fx);
+  const glm::vec3 top = glm::mix(texel(i0, j1), texel(i1, j1), fx);
+  return glm::mix(bottom, top, fy);
+}
+
+}  // namespace
+
+glm::vec3 Scene::albedo_at(const Triangle& t, float b1, float b2) const {
+  const Material& material = material_of(t);
+  if (material.albedo_texture == BAKEGI_NO_TEXTURE) return material.albedo;
+  const Texture& texture = description.textures[material.albedo_texture];
+  const glm::vec2 uv = (1.0f - b1 - b2) * t.uv[0] + b1 * t.uv[1] + b2 * t.uv[2];
+  // A reflectance above 1 would create energy; textures are checked to lie in [0,1] up to
+  // rounding, which the clamp removes.
+  return glm::clamp(material.albedo * sample_bilinear(texture, uv), 0.0f, 1.0f);
+}
+
+}  // namespace bakegi

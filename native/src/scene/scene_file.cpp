@@ -1,0 +1,378 @@
+#include "scene/scene_file.h"
+
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "scene/scene_validation.h"
+#include "util/error.h"
+
+namespace bakegi {
+
+namespace {
+
+constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'S'};
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8;
+constexpr size_t kTrailerBytes = 8;
+
+constexpr uint32_t tag(const char (&name)[5]) {
+  return uint32_t(uint8_t(name[0])) | uint32_t(uint8_t(name[1])) << 8 |
+         uint32_t(uint8_t(name[2])) << 16 | uint32_t(uint8_t(name[3])) << 24;
+}
+constexpr uint32_t kTextures = tag("TEXR"), kMaterials = tag("MATL"), kMeshes = tag("MESH"),
+                   kLights = tag("LGHT"), kWorld = tag("WRLD"), kPoints = tag("PNTS");
+
+constexpr uint32_t kHasNormals = 1, kHasUvs = 2, kHasTriangleMaterials = 4;
+
+uint64_t fnv1a64(std::span<const uint8_t> bytes) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  for (uint8_t b : bytes) {
+    hash ^= b;
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+
+// Little-endian writer, independent of the host's byte order.
+class Writer {
+ public:
+  std::vector<uint8_t> bytes;
+  void u32(uint32_t v) {
+    for (int i = 0; i < 4; ++i) bytes.push_back(uint8_t(v >> (8 * i)));
+  }
+  void u64(uint64_t v) {
+    for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(v >> (8 * i)));
+  }
+  void f32(float v) { u32(std::bit_cast<uint32_t>(v)); }
+  void vec2(const glm::vec2& v) { f32(v.x), f32(v.y); }
+  void vec3(const glm::vec3& v) { f32(v.x), f32(v.y), f32(v.z); }
+  void patch_u64(size_t at, uint64_t v) {
+    for (int i = 0; i < 8; ++i) bytes[at + i] = uint8_t(v >> (8 * i));
+  }
+  // Starts a section; returns where its size goes.
+  size_t begin_section(uint32_t section_tag) {
+    u32(section_tag);
+    u32(0);
+    const size_t at = bytes.size();
+    u64(0);
+    return at;
+  }
+  void end_section(size_t at) { patch_u64(at, bytes.size() - (at + 8)); }
+};
+
+// Bounds-checked little-endian reader: every count is checked against the bytes left
+// before anything is allocated for it.
+class Reader {
+ public:
+  Reader(std::span<const uint8_t> bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(BAKEGI_ERROR_BAD_FILE, name_ + ": " + what);
+  }
+  size_t left() const { return bytes_.size() - at_; }
+  size_t position() const { return at_; }
+  void need(uint64_t count, uint64_t element_bytes, const char* what) const {
+    if (element_bytes != 0 && count > left() / element_bytes) {
+      fail(std::string("truncated or corrupt: ") + what + " needs " + std::to_string(count) +
+           " x " + std::to_string(element_bytes) + " bytes, " + std::to_string(left()) + " left");
+    }
+  }
+  uint32_t u32() {
+    need(1, 4, "a 32-bit value");
+    uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= uint32_t(bytes_[at_++]) << (8 * i);
+    return v;
+  }
+  uint64_t u64() {
+    need(1, 8, "a 64-bit value");
+    uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) v |= uint64_t(bytes_[at_++]) << (8 * i);
+    return v;
+  }
+  float f32() { return std::bit_cast<float>(u32()); }
+  glm::vec2 vec2() {
+    const float x = f32();
+    return {x, f32()};
+  }
+  glm::vec3 vec3() {
+    const float x = f32(), y = f32();
+    return {x, y, f32()};
+  }
+  template <typename T, typename ReadOne>
+  void array(std::vector<T>& out, uint64_t count, uint64_t element_bytes, const char* what,
+             ReadOne read_one) {
+    need(count, element_bytes, what);
+    out.resize(count);
+    for (T& element : out) element = read_one();
+  }
+
+ private:
+  std::span<const uint8_t> bytes_;
+  size_t at_ = 0;
+  std::string name_;
+};
+
+void write_scene(Writer& w, const SceneDescription& scene) {
+  size_t at = w.begin_section(kTextures);
+  w.u32(uint32_t(scene.textures.size()));
+  for (const Texture& t : scene.textures) {
+    w.u32(t.width);
+    w.u32(t.height);
+    for (const glm::vec3& p : t.pixels) w.vec3(p);
+  }
+  w.end_section(at);
+
+  at = w.begin_section(kMaterials);
+  w.u32(uint32_t(scene.materials.size()));
+  for (const Material& m : scene.materials) {
+    w.vec3(m.albedo);
+    w.u32(m.albedo_texture);
+    w.vec3(m.emission);
+    w.u32(m.emission_two_sided ? 1 : 0);
+  }
+  w.end_section(at);
+
+  at = w.begin_section(kMeshes);
+  w.u32(uint32_t(scene.meshes.size()));
+  for (const Mesh& m : scene.meshes) {
+    w.u32(m.object_id);
+    w.u32(m.material);
+    w.u32(uint32_t(m.positions.size()));
+    w.u32(uint32_t(m.indices.size() / 3));
+    w.u32((m.corner_normals.empty() ? 0 : kHasNormals) | (m.corner_uvs.empty() ? 0 : kHasUvs) |
+          (m.triangle_materials.empty() ? 0 : kHasTriangleMaterials));
+    for (const glm::vec3& p : m.positions) w.vec3(p);
+    for (uint32_t i : m.indices) w.u32(i);
+    for (const glm::vec3& n : m.corner_normals) w.vec3(n);
+    for (const glm::vec2& uv : m.corner_uvs) w.vec2(uv);
+    for (uint32_t material : m.triangle_materials) w.u32(material);
+  }
+  w.end_section(at);
+
+  at = w.begin_section(kLights);
+  w.u32(uint32_t(scene.lights.size()));
+  for (const Light& l : scene.lights) {
+    w.u32(uint32_t(l.type));
+    w.vec3(l.position);
+    w.vec3(l.direction);
+    w.vec3(l.axis_u);
+    w.vec3(l.color);
+    w.f32(l.radius);
+    w.f32(l.spot_size);
+    w.f32(l.spot_blend);
+    w.f32(l.angle);
+    w.u32(uint32_t(l.shape));
+    w.f32(l.size_x);
+    w.f32(l.size_y);
+  }
+  w.end_section(at);
+
+  at = w.begin_section(kWorld);
+  w.vec3(scene.world_radiance);
+  w.end_section(at);
+}
+
+void write_points(Writer& w, const BakePoints& points) {
+  const size_t at = w.begin_section(kPoints);
+  w.u64(points.size());
+  for (const glm::vec3& p : points.positions) w.vec3(p);
+  for (const glm::vec3& n : points.normals) w.vec3(n);
+  for (uint32_t id : points.object_ids) w.u32(id);
+  w.end_section(at);
+}
+
+void read_textures(Reader& r, SceneDescription& scene) {
+  const uint32_t count = r.u32();
+  r.need(count, 8, "textures");
+  scene.textures.resize(count);
+  for (Texture& t : scene.textures) {
+    t.width = r.u32();
+    t.height = r.u32();
+    r.array(t.pixels, uint64_t(t.width) * t.height, 12, "texture pixels", [&] { return r.vec3(); });
+  }
+}
+
+void read_materials(Reader& r, SceneDescription& scene) {
+  const uint32_t count = r.u32();
+  r.array(scene.materials, count, 32, "materials", [&] {
+    Material m;
+    m.albedo = r.vec3();
+    m.albedo_texture = r.u32();
+    m.emission = r.vec3();
+    const uint32_t two_sided = r.u32();
+    if (two_sided > 1) r.fail("material emission_two_sided must be 0 or 1");
+    m.emission_two_sided = two_sided == 1;
+    return m;
+  });
+}
+
+void read_meshes(Reader& r, SceneDescription& scene) {
+  const uint32_t count = r.u32();
+  r.need(count, 20, "meshes");
+  scene.meshes.resize(count);
+  for (Mesh& m : scene.meshes) {
+    m.object_id = r.u32();
+    m.material = r.u32();
+    const uint64_t vertices = r.u32();
+    const uint64_t triangles = r.u32();
+    const uint32_t flags = r.u32();
+    if (flags & ~uint32_t(kHasNormals | kHasUvs | kHasTriangleMaterials)) {
+      r.fail("unknown mesh flags " + std::to_string(flags));
+    }
+    r.array(m.positions, vertices, 12, "mesh positions", [&] { return r.vec3(); });
+    r.array(m.indices, 3 * triangles, 4, "mesh indices", [&] { return r.u32(); });
+    if (flags & kHasNormals) {
+      r.array(m.corner_normals, 3 * triangles, 12, "corner normals", [&] { return r.vec3(); });
+    }
+    if (flags & kHasUvs) {
+      r.array(m.corner_uvs, 3 * triangles, 8, "corner uvs", [&] { return r.vec2(); });
+    }
+    if (flags & kHasTriangleMaterials) {
+      r.array(m.triangle_materials, triangles, 4, "triangle materials", [&] { return r.u32(); });
+    }
+  }
+}
+
+void read_lights(Reader& r, SceneDescription& scene) {
+  const uint32_t count = r.u32();
+  size_t index = 0;
+  r.array(scene.lights, count, 76, "lights", [&] {
+    Light l;
+    const uint32_t type = r.u32();
+    l.position = r.vec3();
+    l.direction = r.vec3();
+    l.axis_u = r.vec3();
+    l.color = r.vec3();
+    l.radius = r.f32();
+    l.spot_size = r.f32();
+    l.spot_blend = r.f32();
+    l.angle = r.f32();
+    const uint32_t shape = r.u32();
+    l.size_x = r.f32();
+    l.size_y = r.f32();
+    try {
+      l.type = light_type_from(type, index);
+      l.shape = area_shape_from(shape, index);
+    } catch (const Error& e) {
+      r.fail(e.what());
+    }
+    ++index;
+    return l;
+  });
+}
+
+BakePoints read_points(Reader& r) {
+  BakePoints points;
+  const uint64_t count = r.u64();
+  r.need(count, 28, "bake points");
+  r.array(points.positions, count, 12, "point positions", [&] { return r.vec3(); });
+  r.array(points.normals, count, 12, "point normals", [&] { return r.vec3(); });
+  r.array(points.object_ids, count, 4, "point object ids", [&] { return r.u32(); });
+  return points;
+}
+
+// The file must hold only what the C API accepts; anything else was not written by us.
+void check_contents(const SceneFile& file, const std::string& name) {
+  try {
+    const SceneDescription& s = file.scene;
+    for (size_t i = 0; i < s.textures.size(); ++i) check_texture(s.textures[i], i);
+    for (size_t i = 0; i < s.materials.size(); ++i) check_material(s.materials[i], i);
+    for (size_t i = 0; i < s.meshes.size(); ++i) check_mesh(s.meshes[i], i);
+    for (size_t i = 0; i < s.lights.size(); ++i) check_light(s.lights[i], i);
+    check_world(s.world_radiance);
+    if (file.points) check_bake_points(*file.points);
+  } catch (const Error& e) {
+    throw Error(BAKEGI_ERROR_BAD_FILE, name + ": holds an invalid scene: " + e.what());
+  }
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_scene_file(const SceneDescription& scene, const BakePoints* points) {
+  Writer w;
+  w.bytes.insert(w.bytes.end(), std::begin(kMagic), std::end(kMagic));
+  w.u32(kSceneFileVersion);
+  w.u32(0);
+  w.u64(0);  // payload size, patched below
+  write_scene(w, scene);
+  if (points) write_points(w, *points);
+  w.patch_u64(16, w.bytes.size() - kHeaderBytes);
+  w.u64(fnv1a64(w.bytes));
+  return std::move(w.bytes);
+}
+
+SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& name) {
+  auto fail = [&](const std::string& what) -> void {
+    throw Error(BAKEGI_ERROR_BAD_FILE, name + ": " + what);
+  };
+  if (bytes.size() < kHeaderBytes + kTrailerBytes ||
+      std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    fail("not a bakegi scene file (no BAKEGI header)");
+  }
+  Reader header(bytes.subspan(8, kHeaderBytes - 8), name);
+  const uint32_t version = header.u32();
+  if (version != kSceneFileVersion) {
+    fail("format version " + std::to_string(version) + " is not supported (this build reads " +
+         std::to_string(kSceneFileVersion) + ")");
+  }
+  header.u32();
+  const uint64_t payload_bytes = header.u64();
+  if (payload_bytes != bytes.size() - kHeaderBytes - kTrailerBytes) {
+    fail("truncated or extended: the header says " + std::to_string(payload_bytes) +
+         " payload bytes, the file holds " +
+         std::to_string(bytes.size() - kHeaderBytes - kTrailerBytes));
+  }
+  const size_t hashed = bytes.size() - kTrailerBytes;
+  Reader trailer(bytes.subspan(hashed), name);
+  if (trailer.u64() != fnv1a64(bytes.first(hashed))) fail("corrupt: checksum mismatch");
+
+  SceneFile file;
+  Reader r(bytes.subspan(kHeaderBytes, payload_bytes), name);
+  const uint32_t order[] = {kTextures, kMaterials, kMeshes, kLights, kWorld, kPoints};
+  for (uint32_t expected : order) {
+    if (expected == kPoints && r.left() == 0) break;
+    const uint32_t section = r.u32();
+    r.u32();
+    const uint64_t size = r.u64();
+    if (section != expected) fail("unexpected section at byte " + std::to_string(r.position()));
+    r.need(size, 1, "section");
+    const size_t end = r.position() + size;
+    if (expected == kTextures) read_textures(r, file.scene);
+    if (expected == kMaterials) read_materials(r, file.scene);
+    if (expected == kMeshes) read_meshes(r, file.scene);
+    if (expected == kLights) read_lights(r, file.scene);
+    if (expected == kWorld) file.scene.world_radiance = r.vec3();
+    if (expected == kPoints) file.points = read_points(r);
+    if (r.position() != end) fail("section size does not match its contents");
+  }
+  if (r.left() != 0) fail("unexpected bytes after the last section");
+  check_contents(file, name);
+  return file;
+}
+
+void write_scene_file(const std::string& path, const SceneDescription& scene,
+                      const BakePoints* points) {
+  const std::vector<uint8_t> bytes = encode_scene_file(scene, points);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) {
+    throw Error(BAKEGI_ERROR_IO, "cannot write " + path + ": " + std::strerror(errno));
+  }
+  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  out.close();
+  if (!out) throw Error(BAKEGI_ERROR_IO, "writing " + path + " failed: " + std::strerror(errno));
+}
+
+SceneFile read_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error(BAKEGI_ERROR_IO, "cannot open " + path + ": " + std::strerror(errno));
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw Error(BAKEGI_ERROR_IO, "cannot read " + path);
+  std::vector<uint8_t> bytes(static_cast<size_t>(size));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), size);
+  if (!in) throw Error(BAKEGI_ERROR_IO, "reading " + path + " failed: " + std::strerror(errno));
+  return decode_scene_file(bytes, path);
+}
+
+}  // namespace bakegi

@@ -1,0 +1,437 @@
+#include "scene/scene_validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "bake_points/bake_points.h"
+#include "util/error.h"
+
+namespace bakegi {
+
+namespace {
+
+// Texture values are reflectances; a little above 1 is float rounding of a 1.
+constexpr float kTextureTolerance = 1e-4f;
+// A triangle whose doubled area is below this fraction of its longest edge squared is a
+// needle or a point: its normal is noise and it can receive no light. The threshold is
+// about float precision (2^-23 ~ 1.2e-7).
+constexpr double kDegenerateRelativeArea = 1e-7;
+
+std::string num(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
+std::string vec(const glm::vec3& v) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "(%g, %g, %g)", v.x, v.y, v.z);
+  return buffer;
+}
+
+[[noreturn]] void invalid(const std::string& message) {
+  throw Error(BAKEGI_ERROR_INVALID_SCENE, message);
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const glm::vec2& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y);
+}
+
+const char* non_finite_word(const glm::vec3& v) {
+  return std::isnan(v.x) || std::isnan(v.y) || std::isnan(v.z) ? "NaN" : "infinite";
+}
+const char* non_finite_word(const glm::vec2& v) {
+  return std::isnan(v.x) || std::isnan(v.y) ? "NaN" : "infinite";
+}
+
+std::string mesh_name(const Mesh& mesh, size_t index) {
+  return "mesh " + std::to_string(index) + " (object " + std::to_string(mesh.object_id) + ")";
+}
+
+const char* light_type_name(bakegi_light_type type) {
+  switch (type) {
+    case BAKEGI_LIGHT_POINT:
+      return "point";
+    case BAKEGI_LIGHT_SPOT:
+      return "spot";
+    case BAKEGI_LIGHT_SUN:
+      return "sun";
+    case BAKEGI_LIGHT_AREA:
+      return "area";
+  }
+  return "unknown";
+}
+
+void check_color(const glm::vec3& color, const std::string& what) {
+  if (!finite(color)) invalid(what + " is " + non_finite_word(color));
+  if (color.x < 0 || color.y < 0 || color.z < 0) {
+    invalid(what + " must not be negative, got " + vec(color));
+  }
+}
+
+void check_direction(const glm::vec3& direction, const std::string& what) {
+  if (!finite(direction)) invalid(what + " is " + non_finite_word(direction));
+  if (glm::length(glm::dvec3(direction)) < 1e-20) invalid(what + " is the zero vector");
+}
+
+bool is_positive(const glm::vec3& v) {
+  return v.x > 0 || v.y > 0 || v.z > 0;
+}
+
+}  // namespace
+
+void check_texture(const Texture& texture, size_t index) {
+  const std::string name = "texture " + std::to_string(index);
+  if (texture.width == 0 || texture.height == 0) {
+    invalid(name + ": size must be at least 1x1, got " + std::to_string(texture.width) + "x" +
+            std::to_string(texture.height));
+  }
+  if (texture.pixels.size() != size_t(texture.width) * texture.height) {
+    invalid(name + ": holds " + std::to_string(texture.pixels.size()) + " pixels, expected " +
+            std::to_string(size_t(texture.width) * texture.height));
+  }
+  for (size_t i = 0; i < texture.pixels.size(); ++i) {
+    const glm::vec3& p = texture.pixels[i];
+    const std::string where = name + ", pixel (" + std::to_string(i % texture.width) + ", " +
+                              std::to_string(i / texture.width) + ")";
+    if (!finite(p)) invalid(where + ": value is " + non_finite_word(p));
+    if (p.x < 0 || p.y < 0 || p.z < 0 || p.x > 1 + kTextureTolerance ||
+        p.y > 1 + kTextureTolerance || p.z > 1 + kTextureTolerance) {
+      invalid(where + ": value " + vec(p) +
+              " is outside [0,1] (an albedo texture holds linear reflectances)");
+    }
+  }
+}
+
+void check_material(const Material& material, size_t index) {
+  const std::string name = "material " + std::to_string(index);
+  const glm::vec3& a = material.albedo;
+  if (!finite(a)) invalid(name + ": albedo is " + non_finite_word(a));
+  if (a.x < 0 || a.y < 0 || a.z < 0 || a.x > 1 || a.y > 1 || a.z > 1) {
+    invalid(name + ": albedo must be in [0,1], got " + vec(a));
+  }
+  check_color(material.emission, name + ": emission");
+}
+
+void check_mesh(const Mesh& mesh, size_t index) {
+  const std::string name = mesh_name(mesh, index);
+  const size_t vertex_count = mesh.positions.size();
+  if (mesh.indices.size() % 3 != 0) {
+    invalid(name + ": index count " + std::to_string(mesh.indices.size()) +
+            " is not a multiple of 3");
+  }
+  const size_t triangle_count = mesh.indices.size() / 3;
+  for (size_t v = 0; v < vertex_count; ++v) {
+    if (!finite(mesh.positions[v])) {
+      invalid(name + ", vertex " + std::to_string(v) + ": position is " +
+              non_finite_word(mesh.positions[v]));
+    }
+  }
+  for (size_t i = 0; i < mesh.indices.size(); ++i) {
+    if (mesh.indices[i] >= vertex_count) {
+      invalid(name + ", triangle " + std::to_string(i / 3) + ": vertex index " +
+              std::to_string(mesh.indices[i]) + " out of range (" + std::to_string(vertex_count) +
+              " vertices)");
+    }
+  }
+  if (!mesh.corner_normals.empty()) {
+    if (mesh.corner_normals.size() != 3 * triangle_count) {
+      invalid(name + ": " + std::to_string(mesh.corner_normals.size()) + " corner normals for " +
+              std::to_string(triangle_count) + " triangles");
+    }
+    for (size_t c = 0; c < mesh.corner_normals.size(); ++c) {
+      if (!finite(mesh.corner_normals[c])) {
+        invalid(name + ", triangle " + std::to_string(c / 3) + ", corner " + std::to_string(c % 3) +
+                ": normal is " + non_finite_word(mesh.corner_normals[c]));
+      }
+    }
+  }
+  if (!mesh.corner_uvs.empty()) {
+    if (mesh.corner_uvs.size() != 3 * triangle_count) {
+      invalid(name + ": " + std::to_string(mesh.corner_uvs.size()) + " corner uvs for " +
+              std::to_string(triangle_count) + " triangles");
+    }
+    for (size_t c = 0; c < mesh.corner_uvs.size(); ++c) {
+      if (!finite(mesh.corner_uvs[c])) {
+        invalid(name + ", triangle " + std::to_string(c / 3) + ", corner " + std::to_string(c % 3) +
+                ": uv is " + non_finite_word(mesh.corner_uvs[c]));
+      }
+    }
+  }
+  if (!mesh.triangle_materials.empty() && mesh.triangle_materials.size() != triangle_count) {
+    invalid(name + ": " + std::to_string(mesh.triangle_materials.size()) +
+            " triangle materials for " + std::to_string(triangle_count) + " triangles");
+  }
+}
+
+void check_light(const Light& light, size_t index) {
+  const std::string name =
+      "light " + std::to_string(index) + " (" + light_type_name(light.type) + ")";
+  switch (light.type) {
+    case BAKEGI_LIGHT_POINT:
+    case BAKEGI_LIGHT_SPOT:
+    case BAKEGI_LIGHT_SUN:
+    case BAKEGI_LIGHT_AREA:
+      break;
+    default:
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "light " + std::to_string(index) + ": unknown type " +
+                      std::to_string(int(light.type)) + " (0 point, 1 spot, 2 sun, 3 area)");
+  }
+  check_color(light.color, name + ": color");
+  if (light.type != BAKEGI_LIGHT_SUN && !finite(light.position)) {
+    invalid(name + ": position is " + non_finite_word(light.position));
+  }
+  if (light.type != BAKEGI_LIGHT_POINT) check_direction(light.direction, name + ": direction");
+  if (light.type == BAKEGI_LIGHT_POINT || light.type == BAKEGI_LIGHT_SPOT) {
+    if (!(std::isfinite(light.radius) && light.radius >= 0)) {
+      invalid(name + ": radius must be finite and >= 0, got " + num(light.radius));
+    }
+  }
+  if (light.type == BAKEGI_LIGHT_SPOT) {
+    if (!(light.spot_size > 0 && light.spot_size <= std::numbers::pi_v<float>)) {
+      invalid(name + ": spot_size must be in (0, pi], got " + num(light.spot_size));
+    }
+    if (!(light.spot_blend >= 0 && light.spot_blend <= 1)) {
+      invalid(name + ": spot_blend must be in [0, 1], got " + num(light.spot_blend));
+    }
+  }
+  if (light.type == BAKEGI_LIGHT_SUN) {
+    if (!(light.angle >= 0 && light.angle < std::numbers::pi_v<float>)) {
+      invalid(name + ": angle must be in [0, pi), got " + num(light.angle));
+    }
+  }
+  if (light.type == BAKEGI_LIGHT_AREA) {
+    check_direction(light.axis_u, name + ": axis_u");
+    const glm::dvec3 d = glm::normalize(glm::dvec3(light.direction));
+    const glm::dvec3 u = glm::dvec3(light.axis_u);
+    if (glm::length(u - glm::dot(u, d) * d) < 1e-6 * glm::length(u)) {
+      invalid(name + ": axis_u " + vec(light.axis_u) + " is parallel to direction " +
+              vec(light.direction));
+    }
+    switch (light.shape) {
+      case BAKEGI_AREA_SQUARE:
+      case BAKEGI_AREA_RECTANGLE:
+      case BAKEGI_AREA_DISK:
+      case BAKEGI_AREA_ELLIPSE:
+        break;
+      default:
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                    name + ": unknown shape " + std::to_string(int(light.shape)) +
+                        " (0 square, 1 rectangle, 2 disk, 3 ellipse)");
+    }
+    if (!(std::isfinite(light.size_x) && light.size_x > 0)) {
+      invalid(name + ": size_x must be finite and > 0, got " + num(light.size_x));
+    }
+    const bool uses_size_y =
+        light.shape == BAKEGI_AREA_RECTANGLE || light.shape == BAKEGI_AREA_ELLIPSE;
+    if (uses_size_y && !(std::isfinite(light.size_y) && light.size_y > 0)) {
+      invalid(name + ": size_y must be finite and > 0, got " + num(light.size_y));
+    }
+  }
+}
+
+bakegi_light_type light_type_from(uint32_t raw, size_t index) {
+  if (raw > BAKEGI_LIGHT_AREA) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "light " + std::to_string(index) +
+                                                   ": unknown type " + std::to_string(raw) +
+                                                   " (0 point, 1 spot, 2 sun, 3 area)");
+  }
+  return bakegi_light_type(raw);
+}
+
+bakegi_area_shape area_shape_from(uint32_t raw, size_t index) {
+  if (raw > BAKEGI_AREA_ELLIPSE) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "light " + std::to_string(index) +
+                                                   ": unknown shape " + std::to_string(raw) +
+                                                   " (0 square, 1 rectangle, 2 disk, 3 ellipse)");
+  }
+  return bakegi_area_shape(raw);
+}
+
+void check_world(const glm::vec3& radiance) {
+  check_color(radiance, "world radiance");
+}
+
+size_t estimate_scene_bytes(const SceneDescription& description) {
+  size_t triangles = 0;
+  for (const Mesh& mesh : description.meshes) triangles += mesh.indices.size() / 3;
+  return triangles * (sizeof(Triangle) + sizeof(uint32_t));
+}
+
+Scene build_scene(const SceneDescription& description) {
+  for (size_t i = 0; i < description.textures.size(); ++i) {
+    check_texture(description.textures[i], i);
+  }
+  for (size_t i = 0; i < description.materials.size(); ++i) {
+    const Material& material = description.materials[i];
+    check_material(material, i);
+    if (material.albedo_texture != BAKEGI_NO_TEXTURE &&
+        material.albedo_texture >= description.textures.size()) {
+      invalid("material " + std::to_string(i) + ": texture index " +
+              std::to_string(material.albedo_texture) + " out of range (" +
+              std::to_string(description.textures.size()) + " textures)");
+    }
+  }
+  for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
+  check_world(description.world_radiance);
+
+  Scene scene;
+  scene.description = description;
+  const size_t material_count = description.materials.size();
+  auto material_range = [&](uint32_t material) {
+    return "material index " + std::to_string(material) + " out of range (" +
+           std::to_string(material_count) + " materials)";
+  };
+
+  size_t total_triangles = 0;
+  for (size_t m = 0; m < description.meshes.size(); ++m) {
+    check_mesh(description.meshes[m], m);
+    total_triangles += description.meshes[m].indices.size() / 3;
+  }
+  if (total_triangles >= std::numeric_limits<uint32_t>::max()) {
+    invalid("the scene has " + std::to_string(total_triangles) +
+            " triangles; at most 4294967294 are supported");
+  }
+  scene.triangles.reserve(total_triangles);
+
+  size_t dropped_total = 0;
+  for (size_t m = 0; m < description.meshes.size(); ++m) {
+    const Mesh& mesh = description.meshes[m];
+    const size_t triangle_count = mesh.indices.size() / 3;
+    if (triangle_count == 0) continue;
+    if (mesh.triangle_materials.empty() && mesh.material >= material_count) {
+      invalid(mesh_name(mesh, m) + ": " + material_range(mesh.material));
+    }
+    size_t dropped = 0;
+    bool textured_without_uvs = false;
+    for (size_t t = 0; t < triangle_count; ++t) {
+      Triangle tri;
+      tri.material = mesh.triangle_materials.empty() ? mesh.material : mesh.triangle_materials[t];
+      if (tri.material >= material_count) {
+        invalid(mesh_name(mesh, m) + ", triangle " + std::to_string(t) + ": " +
+                material_range(tri.material));
+      }
+      for (int c = 0; c < 3; ++c) tri.p[c] = mesh.positions[mesh.indices[3 * t + c]];
+      // In double: the cross product of nearby float points loses most of its digits.
+      const glm::dvec3 e1 = glm::dvec3(tri.p[1]) - glm::dvec3(tri.p[0]);
+      const glm::dvec3 e2 = glm::dvec3(tri.p[2]) - glm::dvec3(tri.p[0]);
+      const glm::dvec3 e3 = glm::dvec3(tri.p[2]) - glm::dvec3(tri.p[1]);
+      const glm::dvec3 cross = glm::cross(e1, e2);
+      const double twice_area = glm::length(cross);
+      const double longest2 = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
+      if (!(twice_area > kDegenerateRelativeArea * longest2) || twice_area == 0.0) {
+        ++dropped;
+        continue;
+      }
+      tri.face_normal = glm::vec3(cross / twice_area);
+      tri.area = float(0.5 * twice_area);
+      for (int c = 0; c < 3; ++c) {
+        glm::vec3 n = tri.face_normal;
+        if (!mesh.corner_normals.empty()) {
+          const glm::dvec3 given(mesh.corner_normals[3 * t + c]);
+          const double length = glm::length(given);
+          if (length > 1e-20) n = glm::vec3(given / length);
+        }
+        tri.n[c] = n;
+        tri.uv[c] = mesh.corner_uvs.empty() ? glm::vec2(0.0f) : mesh.corner_uvs[3 * t + c];
+      }
+      tri.mesh = uint32_t(m);
+      tri.mesh_triangle = uint32_t(t);
+      if (mesh.corner_uvs.empty() &&
+          description.materials[tri.material].albedo_texture != BAKEGI_NO_TEXTURE) {
+        textured_without_uvs = true;
+      }
+      if (description.materials[tri.material].is_emissive()) {
+        scene.emissive_triangles.push_back(uint32_t(scene.triangles.size()));
+      }
+      scene.triangles.push_back(tri);
+    }
+    if (dropped > 0) {
+      scene.warnings.push_back(mesh_name(mesh, m) + ": " + std::to_string(dropped) + " of " +
+                               std::to_string(triangle_count) +
+                               " triangles dropped as degenerate (zero area)");
+    }
+    if (textured_without_uvs) {
+      scene.warnings.push_back(mesh_name(mesh, m) +
+                               " uses a textured material but has no UVs; the texture is "
+                               "sampled at uv (0, 0)");
+    }
+    dropped_total += dropped;
+  }
+
+  if (scene.triangles.empty()) {
+    if (dropped_total > 0) {
+      invalid("the scene is empty: all " + std::to_string(dropped_total) +
+              " triangles are degenerate (zero area)");
+    }
+    invalid("the scene is empty: it has no triangles");
+  }
+
+  bool has_light = is_positive(description.world_radiance) || !scene.emissive_triangles.empty();
+  for (Light& light : scene.description.lights) {
+    has_light = has_light || is_positive(light.color);
+    if (light.type != BAKEGI_LIGHT_POINT) {
+      light.direction = glm::vec3(glm::normalize(glm::dvec3(light.direction)));
+    }
+    if (light.type == BAKEGI_LIGHT_AREA) {
+      const glm::dvec3 d(light.direction);
+      const glm::dvec3 u(light.axis_u);
+      light.axis_u = glm::vec3(glm::normalize(u - glm::dot(u, d) * d));
+      if (light.shape == BAKEGI_AREA_SQUARE || light.shape == BAKEGI_AREA_DISK) {
+        light.size_y = light.size_x;
+      }
+    }
+  }
+  if (!has_light) {
+    invalid("no light: the scene has no lights, no emissive material and a black world");
+  }
+
+  scene.bounds_min = scene.bounds_max = scene.triangles[0].p[0];
+  for (const Triangle& tri : scene.triangles) {
+    for (const glm::vec3& p : tri.p) {
+      scene.bounds_min = glm::min(scene.bounds_min, p);
+      scene.bounds_max = glm::max(scene.bounds_max, p);
+    }
+  }
+  return scene;
+}
+
+}  // namespace bakegi
+
+namespace bakegi {
+
+void check_bake_points(const BakePoints& points) {
+  const size_t count = points.positions.size();
+  if (points.normals.size() != count || points.object_ids.size() != count) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "bake points: " + std::to_string(count) + " positions but " +
+                    std::to_string(points.normals.size()) + " normals and " +
+                    std::to_string(points.object_ids.size()) + " object ids");
+  }
+  for (size_t i = 0; i < count; ++i) {
+    const std::string name = "bake point " + std::to_string(i);
+    if (!finite(points.positions[i])) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  name + ": position is " + non_finite_word(points.positions[i]));
+    }
+    if (!finite(points.normals[i])) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  name + ": normal is " + non_finite_word(points.normals[i]));
+    }
+    const float length = glm::length(points.normals[i]);
+    if (!(std::abs(length - 1.0f) < 1e-3f)) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  name + ": normal " + vec(points.normals[i]) + " is not unit length");
+    }
+  }
+}
+
+}  // namespace bakegi

@@ -1,0 +1,368 @@
+// The asynchronous bake job: progress that never decreases and reaches 1, a report that is
+// a JSON object with the documented keys, prompt cancel, the memory budget, and copies of
+// the inputs that outlive the caller's handles.
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "capi_test_scene.h"
+#include "util/report.h"
+
+namespace bakegi::test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A small strict JSON parser, enough to check that reports are well-formed.
+struct Json {
+  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
+  double number = 0;
+  bool boolean = false;
+  std::string text;
+  std::vector<Json> items;
+  std::map<std::string, Json> members;
+};
+
+class JsonParser {
+  static constexpr const char* kEscapes = "\"\\/bfnrt";
+  static constexpr const char* kEscaped = "\"\\/\b\f\n\r\t";
+
+ public:
+  explicit JsonParser(const std::string& text) : s_(text) {}
+  // Returns false on any syntax error or trailing characters.
+  bool parse(Json& out) {
+    if (!value(out)) return false;
+    skip_space();
+    return at_ == s_.size();
+  }
+
+ private:
+  void skip_space() {
+    while (at_ < s_.size() && std::strchr(" \t\r\n", s_[at_])) ++at_;
+  }
+  bool literal(const char* word) {
+    const size_t n = std::strlen(word);
+    if (s_.compare(at_, n, word) != 0) return false;
+    at_ += n;
+    return true;
+  }
+  bool string(std::string& out) {
+    if (at_ >= s_.size() || s_[at_] != '"') return false;
+    ++at_;
+    while (at_ < s_.size() && s_[at_] != '"') {
+      const char c = s_[at_++];
+      if (static_cast<unsigned char>(c) < 0x20) return false;  // must be escaped
+      if (c != '\\') {
+        out += c;
+        continue;
+      }
+      if (at_ >= s_.size()) return false;
+      const char e = s_[at_++];
+      if (e == 'u') {
+        if (at_ + 4 > s_.size()) return false;
+        for (int i = 0; i < 4; ++i) {
+          if (!std::isxdigit(static_cast<unsigned char>(s_[at_ + i]))) return false;
+        }
+        out += char(std::stoi(s_.substr(at_, 4), nullptr, 16));
+        at_ += 4;
+      } else if (const char* found = std::strchr(kEscapes, e)) {
+        out += kEscaped[found - kEscapes];
+      } else {
+        return false;
+      }
+    }
+    if (at_ >= s_.size()) return false;
+    ++at_;
+    return true;
+  }
+  bool value(Json& out) {
+    skip_space();
+    if (at_ >= s_.size()) return false;
+    const char c = s_[at_];
+    if (c == '{') {
+      out.kind = Json::kObject;
+      ++at_;
+      skip_space();
+      if (at_ < s_.size() && s_[at_] == '}') return ++at_, true;
+      while (true) {
+        skip_space();
+        std::string key;
+        if (!string(key)) return false;
+        skip_space();
+        if (at_ >= s_.size() || s_[at_++] != ':') return false;
+        if (out.members.count(key)) return false;  // duplicate names
+        if (!value(out.members[key])) return false;
+        skip_space();
+        if (at_ >= s_.size()) return false;
+        if (s_[at_] == ',') {
+          ++at_;
+          continue;
+        }
+        if (s_[at_] == '}') return ++at_, true;
+        return false;
+      }
+    }
+    if (c == '[') {
+      out.kind = Json::kArray;
+      ++at_;
+      skip_space();
+      if (at_ < s_.size() && s_[at_] == ']') return ++at_, true;
+      while (true) {
+        out.items.emplace_back();
+        if (!value(out.items.back())) return false;
+        skip_space();
+        if (at_ >= s_.size()) return false;
+        if (s_[at_] == ',') {
+          ++at_;
+          continue;
+        }
+        if (s_[at_] == ']') return ++at_, true;
+        return false;
+      }
+    }
+    if (c == '"') return out.kind = Json::kString, string(out.text);
+    if (literal("null")) return out.kind = Json::kNull, true;
+    if (literal("true")) return out.kind = Json::kBool, out.boolean = true, true;
+    if (literal("false")) return out.kind = Json::kBool, true;
+    // Number: -?digits[.digits][e[+-]digits]
+    const size_t start = at_;
+    if (s_[at_] == '-') ++at_;
+    auto digits = [&] {
+      const size_t from = at_;
+      while (at_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[at_]))) ++at_;
+      return at_ > from;
+    };
+    if (!digits()) return false;
+    if (at_ < s_.size() && s_[at_] == '.' && (++at_, !digits())) return false;
+    if (at_ < s_.size() && (s_[at_] == 'e' || s_[at_] == 'E')) {
+      ++at_;
+      if (at_ < s_.size() && (s_[at_] == '+' || s_[at_] == '-')) ++at_;
+      if (!digits()) return false;
+    }
+    out.kind = Json::kNumber;
+    out.number = std::stod(s_.substr(start, at_ - start));
+    return true;
+  }
+
+  const std::string& s_;
+  size_t at_ = 0;
+};
+
+std::string report_of(bakegi_job* job) {
+  size_t length = 0;
+  EXPECT_EQ(bakegi_job_get_report(job, nullptr, 0, &length), BAKEGI_OK) << bakegi_last_error();
+  std::string text(length + 1, '\0');
+  EXPECT_EQ(bakegi_job_get_report(job, text.data(), text.size(), &length), BAKEGI_OK);
+  text.resize(length);
+  return text;
+}
+
+Json parse_report(bakegi_job* job) {
+  const std::string text = report_of(job);
+  Json json;
+  EXPECT_TRUE(JsonParser(text).parse(json)) << text;
+  EXPECT_EQ(json.kind, Json::kObject) << text;
+  return json;
+}
+
+std::string stage_of(const bakegi_job* job) {
+  char buffer[128];
+  bakegi_job_stage(job, buffer, sizeof buffer);
+  return buffer;
+}
+
+TEST(JsonParserSelfTest, AcceptsValidAndRejectsInvalid) {
+  Json json;
+  EXPECT_TRUE(JsonParser(R"({"a": [1, -2.5e3, "x\"y\u0001"], "b": {}, "c": null})").parse(json));
+  EXPECT_EQ(json.members["a"].items[2].text, "x\"y\x01");
+  for (const char* bad : {"{", R"({"a" 1})", R"({"a": 1,})", "[1 2]", R"({"a": nan})",
+                          R"({"a": 1, "a": 2})", "{} x", "\"tab\there\""}) {
+    Json ignored;
+    EXPECT_FALSE(JsonParser(bad).parse(ignored)) << bad;
+  }
+}
+
+TEST(ReportJson, TextIsEscapedAndNumbersStayFinite) {
+  Report report;
+  report.set_text("text", "quote\" backslash\\ newline\n control\x01 \xc3\xa9 bad\xff");
+  report.set_number("not_a_number", std::nan(""));
+  report.set_number("third", 1.0 / 3.0);
+  report.warn("tab\there");
+  const std::string text = report.to_json();
+  Json json;
+  ASSERT_TRUE(JsonParser(text).parse(json)) << text;
+  EXPECT_EQ(json.members["text"].text.substr(0, 42),
+            "quote\" backslash\\ newline\n control\x01 \xc3\xa9 bad");
+  EXPECT_NE(text.find("bad\\ufffd"), std::string::npos) << text;  // invalid UTF-8 replaced
+  EXPECT_EQ(json.members["not_a_number"].kind, Json::kNull);
+  EXPECT_EQ(json.members["third"].number, 1.0 / 3.0);  // 17 digits round-trip exactly
+  EXPECT_EQ(json.members["warnings"].items[0].text, "tab\there");
+}
+
+TEST(BakeJob, ProgressIsMonotoneReachesOneAndTheReportIsComplete) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(100);
+  SettingsPtr settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 64), BAKEGI_OK);
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "seed", 3), BAKEGI_OK);
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "threads", 1), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK)
+      << bakegi_last_error();
+  JobPtr owned(job);
+
+  double last = 0.0;
+  int polls = 0;
+  while (!bakegi_job_is_done(job)) {
+    const double progress = bakegi_job_progress(job);
+    EXPECT_GE(progress, last);
+    EXPECT_LE(progress, 1.0);
+    last = progress;
+    ++polls;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  ASSERT_EQ(bakegi_job_wait(job), BAKEGI_OK) << bakegi_last_error();
+  EXPECT_GE(bakegi_job_progress(job), last);
+  EXPECT_EQ(bakegi_job_progress(job), 1.0);
+  EXPECT_EQ(stage_of(job), "done");
+
+  std::vector<float> rgb(300);
+  ASSERT_EQ(bakegi_job_get_result(job, rgb.data(), 100), BAKEGI_OK);
+  for (float v : rgb) {
+    EXPECT_TRUE(std::isfinite(v));
+    EXPECT_GT(v, 0.0f);  // a closed lit box: indirect light reaches every floor point
+  }
+
+  Json report = parse_report(job);
+  for (const char* key : {"method", "settings", "bake_points", "triangles", "lights", "seconds",
+                          "rays", "memory_bytes", "warnings", "status", "error"}) {
+    EXPECT_TRUE(report.members.count(key)) << "report lacks \"" << key << "\"";
+  }
+  EXPECT_EQ(report.members["method"].text, "pathtrace");
+  EXPECT_EQ(report.members["status"].text, "BAKEGI_OK");
+  EXPECT_EQ(report.members["error"].text, "");
+  EXPECT_EQ(report.members["bake_points"].number, 100);
+  EXPECT_EQ(report.members["triangles"].number, 12);
+  EXPECT_EQ(report.members["lights"].number, 1);
+  EXPECT_EQ(report.members["threads"].number, 1);
+  EXPECT_GT(report.members["rays"].number, 100 * 64);  // at least one ray per sample
+  EXPECT_GT(report.members["memory_bytes"].number, 0);
+  Json& settings_json = report.members["settings"];
+  ASSERT_EQ(settings_json.kind, Json::kObject);
+  EXPECT_EQ(settings_json.members["samples"].number, 64);
+  EXPECT_EQ(settings_json.members["seed"].number, 3);
+  EXPECT_EQ(settings_json.members["method"].text, "pathtrace");
+  Json& seconds = report.members["seconds"];
+  double stages = 0;
+  for (const char* stage : {"validate", "bvh", "solve", "evaluate", "total"}) {
+    ASSERT_EQ(seconds.members[stage].kind, Json::kNumber) << stage;
+    EXPECT_GE(seconds.members[stage].number, 0.0);
+    if (std::string(stage) != "total") stages += seconds.members[stage].number;
+  }
+  EXPECT_LE(stages, seconds.members["total"].number + 1e-9);
+  EXPECT_EQ(report.members["warnings"].kind, Json::kArray);
+}
+
+TEST(BakeJob, CancelStopsALongJobPromptly) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(256);
+  SettingsPtr settings = new_settings();
+  // Hours of work at full speed: only cancel can end it within the test.
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 1 << 24), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  JobPtr owned(job);
+  // Let it get into the long stage.
+  const auto started = Clock::now();
+  while (stage_of(job) == "queued" || stage_of(job) == "validating" ||
+         stage_of(job) == "building BVH") {
+    ASSERT_LT(Clock::now() - started, std::chrono::seconds(30));
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_FALSE(bakegi_job_is_done(job));
+  const auto cancelled_at = Clock::now();
+  bakegi_job_cancel(job);
+  EXPECT_EQ(bakegi_job_wait(job), BAKEGI_ERROR_CANCELLED);
+  const double seconds = std::chrono::duration<double>(Clock::now() - cancelled_at).count();
+  // Prompt means well under a second; the bound allows for a slow sanitizer build.
+  EXPECT_LT(seconds, 2.0);
+  EXPECT_NE(std::string(bakegi_last_error()).find("cancelled"), std::string::npos);
+  EXPECT_EQ(stage_of(job), "cancelled");
+  EXPECT_LT(bakegi_job_progress(job), 1.0);
+  Json report = parse_report(job);
+  EXPECT_EQ(report.members["status"].text, "BAKEGI_ERROR_CANCELLED");
+}
+
+TEST(BakeJob, DestroyingARunningJobCancelsIt) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(64);
+  SettingsPtr settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 1 << 24), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const auto start = Clock::now();
+  bakegi_job_destroy(job);
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 2.0);
+}
+
+TEST(BakeJob, MemoryBudgetRefusesBeforeAllocating) {
+  ScenePtr scene = new_box_scene();
+  // 100,000 points x (28 bytes held + 12 of result) = 4 MB > 1 MB.
+  PointsPtr points = new_floor_points(100000);
+  SettingsPtr settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "memory_budget_mb", 1), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  JobPtr owned(job);
+  EXPECT_EQ(bakegi_job_wait(job), BAKEGI_ERROR_OUT_OF_MEMORY);
+  const std::string message = bakegi_last_error();
+  EXPECT_NE(message.find("the bake needs an estimated 3.8 MB"), std::string::npos) << message;
+  EXPECT_NE(message.find("memory_budget_mb"), std::string::npos) << message;
+  Json report = parse_report(job);
+  EXPECT_EQ(report.members["status"].text, "BAKEGI_ERROR_OUT_OF_MEMORY");
+  EXPECT_GT(report.members["memory_estimate_bytes"].number, 1 << 20);
+  EXPECT_EQ(report.members["seconds"].members["bvh"].number, 0.0);  // never got there
+}
+
+TEST(BakeJob, KeepsItsOwnCopiesAndReportsWarnings) {
+  ScenePtr scene = new_box_scene();
+  // A second mesh with one degenerate triangle: dropped, with a warning in the report.
+  const float positions[] = {0.2f, 0.2f, 0.5f, 0.4f, 0.2f, 0.5f,
+                             0.3f, 0.2f, 0.5f, 0.2f, 0.4f, 0.5f};
+  const uint32_t indices[] = {0, 1, 2, 0, 1, 3};
+  bakegi_mesh_desc mesh{};
+  mesh.positions = positions;
+  mesh.vertex_count = 4;
+  mesh.indices = indices;
+  mesh.triangle_count = 2;
+  mesh.object_id = 5;
+  ASSERT_EQ(bakegi_scene_add_mesh(scene.get(), &mesh, nullptr), BAKEGI_OK);
+  PointsPtr points = new_floor_points(9);
+  SettingsPtr settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 4), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  JobPtr owned(job);
+  scene.reset();
+  points.reset();
+  settings.reset();
+  ASSERT_EQ(bakegi_job_wait(job), BAKEGI_OK) << bakegi_last_error();
+  Json report = parse_report(job);
+  EXPECT_EQ(report.members["triangles"].number, 13);
+  ASSERT_EQ(report.members["warnings"].items.size(), 1u);
+  EXPECT_EQ(report.members["warnings"].items[0].text,
+            "mesh 1 (object 5): 1 of 2 triangles dropped as degenerate (zero area)");
+  EXPECT_EQ(report.members["settings"].members["samples"].number, 4);
+}
+
+}  // namespace
+}  // namespace bakegi::test

@@ -1,0 +1,300 @@
+// The .bgs scene file: an exact round trip of everything the C API received, and refusal
+// of truncated, corrupted or forged files before anything is allocated for them.
+#include <bit>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "api/handles.h"
+#include "capi_test_scene.h"
+#include "scene/scene_file.h"
+#include "util/error.h"
+
+namespace bakegi::test {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("bakegi_test_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+
+// A scene that uses every field: a texture, two materials (one textured, one emissive),
+// a mesh with every optional array, a mesh with none, one light of each type and a world.
+ScenePtr new_full_scene() {
+  ScenePtr scene = new_scene();
+  const std::vector<float> pixels = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f,
+                                     0.7f, 0.8f, 0.9f, 1.0f, 0.0f, 0.25f};
+  EXPECT_EQ(bakegi_scene_add_texture(scene.get(), 2, 2, pixels.data(), nullptr), BAKEGI_OK);
+  bakegi_material_desc textured = grey_material(0.75f);
+  textured.albedo_texture = 0;
+  EXPECT_EQ(bakegi_scene_add_material(scene.get(), &textured, nullptr), BAKEGI_OK);
+  bakegi_material_desc glowing = grey_material(0.3f);
+  glowing.emission[0] = 2.5f, glowing.emission[1] = 1.0f / 3.0f, glowing.emission[2] = 0.0f;
+  glowing.emission_two_sided = 0;
+  EXPECT_EQ(bakegi_scene_add_material(scene.get(), &glowing, nullptr), BAKEGI_OK);
+
+  const BoxMesh box;
+  std::vector<float> normals(9 * 12), uvs(6 * 12);
+  for (size_t i = 0; i < normals.size(); ++i) normals[i] = std::sin(float(i)) * 0.7f;
+  for (size_t i = 0; i < uvs.size(); ++i) uvs[i] = float(i) / 7.0f - 3.0f;
+  std::vector<uint32_t> triangle_materials = {0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1};
+  bakegi_mesh_desc full = box.desc(1, 42);
+  full.corner_normals = normals.data();
+  full.corner_uvs = uvs.data();
+  full.triangle_materials = triangle_materials.data();
+  EXPECT_EQ(bakegi_scene_add_mesh(scene.get(), &full, nullptr), BAKEGI_OK);
+  const bakegi_mesh_desc plain = box.desc(0, 43);
+  EXPECT_EQ(bakegi_scene_add_mesh(scene.get(), &plain, nullptr), BAKEGI_OK);
+
+  bakegi_light_desc point = point_light(0.5f, 0.25f, 0.125f, 1.1f);
+  point.radius = 0.01f;
+  EXPECT_EQ(bakegi_scene_add_light(scene.get(), &point, nullptr), BAKEGI_OK);
+  bakegi_light_desc spot = point_light(0.1f, 0.2f, 0.9f, 7.0f);
+  spot.type = BAKEGI_LIGHT_SPOT;
+  spot.direction[0] = 0.3f, spot.direction[2] = -1.0f;
+  spot.spot_size = 0.8f, spot.spot_blend = 0.15f;
+  EXPECT_EQ(bakegi_scene_add_light(scene.get(), &spot, nullptr), BAKEGI_OK);
+  bakegi_light_desc sun{};
+  sun.type = BAKEGI_LIGHT_SUN;
+  sun.direction[1] = 0.5f, sun.direction[2] = -1.0f;
+  sun.color[0] = 3.0f, sun.color[1] = 2.9f, sun.color[2] = 2.5f;
+  sun.angle = 0.00918f;
+  EXPECT_EQ(bakegi_scene_add_light(scene.get(), &sun, nullptr), BAKEGI_OK);
+  bakegi_light_desc area{};
+  area.type = BAKEGI_LIGHT_AREA;
+  area.position[0] = 0.5f, area.position[1] = 0.5f, area.position[2] = 0.99f;
+  area.direction[2] = -1.0f;
+  area.axis_u[0] = 1.0f, area.axis_u[2] = 0.1f;
+  area.color[0] = area.color[1] = area.color[2] = 4.0f;
+  area.shape = BAKEGI_AREA_ELLIPSE;
+  area.size_x = 0.3f, area.size_y = 0.2f;
+  EXPECT_EQ(bakegi_scene_add_light(scene.get(), &area, nullptr), BAKEGI_OK);
+  const float world[3] = {0.05f, 0.06f, 0.07f};
+  EXPECT_EQ(bakegi_scene_set_world(scene.get(), world), BAKEGI_OK);
+  return scene;
+}
+
+PointsPtr new_points_with_ids() {
+  const float positions[] = {0.1f, 0.2f, 0.0f, 0.9f, 0.8f, 0.0f, 0.5f, 0.0f, 0.5f};
+  const float normals[] = {0, 0, 1, 0.6f, 0, 0.8f, 0, 1, 0};
+  const uint32_t ids[] = {42, 43, 4000000000u};
+  bakegi_points* points = nullptr;
+  EXPECT_EQ(bakegi_points_create(positions, normals, ids, 3, &points), BAKEGI_OK);
+  return PointsPtr(points);
+}
+
+std::vector<uint8_t> read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+bool same_bits(float a, float b) {
+  return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b);
+}
+
+TEST(SceneFile, RoundTripIsExact) {
+  ScenePtr scene = new_full_scene();
+  PointsPtr points = new_points_with_ids();
+  const std::string path = temp_path("roundtrip.bgs");
+  ASSERT_EQ(bakegi_file_write(path.c_str(), scene.get(), points.get()), BAKEGI_OK)
+      << bakegi_last_error();
+
+  bakegi_scene* read_scene = nullptr;
+  bakegi_points* read_points = nullptr;
+  ASSERT_EQ(bakegi_file_read(path.c_str(), &read_scene, &read_points), BAKEGI_OK)
+      << bakegi_last_error();
+  ScenePtr scene_back(read_scene);
+  PointsPtr points_back(read_points);
+  ASSERT_NE(read_points, nullptr);
+
+  const SceneDescription& a = scene->description;
+  const SceneDescription& b = scene_back->description;
+  ASSERT_EQ(a.textures.size(), b.textures.size());
+  EXPECT_EQ(a.textures[0].width, b.textures[0].width);
+  EXPECT_EQ(a.textures[0].pixels, b.textures[0].pixels);
+  ASSERT_EQ(a.materials.size(), 2u);
+  ASSERT_EQ(b.materials.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(a.materials[i].albedo, b.materials[i].albedo);
+    EXPECT_EQ(a.materials[i].albedo_texture, b.materials[i].albedo_texture);
+    EXPECT_EQ(a.materials[i].emission, b.materials[i].emission);
+    EXPECT_EQ(a.materials[i].emission_two_sided, b.materials[i].emission_two_sided);
+  }
+  EXPECT_FALSE(b.materials[1].emission_two_sided);
+  ASSERT_EQ(b.meshes.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions);
+    EXPECT_EQ(a.meshes[i].indices, b.meshes[i].indices);
+    EXPECT_EQ(a.meshes[i].corner_normals, b.meshes[i].corner_normals);
+    EXPECT_EQ(a.meshes[i].corner_uvs, b.meshes[i].corner_uvs);
+    EXPECT_EQ(a.meshes[i].triangle_materials, b.meshes[i].triangle_materials);
+    EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
+    EXPECT_EQ(a.meshes[i].object_id, b.meshes[i].object_id);
+  }
+  EXPECT_EQ(b.meshes[0].corner_uvs.size(), 36u);    // optional arrays kept
+  EXPECT_TRUE(b.meshes[1].corner_normals.empty());  // and absent ones stay absent
+  ASSERT_EQ(b.lights.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    const Light &x = a.lights[i], &y = b.lights[i];
+    EXPECT_EQ(x.type, y.type);
+    EXPECT_EQ(x.position, y.position);
+    EXPECT_EQ(x.direction, y.direction);  // as received, not normalized
+    EXPECT_EQ(x.axis_u, y.axis_u);
+    EXPECT_EQ(x.color, y.color);
+    EXPECT_TRUE(same_bits(x.radius, y.radius) && same_bits(x.spot_size, y.spot_size) &&
+                same_bits(x.spot_blend, y.spot_blend) && same_bits(x.angle, y.angle) &&
+                same_bits(x.size_x, y.size_x) && same_bits(x.size_y, y.size_y));
+    EXPECT_EQ(x.shape, y.shape);
+  }
+  EXPECT_EQ(a.world_radiance, b.world_radiance);
+  EXPECT_EQ(points->points.positions, points_back->points.positions);
+  EXPECT_EQ(points->points.normals, points_back->points.normals);
+  EXPECT_EQ(points->points.object_ids, points_back->points.object_ids);
+
+  // Writing what was read gives the same bytes.
+  const std::string again = temp_path("roundtrip2.bgs");
+  ASSERT_EQ(bakegi_file_write(again.c_str(), read_scene, read_points), BAKEGI_OK);
+  EXPECT_EQ(read_bytes(path), read_bytes(again));
+  std::remove(path.c_str());
+  std::remove(again.c_str());
+}
+
+TEST(SceneFile, PointsAreOptional) {
+  ScenePtr scene = new_box_scene();
+  const std::string path = temp_path("nopoints.bgs");
+  ASSERT_EQ(bakegi_file_write(path.c_str(), scene.get(), nullptr), BAKEGI_OK);
+  bakegi_scene* read_scene = nullptr;
+  bakegi_points* read_points = reinterpret_cast<bakegi_points*>(1);
+  ASSERT_EQ(bakegi_file_read(path.c_str(), &read_scene, &read_points), BAKEGI_OK);
+  ScenePtr owned(read_scene);
+  EXPECT_EQ(read_points, nullptr);
+  EXPECT_EQ(bakegi_scene_triangle_count(read_scene), 12u);
+  EXPECT_EQ(bakegi_scene_validate(read_scene), BAKEGI_OK);
+  // Points in the file may also be ignored by passing NULL.
+  PointsPtr points = new_floor_points(3);
+  ASSERT_EQ(bakegi_file_write(path.c_str(), scene.get(), points.get()), BAKEGI_OK);
+  ASSERT_EQ(bakegi_file_read(path.c_str(), &read_scene, nullptr), BAKEGI_OK);
+  owned.reset(read_scene);
+  std::remove(path.c_str());
+}
+
+TEST(SceneFile, EveryTruncationIsRejected) {
+  ScenePtr scene = new_full_scene();
+  PointsPtr points = new_points_with_ids();
+  const std::vector<uint8_t> bytes = encode_scene_file(scene->description, &points->points);
+  for (size_t length = 0; length < bytes.size(); ++length) {
+    try {
+      decode_scene_file(std::span(bytes).first(length), "cut");
+      ADD_FAILURE() << "a file cut to " << length << " of " << bytes.size()
+                    << " bytes was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE) << length;
+    }
+  }
+  // And through the C API, from a real file.
+  const std::string path = temp_path("truncated.bgs");
+  write_bytes(path, std::vector<uint8_t>(bytes.begin(), bytes.end() - 9));
+  bakegi_scene* read_scene = nullptr;
+  EXPECT_EQ(bakegi_file_read(path.c_str(), &read_scene, nullptr), BAKEGI_ERROR_BAD_FILE);
+  EXPECT_NE(std::string(bakegi_last_error()).find("truncated"), std::string::npos)
+      << bakegi_last_error();
+  EXPECT_EQ(read_scene, nullptr);
+  std::remove(path.c_str());
+}
+
+TEST(SceneFile, EveryBitFlipIsRejected) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(2);
+  const std::vector<uint8_t> bytes = encode_scene_file(scene->description, &points->points);
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    for (int bit = 0; bit < 8; ++bit) {
+      std::vector<uint8_t> flipped = bytes;
+      flipped[i] ^= uint8_t(1u << bit);
+      try {
+        decode_scene_file(flipped, "flipped");
+        ADD_FAILURE() << "bit " << bit << " of byte " << i << " flipped was accepted";
+      } catch (const Error& e) {
+        EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE);
+      }
+    }
+  }
+}
+
+// FNV-1a 64, as the format specifies: lets the test forge a file with a valid checksum.
+uint64_t fnv1a64(const uint8_t* data, size_t size) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < size; ++i) hash = (hash ^ data[i]) * 0x100000001b3ull;
+  return hash;
+}
+
+void reseal(std::vector<uint8_t>& bytes) {
+  const uint64_t hash = fnv1a64(bytes.data(), bytes.size() - 8);
+  for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + i] = uint8_t(hash >> (8 * i));
+}
+
+TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
+  ScenePtr scene = new_box_scene();
+  const std::vector<uint8_t> bytes = encode_scene_file(scene->description, nullptr);
+  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 32), then MESH: 16-byte
+  // section header, u32 mesh count, then object_id, material, vertex count.
+  const size_t vertex_count_at = 24 + 20 + 52 + 16 + 4 + 8;
+  ASSERT_EQ(bytes[vertex_count_at], 8u);  // the box has 8 vertices
+  std::vector<uint8_t> forged = bytes;
+  for (int i = 0; i < 4; ++i) forged[vertex_count_at + i] = 0xFF;  // 4 billion vertices
+  reseal(forged);
+  try {
+    decode_scene_file(forged, "forged");
+    ADD_FAILURE() << "a forged vertex count was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE);
+    EXPECT_NE(std::string(e.what()).find("mesh positions needs 4294967295 x 12 bytes"),
+              std::string::npos)
+        << e.what();
+  }
+  // A forged NaN with a valid checksum is refused as an invalid scene in a bad file.
+  forged = bytes;
+  const size_t first_position_at = vertex_count_at + 12;
+  const uint32_t nan_bits = 0x7fc00000u;
+  for (int i = 0; i < 4; ++i) forged[first_position_at + i] = uint8_t(nan_bits >> (8 * i));
+  reseal(forged);
+  try {
+    decode_scene_file(forged, "forged");
+    ADD_FAILURE() << "a forged NaN was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE);
+    EXPECT_NE(std::string(e.what()).find("vertex 0: position is NaN"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SceneFile, MissingFilesAndForeignFiles) {
+  bakegi_scene* read_scene = nullptr;
+  const std::string missing = temp_path("does_not_exist.bgs");
+  EXPECT_EQ(bakegi_file_read(missing.c_str(), &read_scene, nullptr), BAKEGI_ERROR_IO);
+  EXPECT_NE(std::string(bakegi_last_error()).find("does_not_exist.bgs"), std::string::npos);
+  ScenePtr scene = new_box_scene();
+  EXPECT_EQ(bakegi_file_write("/nonexistent-dir/x.bgs", scene.get(), nullptr), BAKEGI_ERROR_IO);
+  EXPECT_NE(std::string(bakegi_last_error()).find("cannot write /nonexistent-dir/x.bgs"),
+            std::string::npos)
+      << bakegi_last_error();
+
+  const std::string foreign = temp_path("foreign.bgs");
+  write_bytes(foreign, std::vector<uint8_t>(100, 'x'));
+  EXPECT_EQ(bakegi_file_read(foreign.c_str(), &read_scene, nullptr), BAKEGI_ERROR_BAD_FILE);
+  EXPECT_NE(std::string(bakegi_last_error()).find("not a bakegi scene file"), std::string::npos);
+  EXPECT_EQ(read_scene, nullptr);
+  std::remove(foreign.c_str());
+}
+
+}  // namespace
+}  // namespace bakegi::test
