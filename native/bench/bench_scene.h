@@ -1,0 +1,33 @@
+// The scene every benchmark of bakegi_bench uses: the .bgs file named by the environment
+// variable BAKEGI_BENCH_SCENE (e.g. the exported Cornell box, with its bake points), or
+// else the procedural Cornell box, so that the benchmarks always run. Loaded once.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "bake_points/bake_points.h"
+#include "bakegi/bakegi.h"
+#include "scene/ray_tracer.h"
+#include "scene/scene.h"
+
+namespace bakegi::bench {
+
+struct BenchScene {
+  std::string name;   // file path or "procedural Cornell box"
+  Scene scene;        // validated and flattened
+  BakePoints points;  // the file's, or one per triangle
+  std::unique_ptr<RayTracer> tracer;
+};
+
+// Throws bakegi::Error if the file cannot be read or the scene is invalid.
+const BenchScene& bench_scene();
+
+// The same scene and points as C API handles, for benchmarks that run jobs.
+struct CApiScene {
+  bakegi_scene* scene = nullptr;
+  bakegi_points* points = nullptr;
+};
+const CApiScene& bench_scene_c_api();
+
+}  // namespace bakegi::bench

@@ -1,0 +1,86 @@
+// The path tracer's ray throughput on the benchmark scene, next to Embree's raw rate
+// (embree_ray_rate_bench.cpp): a pathtrace job through the C API on all bake points at 16
+// samples; rays/s = the report's "rays" (every ray traced: bounces and shadow rays)
+// over the job's wall time (BVH build included, as a user sees it), and over the time of
+// the tracing stage alone (rays/s_tracing).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <string>
+
+#include "bench_scene.h"
+#include "util/error.h"
+
+namespace bakegi::bench {
+namespace {
+
+// The number stored under "key" at the top level of a report (the core writes counters
+// there); 0 if absent.
+double report_number(const std::string& report, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const size_t at = report.find(needle);
+  return at == std::string::npos ? 0.0 : std::strtod(report.c_str() + at + needle.size(), nullptr);
+}
+
+std::string job_report(const bakegi_job* job) {
+  size_t length = 0;
+  bakegi_job_get_report(job, nullptr, 0, &length);
+  std::string report(length + 1, '\0');
+  bakegi_job_get_report(job, report.data(), report.size(), &length);
+  report.resize(length);
+  return report;
+}
+
+void BM_PathtraceJob(benchmark::State& state) {
+  const int samples = int(state.range(0));
+  const int threads = int(state.range(1));
+  const CApiScene& c = bench_scene_c_api();
+  bakegi_settings* settings = nullptr;
+  bakegi_settings_create(&settings);
+  bakegi_settings_set_string(settings, "method", "pathtrace");
+  bakegi_settings_set_int(settings, "samples", samples);
+  bakegi_settings_set_int(settings, "threads", threads);
+
+  double rays = 0.0, seconds = 0.0, tracing_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    bakegi_job* job = nullptr;
+    bakegi_status status = bakegi_job_start(c.scene, c.points, settings, &job);
+    if (status == BAKEGI_OK) status = bakegi_job_wait(job);
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (status != BAKEGI_OK) {
+      state.SkipWithError(bakegi_last_error());
+      bakegi_job_destroy(job);
+      break;
+    }
+    state.SetIterationTime(wall);
+    const std::string report = job_report(job);
+    rays += report_number(report, "rays");
+    // The stage where the paths are traced (the pathtrace field is evaluated at the points).
+    tracing_seconds += report_number(report, "evaluate");
+    seconds += wall;
+    bakegi_job_destroy(job);
+  }
+  bakegi_settings_destroy(settings);
+  if (seconds > 0.0) {
+    state.counters["rays/s"] = rays / seconds;
+    if (tracing_seconds > 0.0) state.counters["rays/s_tracing"] = rays / tracing_seconds;
+    state.counters["rays_per_job"] = rays / double(state.iterations());
+    state.counters["points"] = double(bench_scene().points.size());
+  }
+  state.SetLabel(bench_scene().name);
+}
+
+BENCHMARK(BM_PathtraceJob)
+    ->ArgNames({"samples", "threads"})
+    // 16 samples: a job of a few tenths of a second, so that the BVH build (included, as
+    // for a user) is a small part of it.
+    ->Args({16, 1})
+    ->Args({16, 2})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace bakegi::bench

@@ -1,0 +1,58 @@
+// bakegi bake scene.bgs [--method M] [--samples N] [--seed S] [--sample-offset K]
+//                       [--threads T] [--set key=value ...] --out values.npy
+//                       [--report report.json]
+#include <cstdio>
+#include <fstream>
+
+#include "arguments.h"
+#include "bake_run.h"
+#include "commands.h"
+#include "exit_codes.h"
+#include "file_error.h"
+#include "npy_file.h"
+#include "scene_file.h"
+#include "usage_error.h"
+
+namespace bakegi::cli {
+
+int run_bake_command(const std::vector<std::string>& words) {
+  std::vector<OptionSpec> specs = bake_setting_options();
+  specs.push_back({"out"});
+  specs.push_back({"report"});
+  const Arguments args(words, specs);
+  if (args.positional().size() != 1) throw UsageError("bake expects one scene file");
+  const std::string scene_path = args.positional()[0];
+  const std::string out_path = args.require("out");
+  const BakeSettings settings = bake_settings_from(args);
+  check_output_folder(out_path);
+  if (const auto report_path = args.value("report")) check_output_folder(*report_path);
+
+  const SceneFile file = load_scene_file_with_points(scene_path);
+  const uint64_t count = bakegi_points_count(file.points.get());
+  const BakeRun run = run_bake(file.scene.get(), file.points.get(), settings, settings.method());
+
+  write_npy_float32(out_path, run.values.data(), {count, 3});
+  if (const auto report_path = args.value("report")) {
+    std::ofstream report(*report_path, std::ios::trunc);
+    report << run.report_json << "\n";
+    if (!report) throw FileError(*report_path + ": cannot write the report");
+  }
+  std::printf("%s\n", run.report_json.c_str());
+  std::fprintf(stderr, "baked %llu points with %s in %.3f s -> %s\n",
+               static_cast<unsigned long long>(count), settings.method().c_str(), run.wall_seconds,
+               out_path.c_str());
+  return kExitOk;
+}
+
+std::vector<float> load_rgb_array(const std::string& path, uint64_t expected_points) {
+  NpyArray array = read_npy_float32(path);
+  if (array.shape.size() != 2 || array.shape[1] != 3 || array.shape[0] != expected_points) {
+    std::string shape;
+    for (const auto s : array.shape) shape += (shape.empty() ? "" : ", ") + std::to_string(s);
+    throw FileError(path + ": shape is (" + shape + "), expected (" +
+                    std::to_string(expected_points) + ", 3)");
+  }
+  return std::move(array.data);
+}
+
+}  // namespace bakegi::cli

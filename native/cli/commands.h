@@ -1,0 +1,21 @@
+// The subcommands of `bakegi`. Each takes the words after its name and returns an exit
+// code (exit_codes.h); errors are thrown as UsageError, CoreError, FileError or JsonError
+// and turned into messages and exit codes by main().
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bakegi::cli {
+
+int run_bake_command(const std::vector<std::string>& args);
+int run_sweep_command(const std::vector<std::string>& args);
+int run_info_command(const std::vector<std::string>& args);
+int run_compare_command(const std::vector<std::string>& args);
+int run_points_command(const std::vector<std::string>& args);
+
+// Loads an (n, 3) array and checks n against the expected bake point count.
+std::vector<float> load_rgb_array(const std::string& path, uint64_t expected_points);
+
+}  // namespace bakegi::cli

@@ -1,0 +1,39 @@
+// A minimal JSON reader, enough to pull numbers out of the core's bake report
+// (bakegi_job_get_report), plus the two helpers the CLI needs to write JSON.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace bakegi::cli {
+
+class JsonError : public std::runtime_error {
+ public:
+  explicit JsonError(const std::string& message) : std::runtime_error(message) {}
+};
+
+struct JsonValue {
+  using Array = std::vector<JsonValue>;
+  using Object = std::map<std::string, JsonValue>;
+  std::variant<std::nullptr_t, bool, double, std::string, Array, Object> value;
+
+  static JsonValue parse(const std::string& text);  // throws JsonError
+
+  const JsonValue* find(const std::string& key) const;  // nullptr if not an object or absent
+  // Follows a path of object keys, e.g. {"seconds", "total"}.
+  const JsonValue* find_path(const std::vector<std::string>& path) const;
+  std::optional<double> number() const;
+  std::optional<std::string> string() const;
+};
+
+// A JSON string literal with quotes and escapes.
+std::string json_quote(const std::string& text);
+// A JSON number with enough digits to round-trip a double; non-finite values become null.
+std::string json_number(double value);
+
+}  // namespace bakegi::cli

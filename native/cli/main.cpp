@@ -1,0 +1,94 @@
+// `bakegi`: bake a scene file, sweep quality settings against a reference, inspect a file,
+// compare two results. Uses only the C API (bakegi.h) and the shared error metric.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "bakegi/bakegi.h"
+#include "commands.h"
+#include "core_handles.h"
+#include "exit_codes.h"
+#include "file_error.h"
+#include "interrupt.h"
+#include "json_value.h"
+#include "usage_error.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: bakegi <command> [arguments]
+
+commands:
+  bake scene.bgs --out values.npy [settings] [--report report.json]
+      Bakes the scene file's bake points; writes float32 (n, 3) .npy and prints the
+      core's report (JSON) on stdout. Progress goes to stderr; Ctrl-C cancels.
+  sweep scene.bgs --samples 1,2,4,... --reference ref.npy --out sweep.json [settings]
+        [--repeat R]
+      Bakes at each sample count, records wall seconds, error against the reference,
+      memory, rays and bake points per run as JSON. --repeat keeps the fastest of R runs.
+  info scene.bgs
+      Triangles, lights and bake points in the file, whether the core accepts the scene,
+      and the library version.
+  compare values.npy reference.npy
+      Prints the error of values against reference.
+  points scene.bgs [--positions p.npy] [--normals n.npy] [--object-ids ids.npy]
+      Writes the file's bake points as float32 arrays.
+
+settings (passed to the core, which checks them):
+  --method M          pathtrace (default) | direct
+  --samples N         samples per bake point
+  --seed S            random seed (results are deterministic for a seed and thread count)
+  --sample-offset K   first sample index, to make a long bake in chunks
+  --threads T         0 = all cores
+  --max-bounces B     path length cap
+  --set key=value     any other setting of the core
+
+error = relative RMSE over bake points, luminance-weighted (Rec. 709):
+  sqrt(sum_i sum_c w_c (v_ic - r_ic)^2 / sum_i sum_c w_c r_ic^2), w = (0.2126, 0.7152, 0.0722)
+
+exit codes: 0 ok, 1 bake failed or scene refused, 2 bad command line, 3 file error,
+            130 cancelled (Ctrl-C)
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace bakegi::cli;
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
+      !std::strcmp(argv[1], "help")) {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? kExitUsage : kExitOk;
+  }
+  if (!std::strcmp(argv[1], "--version")) {
+    std::printf("bakegi %s\n", bakegi_version_string());
+    return kExitOk;
+  }
+  install_interrupt_handler();
+  const std::string command = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  try {
+    if (command == "bake") return run_bake_command(args);
+    if (command == "sweep") return run_sweep_command(args);
+    if (command == "info") return run_info_command(args);
+    if (command == "compare") return run_compare_command(args);
+    if (command == "points") return run_points_command(args);
+    throw UsageError("unknown command '" + command + "'");
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "bakegi: %s\n(run 'bakegi --help' for usage)\n", e.what());
+    return kExitUsage;
+  } catch (const CoreError& e) {
+    std::fprintf(stderr, "bakegi: %s\n", e.what());
+    if (e.status() == BAKEGI_ERROR_CANCELLED) return kExitCancelled;
+    if (e.status() == BAKEGI_ERROR_IO) return kExitIo;
+    return kExitBakeFailed;
+  } catch (const FileError& e) {
+    std::fprintf(stderr, "bakegi: %s\n", e.what());
+    return kExitIo;
+  } catch (const JsonError& e) {
+    std::fprintf(stderr, "bakegi: the core's report is not valid JSON: %s\n", e.what());
+    return kExitBakeFailed;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bakegi: %s\n", e.what());
+    return kExitBakeFailed;
+  }
+}

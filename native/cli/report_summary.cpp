@@ -1,0 +1,44 @@
+#include "report_summary.h"
+
+#include "json_value.h"
+
+namespace bakegi::cli {
+namespace {
+
+// The first number stored under `key` anywhere in the report, depth first: counters live
+// in a sub-object whose name is the report's business, not the CLI's.
+std::optional<double> find_number(const JsonValue& value, const std::string& key) {
+  const auto* object = std::get_if<JsonValue::Object>(&value.value);
+  if (!object) return std::nullopt;
+  if (const auto it = object->find(key); it != object->end() && it->second.number()) {
+    return it->second.number();
+  }
+  for (const auto& [name, child] : *object) {
+    if (const auto found = find_number(child, key)) return found;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+ReportSummary summarize_report(const std::string& report_json) {
+  ReportSummary summary;
+  if (report_json.empty()) return summary;
+  const JsonValue report = JsonValue::parse(report_json);
+  summary.rays = find_number(report, "rays");
+  summary.memory_bytes = find_number(report, "memory_bytes");
+  if (const JsonValue* seconds = report.find("seconds")) {
+    if (const auto total = seconds->number()) {
+      summary.core_seconds = total;
+    } else if (const auto total_stage = find_number(*seconds, "total")) {
+      summary.core_seconds = total_stage;
+    } else if (const auto* stages = std::get_if<JsonValue::Object>(&seconds->value)) {
+      double sum = 0.0;
+      for (const auto& [stage, time] : *stages) sum += time.number().value_or(0.0);
+      summary.core_seconds = sum;
+    }
+  }
+  return summary;
+}
+
+}  // namespace bakegi::cli
