@@ -178,6 +178,7 @@ class BakeSession:
         report["hooked_materials"] = hooked
         report["counts"] = dict(self.exported.counts) if self.exported else {}
         core_warnings = core.get("warnings") if isinstance(core.get("warnings"), list) else []
+        names = self.exported.object_names if self.exported is not None else []
         report["warnings"] = (list(self.exported.warnings) + list(self.exported.skipped) +
-                              list(core_warnings))
+                              [export.name_objects(w, names) for w in core_warnings])
         return report

@@ -2,30 +2,18 @@
 // call fails (its status and the core's message).
 #pragma once
 
-#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "bakegi/bakegi.h"
+#include "bakegi/bakegi_handles.hpp"
 
 namespace bakegi::cli {
 
-struct SceneDeleter {
-  void operator()(bakegi_scene* s) const { bakegi_scene_destroy(s); }
-};
-struct PointsDeleter {
-  void operator()(bakegi_points* p) const { bakegi_points_destroy(p); }
-};
-struct SettingsDeleter {
-  void operator()(bakegi_settings* s) const { bakegi_settings_destroy(s); }
-};
-struct JobDeleter {
-  void operator()(bakegi_job* j) const { bakegi_job_destroy(j); }
-};
-using SceneHandle = std::unique_ptr<bakegi_scene, SceneDeleter>;
-using PointsHandle = std::unique_ptr<bakegi_points, PointsDeleter>;
-using SettingsHandle = std::unique_ptr<bakegi_settings, SettingsDeleter>;
-using JobHandle = std::unique_ptr<bakegi_job, JobDeleter>;
+using bakegi::JobHandle;
+using bakegi::PointsHandle;
+using bakegi::SceneHandle;
+using bakegi::SettingsHandle;
 
 class CoreError : public std::runtime_error {
  public:

@@ -10,6 +10,8 @@
 #include <variant>
 #include <vector>
 
+#include "util/report.h"
+
 namespace bakegi::cli {
 
 class JsonError : public std::runtime_error {
@@ -31,9 +33,8 @@ struct JsonValue {
   std::optional<std::string> string() const;
 };
 
-// A JSON string literal with quotes and escapes.
-std::string json_quote(const std::string& text);
-// A JSON number with enough digits to round-trip a double; non-finite values become null.
-std::string json_number(double value);
+// Writing JSON: the core's own helpers (util/report.h), so that escaping lives in one place.
+using bakegi::json_number;
+using bakegi::json_quote;
 
 }  // namespace bakegi::cli

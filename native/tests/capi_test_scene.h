@@ -10,25 +10,14 @@
 #include <gtest/gtest.h>
 
 #include "bakegi/bakegi.h"
+#include "bakegi/bakegi_handles.hpp"
 
 namespace bakegi::test {
 
-struct SceneDeleter {
-  void operator()(bakegi_scene* s) const { bakegi_scene_destroy(s); }
-};
-struct PointsDeleter {
-  void operator()(bakegi_points* p) const { bakegi_points_destroy(p); }
-};
-struct SettingsDeleter {
-  void operator()(bakegi_settings* s) const { bakegi_settings_destroy(s); }
-};
-struct JobDeleter {
-  void operator()(bakegi_job* j) const { bakegi_job_destroy(j); }
-};
-using ScenePtr = std::unique_ptr<bakegi_scene, SceneDeleter>;
-using PointsPtr = std::unique_ptr<bakegi_points, PointsDeleter>;
-using SettingsPtr = std::unique_ptr<bakegi_settings, SettingsDeleter>;
-using JobPtr = std::unique_ptr<bakegi_job, JobDeleter>;
+using ScenePtr = SceneHandle;
+using PointsPtr = PointsHandle;
+using SettingsPtr = SettingsHandle;
+using JobPtr = JobHandle;
 
 inline ScenePtr new_scene() {
   bakegi_scene* scene = nullptr;

@@ -108,6 +108,11 @@ TEST(ApiErrors, NonFinitePositionsNameMeshAndVertex) {
   mesh = box.desc(0, 7);
   EXPECT_ERROR(bakegi_scene_add_mesh(scene.get(), &mesh, nullptr), BAKEGI_ERROR_INVALID_SCENE,
                "vertex 5: position is infinite");
+  // Blender stores an infinite coordinate as FLT_MAX: finite, but refused as absurd.
+  box.positions[3 * 5 + 1] = std::numeric_limits<float>::max();
+  mesh = box.desc(0, 7);
+  EXPECT_ERROR(bakegi_scene_add_mesh(scene.get(), &mesh, nullptr), BAKEGI_ERROR_INVALID_SCENE,
+               "vertex 5: position (1, 3.40282e+38, 1) is out of range");
   EXPECT_EQ(bakegi_scene_triangle_count(scene.get()), 0u);  // nothing was added
 }
 

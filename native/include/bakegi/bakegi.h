@@ -80,9 +80,9 @@ BAKEGI_API bakegi_status bakegi_scene_add_texture(bakegi_scene* scene, uint32_t 
 #define BAKEGI_NO_TEXTURE 0xFFFFFFFFu
 
 typedef struct bakegi_material_desc {
-  float albedo[3];           /* diffuse reflectance in [0,1], linear RGB */
-  uint32_t albedo_texture;   /* BAKEGI_NO_TEXTURE, or a texture that multiplies albedo */
-  float emission[3];         /* emitted radiance W/(m^2 sr), linear RGB; 0 = not emissive */
+  float albedo[3];             /* diffuse reflectance in [0,1], linear RGB */
+  uint32_t albedo_texture;     /* BAKEGI_NO_TEXTURE, or a texture that multiplies albedo */
+  float emission[3];           /* emitted radiance W/(m^2 sr), linear RGB; 0 = not emissive */
   uint32_t emission_two_sided; /* 1: emits from both sides (Cycles 3.4 mesh emission) */
 } bakegi_material_desc;
 
@@ -93,15 +93,15 @@ BAKEGI_API bakegi_status bakegi_scene_add_material(bakegi_scene* scene,
 /* A triangle mesh in world space. Per-corner data has 3 entries per triangle, in the
  * order of indices. Optional arrays may be NULL. */
 typedef struct bakegi_mesh_desc {
-  const float* positions;            /* 3 * vertex_count */
+  const float* positions; /* 3 * vertex_count */
   uint32_t vertex_count;
-  const uint32_t* indices;           /* 3 * triangle_count, each < vertex_count */
+  const uint32_t* indices; /* 3 * triangle_count, each < vertex_count */
   uint32_t triangle_count;
-  const float* corner_normals;       /* optional, 9 * triangle_count; NULL = face normals */
-  const float* corner_uvs;           /* optional, 6 * triangle_count; needed for textures */
+  const float* corner_normals;        /* optional, 9 * triangle_count; NULL = face normals */
+  const float* corner_uvs;            /* optional, 6 * triangle_count; needed for textures */
   const uint32_t* triangle_materials; /* optional, triangle_count; NULL = all use `material` */
   uint32_t material;
-  uint32_t object_id;                /* the caller's id, reported back in messages */
+  uint32_t object_id; /* the caller's id, reported back in messages */
 } bakegi_mesh_desc;
 
 BAKEGI_API bakegi_status bakegi_scene_add_mesh(bakegi_scene* scene, const bakegi_mesh_desc* mesh,
@@ -123,23 +123,22 @@ typedef enum bakegi_area_shape {
 
 typedef struct bakegi_light_desc {
   bakegi_light_type type;
-  float position[3];  /* point, spot, area: world position */
-  float direction[3]; /* spot, area: the direction light is emitted towards (the light's -Z);
-                         sun: the direction light travels (towards the scene) */
-  float axis_u[3];    /* area: the light's local X axis (size_x along it) */
-  float color[3];     /* point, spot: intensity W/sr; sun: irradiance W/m^2 on a surface
-                         facing it; area: radiance W/(m^2 sr) */
-  float radius;       /* point, spot: radius of the emitting sphere (0 = a true point) */
-  float spot_size;    /* spot: full cone angle, radians in (0, pi] */
-  float spot_blend;   /* spot: softness of the cone edge, [0,1], Cycles' convention */
-  float angle;        /* sun: angular diameter, radians in [0, pi) */
+  float position[3];       /* point, spot, area: world position */
+  float direction[3];      /* spot, area: the direction light is emitted towards (the light's -Z);
+                              sun: the direction light travels (towards the scene) */
+  float axis_u[3];         /* area: the light's local X axis (size_x along it) */
+  float color[3];          /* point, spot: intensity W/sr; sun: irradiance W/m^2 on a surface
+                              facing it; area: radiance W/(m^2 sr) */
+  float radius;            /* point, spot: radius of the emitting sphere (0 = a true point) */
+  float spot_size;         /* spot: full cone angle, radians in (0, pi] */
+  float spot_blend;        /* spot: softness of the cone edge, [0,1], Cycles' convention */
+  float angle;             /* sun: angular diameter, radians in [0, pi) */
   bakegi_area_shape shape; /* area */
-  float size_x;       /* area: side length or diameter along axis_u (metres) */
-  float size_y;       /* area: along direction x axis_u; ignored for SQUARE and DISK */
+  float size_x;            /* area: side length or diameter along axis_u (metres) */
+  float size_y;            /* area: along direction x axis_u; ignored for SQUARE and DISK */
 } bakegi_light_desc;
 
-BAKEGI_API bakegi_status bakegi_scene_add_light(bakegi_scene* scene,
-                                                const bakegi_light_desc* light,
+BAKEGI_API bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_desc* light,
                                                 uint32_t* out_light);
 
 /* Constant world (background) radiance W/(m^2 sr), seen by rays that leave the scene. */
@@ -230,8 +229,8 @@ BAKEGI_API bakegi_status bakegi_job_get_result(const bakegi_job* job, float* out
  * method, settings, rays traced, memory, warnings. Writes at most capacity bytes including
  * the NUL and stores the full length (without NUL) in *out_length; call with capacity 0
  * to ask for the length. */
-BAKEGI_API bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buffer,
-                                               size_t capacity, size_t* out_length);
+BAKEGI_API bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buffer, size_t capacity,
+                                               size_t* out_length);
 /* Cancels if still running, waits, and frees. */
 BAKEGI_API void bakegi_job_destroy(bakegi_job* job);
 

@@ -30,10 +30,10 @@ struct Material {
 // One input mesh, kept as received (for scene files and messages).
 struct Mesh {
   std::vector<glm::vec3> positions;
-  std::vector<uint32_t> indices;              // 3 per triangle
-  std::vector<glm::vec3> corner_normals;      // empty or 3 per triangle
-  std::vector<glm::vec2> corner_uvs;          // empty or 3 per triangle
-  std::vector<uint32_t> triangle_materials;   // empty or 1 per triangle
+  std::vector<uint32_t> indices;             // 3 per triangle
+  std::vector<glm::vec3> corner_normals;     // empty or 3 per triangle
+  std::vector<glm::vec2> corner_uvs;         // empty or 3 per triangle
+  std::vector<uint32_t> triangle_materials;  // empty or 1 per triangle
   uint32_t material = 0;
   uint32_t object_id = 0;
 };
@@ -65,12 +65,12 @@ struct SceneDescription {
 // A triangle ready for rendering: world positions, shading normals per corner, uvs.
 struct Triangle {
   glm::vec3 p[3];
-  glm::vec3 n[3];          // shading normals (face normal where none were given)
-  glm::vec2 uv[3];         // (0,0) where none were given
-  glm::vec3 face_normal;   // unit geometric normal, counter-clockwise winding
+  glm::vec3 n[3];         // shading normals (face normal where none were given)
+  glm::vec2 uv[3];        // (0,0) where none were given
+  glm::vec3 face_normal;  // unit geometric normal, counter-clockwise winding
   float area = 0.0f;
   uint32_t material = 0;
-  uint32_t mesh = 0;       // index into SceneDescription::meshes
+  uint32_t mesh = 0;  // index into SceneDescription::meshes
   uint32_t mesh_triangle = 0;
 };
 

@@ -44,6 +44,19 @@ bool finite(const glm::vec2& v) {
   return std::isfinite(v.x) && std::isfinite(v.y);
 }
 
+// Coordinates beyond this are refused: there float spacing is over 60 km, so nothing could
+// be baked, and Blender stores an infinite coordinate as FLT_MAX (3.4e38), which is finite.
+constexpr float kMaxCoordinate = 1e12f;
+
+bool in_range(const glm::vec3& v) {
+  return std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate &&
+         std::abs(v.z) <= kMaxCoordinate;
+}
+
+std::string out_of_range_text(const glm::vec3& v) {
+  return "position " + vec(v) + " is out of range: coordinates must be within +-1e12 m";
+}
+
 const char* non_finite_word(const glm::vec3& v) {
   return std::isnan(v.x) || std::isnan(v.y) || std::isnan(v.z) ? "NaN" : "infinite";
 }
@@ -133,6 +146,9 @@ void check_mesh(const Mesh& mesh, size_t index) {
       invalid(name + ", vertex " + std::to_string(v) + ": position is " +
               non_finite_word(mesh.positions[v]));
     }
+    if (!in_range(mesh.positions[v])) {
+      invalid(name + ", vertex " + std::to_string(v) + ": " + out_of_range_text(mesh.positions[v]));
+    }
   }
   for (size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= vertex_count) {
@@ -188,6 +204,9 @@ void check_light(const Light& light, size_t index) {
   check_color(light.color, name + ": color");
   if (light.type != BAKEGI_LIGHT_SUN && !finite(light.position)) {
     invalid(name + ": position is " + non_finite_word(light.position));
+  }
+  if (light.type != BAKEGI_LIGHT_SUN && !in_range(light.position)) {
+    invalid(name + ": " + out_of_range_text(light.position));
   }
   if (light.type != BAKEGI_LIGHT_POINT) check_direction(light.direction, name + ": direction");
   if (light.type == BAKEGI_LIGHT_POINT || light.type == BAKEGI_LIGHT_SPOT) {

@@ -25,8 +25,7 @@ struct SolveInputs {
 class Solver {
  public:
   virtual ~Solver() = default;
-  virtual std::unique_ptr<IndirectField> solve(const SolveInputs& inputs,
-                                               JobContext& context) = 0;
+  virtual std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) = 0;
 };
 
 // Throws bakegi::Error(INVALID_ARGUMENT) for an unknown method name.
