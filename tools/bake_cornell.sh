@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The main job: set up, build the bundled Cornell box from scenes/, bake its indirect light
+# with the installed add-on (path tracer), save the .blend, render a PNG from its camera
+# that shows the bake (albedo x (direct + baked indirect)), and print time and size figures.
+#   BAKEGI_SAMPLES   samples per bake point (default 256)
+#   BAKEGI_OUT       output folder (default: out)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/setup.sh
+out=${BAKEGI_OUT:-out}
+samples=${BAKEGI_SAMPLES:-256}
+mkdir -p "$out"
+
+echo "== building the Cornell box scene"
+blender -b --factory-startup --python scenes/cornell_box.py -- --out "$out/cornell_box.blend" \
+  2>&1 | grep -E "^cornell|Error" || true
+
+echo "== baking indirect light (pathtrace, $samples samples per corner)"
+blender -b "$out/cornell_box.blend" --python tools/bake_and_render.py -- \
+  --samples "$samples" --blend "$out/cornell_box_baked.blend" --png "$out/cornell_box_baked.png" \
+  --report "$out/cornell_box_report.json" 2>&1 | grep -E "^(bakegi|  )" || true
+
+test -s "$out/cornell_box_baked.png" && test -s "$out/cornell_box_baked.blend"
+echo "== result: $out/cornell_box_baked.png, $out/cornell_box_baked.blend, $out/cornell_box_report.json"
