@@ -29,4 +29,18 @@ namespace bakegi::antiradiance {
 void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
                 RadianceTables& tables);
 
+// The two halves of local_pass, for the asymmetric iteration (iteration.h), which solves the
+// antiradiance of a bounce with its radiance frozen:
+//
+// K only: the front bins of every patch get I_L, the back bins 0 (the next bounce starts
+// without antiradiance), and E is added to the accumulated irradiance.
+void local_pass_radiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                              RadianceTables& tables);
+
+// J only: the back bins of every patch get −I_A; the front bins and the accumulated irradiance
+// are left alone. Returns the relative change of the back bins, Σ|new − old| / Σ|new| over
+// patches, bins and channels (1 when they went to zero from non-zero, 0 when they stay zero).
+double local_pass_antiradiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                                    RadianceTables& tables);
+
 }  // namespace bakegi::antiradiance
