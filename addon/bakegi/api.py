@@ -23,19 +23,22 @@ def _context(context):
 
 
 def bake(method="pathtrace", samples=64, seed=0, target="CORNER", objects="SELECTED",
-         threads=0, hook_materials=True, context=None):
+         threads=0, hook_materials=True, context=None, method_settings=None):
     """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes.
 
     objects: 'SELECTED', 'VISIBLE', or a list of objects (or their names). Every visible
     object takes part in the light transport; only the targets receive the attribute.
     Returns the report: seconds per stage (export, bake, writeback, total and the core's
     own), bake_points, method, settings, warnings, memory, rays, objects.
+    method_settings: further core settings of the method, e.g. {"bins": 192, "iterations":
+    32} for method="antiradiance" (see bakegi.h for the keys).
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
     scene is changed."""
     context = _context(context)
     report = session.BakeSession(context, method=method, samples=samples, seed=seed,
                                  target=target, objects=objects, threads=threads,
-                                 hook_materials=hook_materials).run()
+                                 hook_materials=hook_materials,
+                                 method_settings=method_settings).run()
     scene = context.scene
     if hasattr(scene, "bakegi"):
         operators.store_report(scene, report)

@@ -19,12 +19,14 @@ class RENDER_PT_bakegi(bpy.types.Panel):
         settings = context.scene.bakegi
 
         col = layout.column()
-        if settings.show_debug:
-            col.prop(settings, "method")
+        col.prop(settings, "method")
+        if settings.resolved_method() == "antiradiance":
+            col.prop(settings, "bins")
+            col.prop(settings, "iterations")
+            col.prop(settings, "seed")
         else:
-            col.label(text="Method: Path Tracing")
-        col.prop(settings, "samples")
-        col.prop(settings, "seed")
+            col.prop(settings, "samples")
+            col.prop(settings, "seed")
         col.prop(settings, "target")
         col.prop(settings, "objects")
         col.prop(settings, "threads")

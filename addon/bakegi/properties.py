@@ -7,6 +7,9 @@ from bpy.props import BoolProperty, EnumProperty, IntProperty, StringProperty
 METHOD_ITEMS = [
     ("pathtrace", "Path Tracing", "Monte Carlo reference: converges to the exact indirect "
      "light; noise falls as samples grow"),
+    ("antiradiance", "Antiradiance", "Dachsbacher et al. 2007: light exchanged between "
+     "surface patches through directional bins, occlusion by antiradiance instead of "
+     "visibility rays; fast and smooth, biased by patch size and bin count"),
 ]
 # Debug only: bakes the DIRECT light (to check light units against Cycles), not indirect.
 DEBUG_METHOD_ITEMS = METHOD_ITEMS + [
@@ -37,6 +40,12 @@ class BakeGISettings(bpy.types.PropertyGroup):
                          description="How the indirect light is computed")
     samples: IntProperty(name="Samples", default=64, min=1, soft_max=4096,
                          description="Paths per bake point: more is slower and less noisy")
+    bins: IntProperty(name="Bins", default=192, min=12, max=3072,
+                      description="Antiradiance: directional bins per element; more bins "
+                      "sharpen indirect shadows and cost memory and time")
+    iterations: IntProperty(name="Iterations", default=32, min=1, soft_max=256,
+                            description="Antiradiance: light bounces at most (stops early "
+                            "once converged)")
     seed: IntProperty(name="Seed", default=0, min=0,
                       description="Random seed; a bake is repeatable for a seed")
     target: EnumProperty(name="Target", items=TARGET_ITEMS, default="CORNER",
@@ -57,7 +66,15 @@ class BakeGISettings(bpy.types.PropertyGroup):
                                 description="JSON report of the last successful bake")
 
     def resolved_method(self):
-        return self.method if self.show_debug else "pathtrace"
+        if self.show_debug or self.method in {item[0] for item in METHOD_ITEMS}:
+            return self.method
+        return "pathtrace"
+
+    def method_settings(self):
+        """Core settings that only the resolved method reads."""
+        if self.resolved_method() == "antiradiance":
+            return {"bins": self.bins, "iterations": self.iterations}
+        return {}
 
 
 def register():

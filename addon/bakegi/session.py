@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from . import export, native, writeback
 from .native import BakeGIError
 
-METHODS = ("pathtrace", "direct")
+METHODS = ("pathtrace", "direct", "antiradiance")
 
 
 @dataclass
@@ -55,7 +55,7 @@ def validate_arguments(method, samples, seed, target, threads):
 
 class BakeSession:
     def __init__(self, context, method="pathtrace", samples=64, seed=0, target="CORNER",
-                 objects="SELECTED", threads=0, hook_materials=True):
+                 objects="SELECTED", threads=0, hook_materials=True, method_settings=None):
         validate_arguments(method, samples, seed, target, threads)
         self.context = context
         self.method = method
@@ -65,6 +65,8 @@ class BakeSession:
         self.objects = objects
         self.threads = threads
         self.hook_materials = hook_materials
+        # Further core settings of the method (e.g. antiradiance "bins"); the core checks them.
+        self.method_settings = dict(method_settings or {})
         self.exported = None
         self.job = None
         self.seconds = {}
@@ -74,7 +76,7 @@ class BakeSession:
     @property
     def settings(self):
         return {"method": self.method, "samples": self.samples, "seed": self.seed,
-                "threads": self.threads}
+                "threads": self.threads, **self.method_settings}
 
     def prepare(self):
         """Exports the scene. The context is used only here (and by finish() when no data

@@ -35,7 +35,7 @@ commands:
       Writes the file's bake points as float32 arrays.
 
 settings (passed to the core, which checks them):
-  --method M          pathtrace (default) | direct
+  --method M          pathtrace (default) | direct | antiradiance
   --samples N         samples per bake point
   --seed S            random seed (results are deterministic for a seed and thread count)
   --sample-offset K   first sample index, to make a long bake in chunks

@@ -182,13 +182,24 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
 /* Key/value settings for a bake, validated when a job starts (unknown keys, wrong types
  * and out-of-range values are errors). Keys understood now:
  *   "method"       string  "pathtrace" (default) | "direct" (direct light, E_direct/pi,
- *                          for checking light units against Cycles)
+ *                          for checking light units against Cycles) | "antiradiance"
+ *                          (Dachsbacher et al. 2007: hierarchical radiosity-like transport
+ *                          without visibility rays, interpolated at the bake points)
  *   "samples"      int     samples per bake point, >= 1 (default 64)
  *   "seed"         int     >= 0 (default 0); results are deterministic for a seed
  *   "threads"      int     0 = all cores (default 0)
  *   "max_bounces"  int     >= 1, path length cap for indirect light (default 64; Russian
  *                          roulette ends most paths far sooner)
- *   "memory_budget_mb" int >= 1 (default 4096): a bake whose estimate exceeds it is refused
+ *   "memory_budget_mb" int >= 1 (default 4096): a bake whose estimate exceeds it is refused;
+ *                          antiradiance coarsens an automatic patch size to fit it (warning)
+ * Antiradiance only ("seed" also picks its direct-light samples):
+ *   "bins"         int     directional bins 12..3072 (default 192, rounded to 12*Nside^2)
+ *   "iterations"   int     bounces at most, 1..100000 (default 32)
+ *   "tolerance"    float   stop when a bounce adds less than this fraction, 0..1 (1e-4)
+ *   "scheme"       string  "symmetric" (default) | "asymmetric" (provably convergent)
+ *   "patch_size"   float   largest patch edge in metres, 0 = automatic (default 0:
+ *                          scene extent / 32, coarsened to fit the memory budget)
+ *   "direct_samples" int   direct-light samples per patch, 1..65536 (default 64)
  */
 typedef struct bakegi_settings bakegi_settings;
 

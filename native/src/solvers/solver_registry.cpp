@@ -1,6 +1,7 @@
 #include <memory>
 #include <string>
 
+#include "solvers/antiradiance/antiradiance_solver.h"
 #include "solvers/direct_only/direct_only_solver.h"
 #include "solvers/pathtrace/path_tracer.h"
 #include "solvers/solver.h"
@@ -11,8 +12,9 @@ namespace bakegi {
 std::unique_ptr<Solver> make_solver(const std::string& method) {
   if (method == "pathtrace") return std::make_unique<PathTracer>();
   if (method == "direct") return std::make_unique<DirectOnlySolver>();
+  if (method == "antiradiance") return std::make_unique<AntiradianceSolver>();
   throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-              "unknown method '" + method + "' (known: pathtrace, direct)");
+              "unknown method '" + method + "' (known: pathtrace, direct, antiradiance)");
 }
 
 }  // namespace bakegi

@@ -124,7 +124,9 @@ void Settings::check_known_keys(const std::vector<std::string>& known) const {
 
 const std::vector<std::string>& known_setting_keys() {
   static const std::vector<std::string> keys = {
-      "method", "samples", "seed", "sample_offset", "threads", "max_bounces", "memory_budget_mb"};
+      "method", "samples", "seed", "sample_offset", "threads", "max_bounces", "memory_budget_mb",
+      // antiradiance
+      "bins", "iterations", "tolerance", "scheme", "patch_size", "direct_samples"};
   return keys;
 }
 

@@ -34,16 +34,16 @@ enum class IterationScheme { kSymmetric, kAsymmetric };
 
 struct IterationOptions {
   IterationScheme scheme = IterationScheme::kSymmetric;
-  int max_iterations = 32;          // radiance bounces (both schemes)
-  double tolerance = 1e-4;          // stop when the residual falls below it
-  int antiradiance_steps = 4;       // asymmetric: J steps per bounce at most
-  int growth_patience = 3;          // symmetric: growing iterations before the fallback
+  int max_iterations = 32;     // radiance bounces (both schemes)
+  double tolerance = 1e-4;     // stop when the residual falls below it
+  int antiradiance_steps = 4;  // asymmetric: J steps per bounce at most
+  int growth_patience = 3;     // symmetric: growing iterations before the fallback
 };
 
 struct IterationRecord {
-  int iteration = 0;       // 1-based bounce number
-  double added_flux = 0;   // Σ_patches a · luminance(E) added to E_acc by this iteration
-  double residual = 0;     // added_flux / total flux in E_acc after it
+  int iteration = 0;      // 1-based bounce number
+  double added_flux = 0;  // Σ_patches a · luminance(E) added to E_acc by this iteration
+  double residual = 0;    // added_flux / total flux in E_acc after it
   double seconds = 0;
 };
 

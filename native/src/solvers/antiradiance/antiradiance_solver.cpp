@@ -1,0 +1,344 @@
+#include "solvers/antiradiance/antiradiance_solver.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "direct/direct_light.h"
+#include "scene/ray_tracer.h"
+#include "solvers/antiradiance/bin_spreading.h"
+#include "solvers/antiradiance/direct_initialization.h"
+#include "solvers/antiradiance/directional_bins.h"
+#include "solvers/antiradiance/element_hierarchy.h"
+#include "solvers/antiradiance/global_pass.h"
+#include "solvers/antiradiance/iteration.h"
+#include "solvers/antiradiance/link_refinement.h"
+#include "solvers/antiradiance/radiance_tables.h"
+#include "util/error.h"
+#include "util/job_context.h"
+#include "util/report.h"
+#include "util/settings.h"
+
+namespace bakegi {
+namespace {
+
+using namespace antiradiance;
+
+// A first guess of the links, only to choose the automatic patch size before linking (the
+// real count is known only after refinement, which max_links bounds). The oracle refines
+// until a sender covers one bin, so links grow with the bin count m. Measured: an inward
+// icosphere (10k elements) keeps 47, 196 and 760 links per element at 48, 192 and 768 bins,
+// a coarse Cornell box (31k elements, 192 bins) 147: about m per element.
+constexpr uint64_t kEstimatedLinksPerElementPerBin = 1;
+// Links live twice for a moment: the refinement's array and the receiver-grouped copy the
+// global pass makes of it.
+constexpr uint64_t kPeakBytesPerLink = 2 * sizeof(Link);
+// The field keeps one interpolation sample per patch plus its grid (about 4 cells each).
+constexpr uint64_t kFieldBytesPerPatch = sizeof(SurfaceSample) + sizeof(float) + 24;
+
+struct AntiradianceSettings {
+  int64_t bins = 192;
+  int64_t iterations = 32;
+  double tolerance = 1e-4;
+  IterationScheme scheme = IterationScheme::kSymmetric;
+  double patch_size = 0.0;
+  int64_t direct_samples = 64;
+  int64_t seed = 0;
+  uint64_t memory_budget_bytes = uint64_t(4096) << 20;
+
+  static AntiradianceSettings from(const Settings& settings) {
+    AntiradianceSettings s;
+    s.bins = settings.get_int("bins", 192, 12, 3072);
+    s.iterations = settings.get_int("iterations", 32, 1, 100000);
+    s.tolerance = settings.get_float("tolerance", 1e-4, 0.0, 1.0);
+    const std::string scheme = settings.get_string("scheme", "symmetric");
+    if (scheme == "symmetric") {
+      s.scheme = IterationScheme::kSymmetric;
+    } else if (scheme == "asymmetric") {
+      s.scheme = IterationScheme::kAsymmetric;
+    } else {
+      throw Error(
+          BAKEGI_ERROR_INVALID_ARGUMENT,
+          "setting \"scheme\" must be \"symmetric\" or \"asymmetric\", not \"" + scheme + "\"");
+    }
+    s.patch_size = settings.get_float("patch_size", 0.0, 0.0, 1e9);
+    s.direct_samples = settings.get_int("direct_samples", 64, 1, 65536);
+    s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
+    s.memory_budget_bytes =
+        uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
+    return s;
+  }
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string megabytes(uint64_t bytes) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.1f MB", double(bytes) / double(1 << 20));
+  return text;
+}
+
+std::string metres(double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.4g m", value);
+  return text;
+}
+
+uint64_t saturating_add(uint64_t a, uint64_t b) {
+  return a > std::numeric_limits<uint64_t>::max() - b ? std::numeric_limits<uint64_t>::max()
+                                                      : a + b;
+}
+
+uint64_t saturating_multiply(uint64_t a, uint64_t b) {
+  return b != 0 && a > std::numeric_limits<uint64_t>::max() / b
+             ? std::numeric_limits<uint64_t>::max()
+             : a * b;
+}
+
+// Everything but the links, for patches of at most `max_edge`.
+uint64_t bytes_without_links(const Scene& scene, float max_edge, int bins) {
+  const uint64_t elements = estimate_elements(scene, max_edge);
+  const uint64_t patches = estimate_patches(scene, max_edge);
+  uint64_t bytes = estimate_hierarchy_bytes(scene, max_edge);
+  bytes = saturating_add(bytes, RadianceTables::bytes(elements, patches, uint64_t(bins)));
+  return saturating_add(bytes, saturating_multiply(patches, kFieldBytesPerPatch));
+}
+
+uint64_t estimated_bytes(const Scene& scene, float max_edge, int bins) {
+  const uint64_t links = saturating_multiply(estimate_elements(scene, max_edge),
+                                             kEstimatedLinksPerElementPerBin * uint64_t(bins));
+  return saturating_add(bytes_without_links(scene, max_edge, bins),
+                        saturating_multiply(links, kPeakBytesPerLink));
+}
+
+// The smallest max_edge · 2^k (k ≥ 0) whose estimate fits `available`, or nullopt when even
+// unsplit input triangles do not fit.
+std::optional<float> patch_size_within(const Scene& scene, float max_edge, int bins,
+                                       uint64_t available) {
+  const uint64_t elements = std::max<uint64_t>(estimate_elements(scene, max_edge), 1);
+  const uint64_t bytes = estimated_bytes(scene, max_edge, bins);
+  const uint64_t per_element = std::max<uint64_t>(bytes / elements, 1);
+  float edge =
+      max_edge_within_budget(scene, max_edge, std::max<uint64_t>(available / per_element, 1));
+  // The per-element cost is an average; step on by doubling while the estimate is still over.
+  for (int step = 0; step < 64 && estimated_bytes(scene, edge, bins) > available; ++step) {
+    const float next = edge * 2.0f;
+    if (estimate_elements(scene, next) == estimate_elements(scene, edge)) return std::nullopt;
+    edge = next;
+  }
+  if (estimated_bytes(scene, edge, bins) > available) return std::nullopt;
+  return edge;
+}
+
+std::string residual_history_json(const IterationResult& result) {
+  std::string json = "[";
+  for (const IterationRecord& record : result.history) {
+    if (json.size() > 1) json += ", ";
+    json += json_number(record.residual);
+  }
+  return json + "]";
+}
+
+}  // namespace
+
+void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
+                                 JobContext& context) const {
+  if (out.size() < points.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "antiradiance: output smaller than the points");
+  }
+  constexpr size_t kBlock = 1024;
+  std::atomic<size_t> done{0};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), kBlock),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      if (context.is_cancelled()) return;
+                      for (size_t i = range.begin(); i != range.end(); ++i) {
+                        out[i] = interpolation_.evaluate(points.positions[i], points.normals[i]);
+                      }
+                      const size_t finished = done.fetch_add(range.size()) + range.size();
+                      context.set_stage_progress(double(finished) / double(points.size()));
+                    });
+  context.throw_if_cancelled();
+}
+
+std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inputs,
+                                                         JobContext& context) {
+  const AntiradianceSettings settings = AntiradianceSettings::from(inputs.settings);
+  const Scene& scene = inputs.scene;
+  Report& report = context.report();
+  if (scene.triangles.empty()) {
+    return std::make_unique<AntiradianceField>(SurfaceInterpolation{});
+  }
+
+  context.set_stage("antiradiance: bins", 0.10, 0.11);
+  auto stage_start = std::chrono::steady_clock::now();
+  const DirectionalBins bins = DirectionalBins::from_bin_count(settings.bins);
+  const BinSpreading spreading(bins);
+  const int m = bins.bin_count();
+  const double bins_seconds = seconds_since(stage_start);
+  context.throw_if_cancelled();
+
+  // What the ray tracer and the spreading tables leave of the budget.
+  const uint64_t used = uint64_t(inputs.tracer.memory_bytes()) + spreading.memory_bytes();
+  const uint64_t available =
+      settings.memory_budget_bytes > used ? settings.memory_budget_bytes - used : 0;
+  const bool automatic = settings.patch_size == 0.0;
+  float max_edge = automatic ? default_max_edge(scene) : float(settings.patch_size);
+  if (!(max_edge > 0.0f) || !std::isfinite(max_edge)) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "antiradiance: the scene has no extent to choose a patch size from");
+  }
+  const std::string budget_text =
+      megabytes(settings.memory_budget_bytes) + " (setting memory_budget_mb)";
+  if (estimated_bytes(scene, max_edge, m) > available) {
+    const std::optional<float> fitting = patch_size_within(scene, max_edge, m, available);
+    if (!fitting) {
+      throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                  "antiradiance: even unsplit triangles (" +
+                      std::to_string(estimate_elements(scene, 1e30f)) + " elements at " +
+                      std::to_string(m) + " bins) need an estimated " +
+                      megabytes(estimated_bytes(scene, 1e30f, m)) + ", more than the budget of " +
+                      budget_text + " leaves; raise the budget or lower \"bins\"");
+    }
+    if (!automatic) {
+      throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                  "antiradiance: patch size " + metres(max_edge) + " needs an estimated " +
+                      megabytes(estimated_bytes(scene, max_edge, m)) +
+                      ", more than the budget of " + budget_text + " leaves; patch_size " +
+                      metres(*fitting) + " (or 0 for automatic) would fit");
+    }
+    report.warn("antiradiance: patches coarsened from " + metres(max_edge) + " to " +
+                metres(*fitting) + " to fit the memory budget of " + budget_text);
+    max_edge = *fitting;
+  }
+
+  // Hierarchy and links; when the links turn out more than the estimate allowed, an automatic
+  // patch size is coarsened once more.
+  ElementHierarchy hierarchy;
+  LinkSet link_set;
+  double hierarchy_seconds = 0.0, linking_seconds = 0.0;
+  for (int attempt = 0;; ++attempt) {
+    context.set_stage("antiradiance: hierarchy", 0.11, 0.12);
+    stage_start = std::chrono::steady_clock::now();
+    hierarchy = ElementHierarchy(scene, HierarchyOptions{max_edge, 0});
+    hierarchy_seconds += seconds_since(stage_start);
+    context.throw_if_cancelled();
+
+    const uint64_t fixed = bytes_without_links(scene, max_edge, m);
+    const uint64_t max_links = available > fixed ? (available - fixed) / kPeakBytesPerLink : 0;
+    context.set_stage("antiradiance: linking", 0.12, 0.30);
+    stage_start = std::chrono::steady_clock::now();
+    try {
+      if (max_links == 0) {
+        throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, "no room is left for links");
+      }
+      link_set = build_links(hierarchy, bins, spreading, LinkingOptions{max_links, true}, &context);
+      linking_seconds += seconds_since(stage_start);
+      break;
+    } catch (const Error& e) {
+      linking_seconds += seconds_since(stage_start);
+      if (e.status() != BAKEGI_ERROR_OUT_OF_MEMORY) throw;
+      const std::string what = "antiradiance: the links at patch size " + metres(max_edge) + " (" +
+                               std::to_string(hierarchy.element_count()) + " elements, at most " +
+                               std::to_string(max_links) +
+                               " links) do not fit the memory budget of " + budget_text;
+      if (!automatic || attempt > 0) {
+        throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                    what + (automatic ? "; raise the budget or lower \"bins\""
+                                      : "; choose a larger patch_size (or 0 for automatic)"));
+      }
+      report.warn(what + "; coarsened to " + metres(max_edge * 2.0f));
+      max_edge *= 2.0f;
+    }
+  }
+  const LinkingStatistics link_statistics = link_set.statistics;
+  context.throw_if_cancelled();
+
+  stage_start = std::chrono::steady_clock::now();
+  const GlobalPass transport(std::move(link_set.links), hierarchy.element_count(), spreading);
+  link_set = LinkSet{};
+  RadianceTables tables(hierarchy.element_count(), hierarchy.patch_count(), m);
+  const double allocation_seconds = seconds_since(stage_start);
+
+  context.set_stage("antiradiance: direct light", 0.30, 0.40);
+  stage_start = std::chrono::steady_clock::now();
+  const std::vector<glm::vec3> direct = direct_irradiance_at_patches(
+      hierarchy, inputs.direct, settings.direct_samples, uint64_t(settings.seed), context);
+  initialize_direct(hierarchy, bins, direct, tables);
+  const double direct_seconds = seconds_since(stage_start);
+  context.throw_if_cancelled();
+
+  context.set_stage("antiradiance: iterating", 0.40, 0.58);
+  stage_start = std::chrono::steady_clock::now();
+  IterationOptions options;
+  options.scheme = settings.scheme;
+  options.max_iterations = int(settings.iterations);
+  options.tolerance = settings.tolerance;
+  const IterationResult result =
+      iterate(hierarchy, bins, spreading, transport, tables, options, &context);
+  const double iterate_seconds = seconds_since(stage_start);
+  context.throw_if_cancelled();
+  if (!result.warning.empty()) report.warn("antiradiance: " + result.warning);
+
+  context.set_stage("antiradiance: output", 0.58, 0.60);
+  stage_start = std::chrono::steady_clock::now();
+  std::vector<SurfaceSample> samples(hierarchy.patch_count());
+  const std::span<const glm::vec3> irradiance = tables.accumulated_irradiance();
+  for (size_t p = 0; p < samples.size(); ++p) {
+    const Patch& patch = hierarchy.patches()[p];
+    const Element& element = hierarchy.elements()[patch.element];
+    SurfaceSample& s = samples[p];
+    s.center = element.center;
+    s.normal = glm::dot(patch.shading_normal, patch.shading_normal) > 0.5f ? patch.shading_normal
+                                                                           : patch.normal;
+    for (const glm::vec3& corner : patch.corners) {
+      s.radius = std::max(s.radius, glm::length(corner - element.center));
+    }
+    s.area = element.area;
+    glm::vec3 value = irradiance[p] / std::numbers::pi_v<float>;
+    // The output convention has no room for non-finite or negative light; iterate() warns
+    // when its solution is unusable, this only keeps the field finite.
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(value[c])) value[c] = 0.0f;
+    }
+    s.value = glm::max(value, glm::vec3(0.0f));
+  }
+  SurfaceInterpolation interpolation(std::move(samples));
+  const double output_seconds = seconds_since(stage_start);
+
+  report.add_count("antiradiance_bins", uint64_t(m));
+  report.add_count("antiradiance_elements", hierarchy.element_count());
+  report.add_count("antiradiance_patches", hierarchy.patch_count());
+  report.add_count("antiradiance_links", link_statistics.link_count);
+  report.add_count("antiradiance_iterations", result.history.size());
+  report.add_count("antiradiance_table_bytes", tables.memory_bytes());
+  report.add_count("antiradiance_link_bytes", transport.memory_bytes());
+  report.add_count("antiradiance_hierarchy_bytes", hierarchy.memory_bytes());
+  report.set_number("antiradiance_patch_size", double(hierarchy.max_edge()));
+  report.set_number("antiradiance_support_radius", double(interpolation.support_radius()));
+  report.set_text("antiradiance_scheme",
+                  result.scheme_used == IterationScheme::kSymmetric ? "symmetric" : "asymmetric");
+  report.set_json("antiradiance_residuals", residual_history_json(result));
+  report.set_number("antiradiance_converged", result.converged ? 1.0 : 0.0);
+  report.add_seconds("antiradiance_bins", bins_seconds);
+  report.add_seconds("antiradiance_hierarchy", hierarchy_seconds);
+  report.add_seconds("antiradiance_linking", linking_seconds);
+  report.add_seconds("antiradiance_direct", direct_seconds);
+  // Grouping the links by receiver and allocating the bin tables.
+  report.add_seconds("antiradiance_tables", allocation_seconds);
+  report.add_seconds("antiradiance_iterate", iterate_seconds);
+  report.add_seconds("antiradiance_output", output_seconds);
+  return std::make_unique<AntiradianceField>(std::move(interpolation));
+}
+
+}  // namespace bakegi

@@ -1,0 +1,47 @@
+// The Antiradiance solver ("antiradiance", Dachsbacher et al. 2007): indirect light without
+// visibility rays. solve() builds the whole solution (bins, element hierarchy, links, direct
+// light at the patches, iteration); the returned field only interpolates the patches'
+// indirect irradiance at the bake points (surface_interpolation.h), so evaluation is cheap.
+//
+// Settings (read with ranges; a bad value fails before any work):
+//   bins            directional bins, 12..3072 (default 192; rounded to a HEALPix count)
+//   iterations      bounces at most, 1..100000 (default 32)
+//   tolerance       stop when an iteration adds less than this fraction, 0..1 (default 1e-4)
+//   scheme          "symmetric" (default) or "asymmetric" (§2.2)
+//   patch_size      largest patch edge in metres, 0 = automatic (default 0)
+//   direct_samples  direct-light samples per patch, 1..65536 (default 64)
+//   seed            random stream of the direct-light samples (default 0)
+//   memory_budget_mb  the job's budget; hierarchy, bin tables and links must fit in what the
+//                   ray tracer leaves of it
+// Automatic patch size: the scene's default (extent / 32), coarsened by factors of 2 until
+// the estimate fits the budget, with a warning whenever it coarsens. A requested patch size
+// that does not fit is refused, naming one that would.
+#pragma once
+
+#include <memory>
+
+#include "solvers/antiradiance/surface_interpolation.h"
+#include "solvers/solver.h"
+
+namespace bakegi {
+
+class AntiradianceField : public IndirectField {
+ public:
+  explicit AntiradianceField(antiradiance::SurfaceInterpolation interpolation)
+      : interpolation_(std::move(interpolation)) {}
+  // Parallel over points, cancellable.
+  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
+                JobContext& context) const override;
+
+  const antiradiance::SurfaceInterpolation& interpolation() const { return interpolation_; }
+
+ private:
+  antiradiance::SurfaceInterpolation interpolation_;
+};
+
+class AntiradianceSolver : public Solver {
+ public:
+  std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
+};
+
+}  // namespace bakegi
