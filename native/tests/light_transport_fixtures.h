@@ -44,6 +44,28 @@ inline void add_quad(SceneDescription& d, glm::vec3 center, glm::vec3 u, glm::ve
   d.meshes.push_back(std::move(mesh));
 }
 
+enum class Facing { kInward, kOutward };
+
+// The cube [lo, hi] as 12 triangles facing inwards (a room) or outwards (a solid block).
+inline Mesh make_cube(glm::vec3 lo, glm::vec3 hi, Facing facing, uint32_t material) {
+  Mesh mesh;
+  for (int i = 0; i < 8; ++i) {
+    mesh.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+  }
+  // Each face as a quad, counter-clockwise seen from inside.
+  const uint32_t faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                                {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+  for (const auto& f : faces) {
+    if (facing == Facing::kInward) {
+      mesh.indices.insert(mesh.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+    } else {
+      mesh.indices.insert(mesh.indices.end(), {f[0], f[2], f[1], f[0], f[3], f[2]});
+    }
+  }
+  mesh.material = material;
+  return mesh;
+}
+
 // An icosphere: the icosahedron subdivided `subdivisions` times, vertices projected onto
 // the sphere; 20 * 4^subdivisions triangles wound counter-clockwise seen from outside.
 inline Mesh make_icosphere(glm::vec3 center, float radius, int subdivisions, uint32_t material) {

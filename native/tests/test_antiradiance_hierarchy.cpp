@@ -30,22 +30,6 @@ using antiradiance::Patch;
 // ulps per operation, far below this relative tolerance.
 constexpr float kRelativeTolerance = 1e-5f;
 
-// An axis-aligned box as one mesh of 12 triangles, wound counter-clockwise seen from outside.
-Mesh make_box(glm::vec3 lo, glm::vec3 hi, uint32_t material) {
-  Mesh mesh;
-  for (int i = 0; i < 8; ++i) {
-    mesh.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-  }
-  // Each face as a quad (a, b, c, d), counter-clockwise seen from outside.
-  const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) {
-    mesh.indices.insert(mesh.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
-  }
-  mesh.material = material;
-  return mesh;
-}
-
 // A Cornell-box-like room: 2 m cube open at the front (y = -1), five walls of one quad
 // each facing inwards, two boxes, a point light below the ceiling.
 SceneDescription cornell_like() {
@@ -59,8 +43,9 @@ SceneDescription cornell_like() {
   add_quad(d, {0, 1, 1}, z, x, 1, 1, white);  // back, normal -y
   add_quad(d, {-1, 0, 1}, y, z, 1, 1, red);   // left, normal +x
   add_quad(d, {1, 0, 1}, z, y, 1, 1, green);  // right, normal -x
-  d.meshes.push_back(make_box({0.03f, -0.67f, 0}, {0.63f, -0.07f, 0.6f}, white));
-  d.meshes.push_back(make_box({-0.64f, -0.01f, 0}, {-0.04f, 0.59f, 1.2f}, white));
+  d.meshes.push_back(make_cube({0.03f, -0.67f, 0}, {0.63f, -0.07f, 0.6f}, Facing::kOutward, white));
+  d.meshes.push_back(
+      make_cube({-0.64f, -0.01f, 0}, {-0.04f, 0.59f, 1.2f}, Facing::kOutward, white));
   d.lights.push_back(point_light({0, 0, 1.9f}, glm::vec3(10.0f)));
   return d;
 }

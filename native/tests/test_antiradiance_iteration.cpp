@@ -38,26 +38,6 @@ using antiradiance::IterationResult;
 using antiradiance::IterationScheme;
 using antiradiance::RadianceTables;
 
-// The cube [lo, hi] as 12 triangles facing inwards (a room) or outwards (a solid block).
-Mesh make_cube(glm::vec3 lo, glm::vec3 hi, bool inward, uint32_t material) {
-  Mesh mesh;
-  for (int i = 0; i < 8; ++i) {
-    mesh.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-  }
-  // Each face as a quad, counter-clockwise seen from inside.
-  const uint32_t faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                                {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-  for (const auto& f : faces) {
-    if (inward) {
-      mesh.indices.insert(mesh.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
-    } else {
-      mesh.indices.insert(mesh.indices.end(), {f[0], f[2], f[1], f[0], f[3], f[2]});
-    }
-  }
-  mesh.material = material;
-  return mesh;
-}
-
 // A closed room of albedo ρ, optionally with a block in it, linked at `bin_count` bins, with
 // every patch lit by the same direct irradiance E0.
 struct Furnace {
@@ -73,9 +53,10 @@ struct Furnace {
       : bins(DirectionalBins::from_bin_count(bin_count)) {
     SceneDescription desc;
     const uint32_t material = add_material(desc, glm::vec3(albedo));
-    desc.meshes.push_back(make_cube({0, 0, 0}, {1, 1, 1}, true, material));
+    desc.meshes.push_back(make_cube({0, 0, 0}, {1, 1, 1}, Facing::kInward, material));
     if (with_block) {
-      desc.meshes.push_back(make_cube({0.3f, 0.3f, 0.2f}, {0.7f, 0.7f, 0.6f}, false, material));
+      desc.meshes.push_back(
+          make_cube({0.3f, 0.3f, 0.2f}, {0.7f, 0.7f, 0.6f}, Facing::kOutward, material));
     }
     // A scene needs a light to be valid; the direct irradiance here is given, not traced.
     desc.lights.push_back(point_light({0.1f, 0.1f, 0.9f}, glm::vec3(1.0f)));

@@ -56,26 +56,10 @@ SceneDescription two_patches(float leg, float d, bool lower_up, bool upper_up) {
   return s;
 }
 
-// A closed room: the cube [lo, hi] as one mesh of 12 triangles facing inwards.
-Mesh make_room(glm::vec3 lo, glm::vec3 hi, uint32_t material) {
-  Mesh mesh;
-  for (int i = 0; i < 8; ++i) {
-    mesh.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-  }
-  // Each face as a quad (a, b, c, d), counter-clockwise seen from inside.
-  const uint32_t faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                                {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-  for (const auto& f : faces) {
-    mesh.indices.insert(mesh.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
-  }
-  mesh.material = material;
-  return mesh;
-}
-
 SceneDescription closed_room() {
   SceneDescription s;
   const uint32_t material = add_material(s, {0.5f, 0.5f, 0.5f});
-  s.meshes.push_back(make_room({0, 0, 0}, {1, 1, 1}, material));
+  s.meshes.push_back(make_cube({0, 0, 0}, {1, 1, 1}, Facing::kInward, material));
   s.lights.push_back(point_light({0.5f, 0.5f, 0.5f}, glm::vec3(1.0f)));
   return s;
 }
@@ -93,7 +77,7 @@ SceneDescription cornell_like() {
   add_quad(d, {-1, 0, 1}, y, z, 1, 1, red);
   add_quad(d, {1, 0, 1}, z, y, 1, 1, green);
   auto box = [&](glm::vec3 lo, glm::vec3 hi) {
-    Mesh room = make_room(lo, hi, white);
+    Mesh room = make_cube(lo, hi, Facing::kInward, white);
     // Outward-facing: reverse the winding of the inward room.
     for (size_t t = 0; t < room.indices.size(); t += 3)
       std::swap(room.indices[t + 1], room.indices[t + 2]);

@@ -72,8 +72,11 @@ double absolute_sum(glm::vec3 v) {
 
 }  // namespace
 
-void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                RadianceTables& tables) {
+namespace {
+
+// K and/or J at every patch, adding each patch's E to E_acc (both modes that reflect).
+void reflect_all_patches(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                         RadianceTables& tables, Update update) {
   check_sizes(hierarchy, bins, tables);
   const std::vector<Patch>& patches = hierarchy.patches();
   const std::vector<Element>& elements = hierarchy.elements();
@@ -86,28 +89,21 @@ void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
                         const uint32_t e = patch.element;
                         accumulated[p] +=
                             reflect_patch(patch, elements[e].area, bins, bin_solid_angle,
-                                          tables.incident(e), tables.exitant(e));
+                                          tables.incident(e), tables.exitant(e), update);
                       }
                     });
 }
 
+}  // namespace
+
+void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                RadianceTables& tables) {
+  reflect_all_patches(hierarchy, bins, tables, Update::kBoth);
+}
+
 void local_pass_radiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
                               RadianceTables& tables) {
-  check_sizes(hierarchy, bins, tables);
-  const std::vector<Patch>& patches = hierarchy.patches();
-  const std::vector<Element>& elements = hierarchy.elements();
-  const float bin_solid_angle = float(bins.solid_angle());
-  const std::span<glm::vec3> accumulated = tables.accumulated_irradiance();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, patches.size(), kPatchesPerBlock),
-                    [&](const tbb::blocked_range<size_t>& block) {
-                      for (size_t p = block.begin(); p != block.end(); ++p) {
-                        const Patch& patch = patches[p];
-                        const uint32_t e = patch.element;
-                        accumulated[p] += reflect_patch(patch, elements[e].area, bins,
-                                                        bin_solid_angle, tables.incident(e),
-                                                        tables.exitant(e), Update::kRadianceOnly);
-                      }
-                    });
+  reflect_all_patches(hierarchy, bins, tables, Update::kRadianceOnly);
 }
 
 double local_pass_antiradiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
