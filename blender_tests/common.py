@@ -53,6 +53,21 @@ def new_empty_scene():
     return bpy.context.scene
 
 
+class SmallCornellCase(unittest.TestCase):
+    """The add-on enabled once per file; a fresh small Cornell box (cornell_box.TEST_SUBDIVISIONS)
+    before every test, as self.objects (name -> object)."""
+
+    @classmethod
+    def setUpClass(cls):
+        new_empty_scene()
+        cls.bakegi = enable_addon()
+
+    def setUp(self):
+        import cornell_box
+        new_empty_scene()
+        self.objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+
+
 def load_reference(name):
     """(values (n, 3) float64, sidecar dict) of blender_tests/data/<name>.npy/.json."""
     values = numpy.load(os.path.join(DATA, name + ".npy")).astype(numpy.float64)

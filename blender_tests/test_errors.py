@@ -17,18 +17,9 @@ import unittest  # noqa: E402
 
 import bpy  # noqa: E402
 
-import cornell_box  # noqa: E402
 
 
-class ErrorPaths(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
-
-    def setUp(self):
-        common.new_empty_scene()
-        self.objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+class ErrorPaths(common.SmallCornellCase):
 
     def assertSceneUnchanged(self, before):
         differences = common.snapshot_difference(before, common.scene_snapshot())

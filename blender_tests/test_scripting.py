@@ -11,21 +11,12 @@ import unittest  # noqa: E402
 import bpy  # noqa: E402
 import numpy  # noqa: E402
 
-import cornell_box  # noqa: E402
 import metrics  # noqa: E402
 
 NAMES = ("Floor", "Ceiling", "BackWall", "LeftWall", "RightWall", "ShortBox", "TallBox")
 
 
-class Scripting(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
-
-    def setUp(self):
-        common.new_empty_scene()
-        self.objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+class Scripting(common.SmallCornellCase):
 
     def test_report(self):
         report = self.bakegi.bake(method="pathtrace", samples=16, seed=3, target="CORNER", objects="VISIBLE")

@@ -96,6 +96,18 @@ inline PointsPtr new_floor_points(size_t count) {
   return PointsPtr(points);
 }
 
+// Starts a pathtrace job of 2^24 samples per point on the box scene: hours of work, so only
+// cancel (or destroy) ends it while a test watches. The caller owns the job.
+inline bakegi_job* start_endless_job(size_t point_count) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(point_count);
+  SettingsPtr settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 1 << 24), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  EXPECT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  return job;  // the job keeps its own copies of scene, points and settings
+}
+
 inline std::string last_error() {
   return bakegi_last_error();
 }

@@ -432,13 +432,9 @@ TEST(ApiErrors, InvalidSceneFailsTheJobWithItsMessage) {
 }
 
 TEST(ApiErrors, ResultAndReportBeforeDoneAndWrongCount) {
-  ScenePtr scene = new_box_scene();
-  PointsPtr points = new_floor_points(64);
-  SettingsPtr settings = new_settings();
   // Far more work than the test waits for: the job is cancelled below.
-  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 1 << 24), BAKEGI_OK);
-  bakegi_job* job = nullptr;
-  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  bakegi_job* job = start_endless_job(64);
+  ASSERT_NE(job, nullptr);
   JobPtr owned(job);
   std::vector<float> rgb(3 * 64);
   EXPECT_ERROR(bakegi_job_get_result(job, rgb.data(), 64), BAKEGI_ERROR_NOT_READY,
@@ -449,7 +445,9 @@ TEST(ApiErrors, ResultAndReportBeforeDoneAndWrongCount) {
   bakegi_job_cancel(job);
   EXPECT_EQ(bakegi_job_wait(job), BAKEGI_ERROR_CANCELLED);
 
-  settings = new_settings();
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(64);
+  SettingsPtr settings = new_settings();
   EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 1), BAKEGI_OK);
   ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
   owned.reset(job);

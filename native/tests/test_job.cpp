@@ -271,13 +271,9 @@ TEST(BakeJob, ProgressIsMonotoneReachesOneAndTheReportIsComplete) {
 }
 
 TEST(BakeJob, CancelStopsALongJobPromptly) {
-  ScenePtr scene = new_box_scene();
-  PointsPtr points = new_floor_points(256);
-  SettingsPtr settings = new_settings();
   // Hours of work at full speed: only cancel can end it within the test.
-  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 1 << 24), BAKEGI_OK);
-  bakegi_job* job = nullptr;
-  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  bakegi_job* job = start_endless_job(256);
+  ASSERT_NE(job, nullptr);
   JobPtr owned(job);
   // Let it get into the long stage.
   const auto started = Clock::now();
@@ -302,12 +298,8 @@ TEST(BakeJob, CancelStopsALongJobPromptly) {
 }
 
 TEST(BakeJob, DestroyingARunningJobCancelsIt) {
-  ScenePtr scene = new_box_scene();
-  PointsPtr points = new_floor_points(64);
-  SettingsPtr settings = new_settings();
-  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 1 << 24), BAKEGI_OK);
-  bakegi_job* job = nullptr;
-  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  bakegi_job* job = start_endless_job(64);
+  ASSERT_NE(job, nullptr);
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   const auto start = Clock::now();
   bakegi_job_destroy(job);
