@@ -219,8 +219,9 @@ class SceneExporter:
             texture = self._texture(info.texture.image) if info.texture is not None else None
             if info.texture is not None and texture is None:
                 info.texture = None
-            self.material_ids[key] = self.scene.add_material(info.albedo, info.emission,
-                                                             texture, emission_two_sided=True)
+            self.material_ids[key] = self.scene.add_material(
+                info.albedo, info.emission, texture, emission_two_sided=True,
+                glossy=info.glossy, glossy_exponent=info.glossy_exponent)
             if original is not None:
                 self.material_infos[key] = info
         info = self.material_infos[key] if key is not None else materials.MaterialInfo()

@@ -2,10 +2,14 @@
 """Blender materials: what the core needs to know of them, and the Material Preview hook.
 
 read_material(material) -> MaterialInfo: diffuse albedo (a constant times an optional
-image texture sampled at a UV map) and emitted radiance, from the node tree:
-  - Principled BSDF: base color x (1 - metallic) x (1 - transmission); emission color x
-    emission strength;
-  - Diffuse BSDF: its color; Emission shader: an emitter with black albedo;
+image texture sampled at a UV map), an optional glossy lobe (see "glossy lobes" below for the
+mapping and its approximations) and emitted radiance, from the node tree:
+  - Principled BSDF: diffuse base color x (1 - metallic) x (1 - transmission) (x (1 - F_avg)
+    in Blender 4.x, whose Principled v2 layers the specular over the base);
+    glossy metallic x base color + dielectric F_avg; emission color x emission strength;
+  - Diffuse BSDF: its color, no glossy lobe (exported exactly as before glossy lobes);
+  - Glossy BSDF (and Blender 3.x's Anisotropic BSDF): a glossy lobe of its color;
+  - Emission shader: an emitter with black albedo;
   - Mix / Add Shader: mixed best-effort, with a warning;
   - an Image Texture linked (directly or through reroutes) into the color is sampled,
     with the UV map of its vector input (default: the mesh's active render UV map);
@@ -66,6 +70,9 @@ class MaterialInfo:
     # and references into node trees do not survive an undo in between.
     color_source: Optional[Tuple[str, int]] = None
     albedo_factor: float = 1.0  # what multiplies color_source's color to give the albedo
+    # The modified Phong lobe of the core (bakegi.h): reflectance and exponent; 0 = none.
+    glossy: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    glossy_exponent: float = 0.0
 
 
 # ---- colour -----------------------------------------------------------------------------
@@ -188,6 +195,59 @@ def _scaled(c, s):
     return (c[0] * s, c[1] * s, c[2] * s)
 
 
+# ---- glossy lobes ------------------------------------------------------------------------
+#
+# The core's glossy lobe is the normalized modified Phong BRDF (Lafortune & Willems 1994),
+# f = rho_g (n + 2) / (2 pi) cos^n(angle to the mirror direction): a reflectance rho_g and
+# an exponent n, no Fresnel, no anisotropy. Blender's microfacet lobes map onto it as:
+#   - exponent from roughness r: Blender's alpha = r^2; n_h = 2 / alpha^2 - 2 is the Phong
+#     exponent of the microfacet normals (half vectors) that matches a Beckmann
+#     distribution of that alpha near its peak (Walter et al. 2007). The core's lobe is
+#     around the mirror direction, which turns twice as fast as the half vector:
+#     cos^n_h(a / 2) ~ exp(-n_h a^2 / 8) = cos^(n_h / 4)(a), so n = n_h / 4, clamped to
+#     [0, MAX_GLOSSY_EXPONENT]; r = 1 gives n = 0, r = 0.5 gives 7.5, r = 0.2 about 312;
+#   - reflectance: a conductor (metallic, Glossy BSDF) reflects its color; a dielectric
+#     reflects the Fresnel term averaged over the hemisphere, for Schlick's
+#     F = F0 + (1 - F0)(1 - cos)^5 cosine-weighted: F_avg = F0 + (1 - F0) / 21, with F0 from
+#     Specular (3.x: F0 = 0.08 x specular) or IOR and Specular IOR Level (4.x:
+#     F0 = ((ior - 1) / (ior + 1))^2 x 2 x level). Specular tint and anisotropy are ignored.
+# Approximations: the angular shape of Fresnel (stronger at grazing) is averaged away;
+# multiple scattering on rough metal (Cycles' multiscatter GGX) is ignored; the diffuse
+# base under a dielectric is attenuated by (1 - F_avg) in 4.x, as Principled v2 does, and
+# kept whole in 3.x, which adds the specular on top (where the sum would exceed 1, which
+# the core refuses, the glossy part is clamped to 1 - albedo).
+MAX_GLOSSY_EXPONENT = 10000.0  # ~0.8 degree lobe: far narrower than any bin or patch
+
+
+def phong_exponent(roughness):
+    r = min(max(float(roughness), 0.0), 1.0)
+    alpha = r * r
+    if alpha <= 0.0:
+        return MAX_GLOSSY_EXPONENT
+    return min(max((2.0 / (alpha * alpha) - 2.0) / 4.0, 0.0), MAX_GLOSSY_EXPONENT)
+
+
+def fresnel_hemispherical_average(f0):
+    """Cosine-weighted average over the hemisphere of Schlick's Fresnel with F0."""
+    f0 = min(max(float(f0), 0.0), 1.0)
+    return f0 + (1.0 - f0) / 21.0
+
+
+def _principled_f0(node, info, what):
+    level = _input(node, "Specular IOR Level")
+    if level is not None:  # Blender 4.x
+        ior = _float_input(node, ("IOR",), 1.5, info, what)
+        r = (ior - 1.0) / (ior + 1.0) if ior > 0.0 else 0.0
+        return r * r * 2.0 * _float_input(node, ("Specular IOR Level",), 0.5, info, what)
+    return 0.08 * _float_input(node, ("Specular",), 0.5, info, what)
+
+
+def _glossy_lobe(reflectance, roughness):
+    if max(reflectance) <= 0.0:
+        return None
+    return (tuple(min(max(float(c), 0.0), 1.0) for c in reflectance), phong_exponent(roughness))
+
+
 def _read_shader(socket_out, info, what, depth=0):
     """Reads the shader behind output socket `socket_out`; returns
     (albedo, texture, emission, color_socket, albedo_factor)."""
@@ -196,13 +256,26 @@ def _read_shader(socket_out, info, what, depth=0):
     kind = node.type
     if depth > 16:
         info.warnings.append(f"{what}: shader tree too deep; read as black")
-        return black, None, black, None, 1.0
+        return black, None, black, None, 1.0, None
     if kind == "BSDF_PRINCIPLED":
         base, texture, color_socket = _read_color(_input(node, "Base Color"), info, what)
         metallic = _float_input(node, ("Metallic",), 0.0, info, what)
         transmission = _float_input(node, ("Transmission Weight", "Transmission"), 0.0, info,
                                     what)
-        factor = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
+        dielectric = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
+        roughness = _float_input(node, ("Roughness",), 0.5, info, what)
+        f_avg = fresnel_hemispherical_average(_principled_f0(node, info, what))
+        if texture is not None and metallic > 0.0:
+            info.warnings.append(f"{what}: a textured metallic color is read as the base "
+                                 "color's default value for the glossy lobe")
+        metal_color = _color_value(_input(node, "Base Color")) if texture is not None else base
+        glossy = _glossy_lobe([metallic * c + dielectric * f_avg for c in metal_color],
+                              roughness)
+        # Cycles 4.x's Principled v2 layers the specular over the diffuse base (which loses
+        # what the coat reflects); 3.x's v1 adds it on top, leaving the diffuse untouched, so
+        # each version is matched as rendered (the glossy part is clamped to 1 - albedo below).
+        layered = _input(node, "Specular IOR Level") is not None
+        factor = dielectric * (1.0 - f_avg) if layered else dielectric
         emission = black
         em_socket = _input(node, "Emission Color", "Emission")
         if em_socket is not None:
@@ -210,23 +283,30 @@ def _read_shader(socket_out, info, what, depth=0):
                 info.warnings.append(f"{what}: a linked emission color is read as its default")
             strength = _float_input(node, ("Emission Strength",), 1.0, info, what)
             emission = light_units.emission_radiance(_color_value(em_socket), strength)
-        return _scaled(base, factor), texture, emission, color_socket, factor
+        return _scaled(base, factor), texture, emission, color_socket, factor, glossy
     if kind == "BSDF_DIFFUSE":
         base, texture, color_socket = _read_color(node.inputs["Color"], info, what)
-        return base, texture, black, color_socket, 1.0
+        return base, texture, black, color_socket, 1.0, None
+    if kind in ("BSDF_GLOSSY", "BSDF_ANISOTROPIC"):
+        color, texture, _ = _read_color(node.inputs["Color"], info, what)
+        if texture is not None:
+            info.warnings.append(f"{what}: a textured glossy color is read as its default value")
+            color = _color_value(node.inputs["Color"])
+        roughness = _float_input(node, ("Roughness",), 0.5, info, what)
+        return black, None, black, None, 1.0, _glossy_lobe(color, roughness)
     if kind == "EMISSION":
         color, texture, _ = _read_color(node.inputs["Color"], info, what)
         if texture is not None:
             info.warnings.append(f"{what}: a textured emission color is read as white")
         strength = _float_input(node, ("Strength",), 1.0, info, what)
-        return black, None, light_units.emission_radiance(color, strength), None, 1.0
+        return black, None, light_units.emission_radiance(color, strength), None, 1.0, None
     if kind in ("MIX_SHADER", "ADD_SHADER"):
         shader_inputs = [s for s in node.inputs if s.type == "SHADER"]
         parts = []
         for s in shader_inputs:
             src = _linked_from(s)
             parts.append(_read_shader(src, info, what, depth + 1) if src is not None
-                         else (black, None, black, None, 1.0))
+                         else (black, None, black, None, 1.0, None))
         if kind == "MIX_SHADER":
             fac = min(max(_float_input(node, ("Fac",), 0.5, info, what), 0.0), 1.0)
             weights = (1.0 - fac, fac)
@@ -241,21 +321,42 @@ def _read_shader(socket_out, info, what, depth=0):
                 albedo[k] += w * part[0][k]
                 emission[k] += w * part[2][k]
         albedo = tuple(min(a, 1.0) for a in albedo)
+        glossy = _mixed_glossy(weights, parts)
         # Keep the texture of the part that weighs most, scaled by its weight.
         best = max(range(len(parts)), key=lambda i: weights[i] * max(parts[i][0]), default=None)
         if best is not None and parts[best][1] is not None:
             w = weights[best]
             return (_scaled(parts[best][0], w), parts[best][1], tuple(emission), parts[best][3],
-                    parts[best][4] * w)
-        return albedo, None, tuple(emission), None, 1.0
+                    parts[best][4] * w, glossy)
+        return albedo, None, tuple(emission), None, 1.0, glossy
     # Any other shader: its colour input's default value, as diffuse.
     color = _input(node, "Color", "Base Color")
     info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) is approximated as a diffuse "
                          "surface")
     if color is None or not hasattr(color.default_value, "__len__"):
-        return DEFAULT_ALBEDO, None, black, None, 1.0
+        return DEFAULT_ALBEDO, None, black, None, 1.0, None
     base, texture, color_socket = _read_color(color, info, what)
-    return base, texture, black, color_socket, 1.0
+    return base, texture, black, color_socket, 1.0, None
+
+
+def _mixed_glossy(weights, parts):
+    """The weighted sum of the parts' glossy reflectances, with their exponents averaged
+    by reflectance (one lobe cannot hold two; the mix already warns)."""
+    reflectance = [0.0, 0.0, 0.0]
+    exponent_sum = 0.0
+    weight_sum = 0.0
+    for w, part in zip(weights, parts):
+        if part[5] is None:
+            continue
+        rgb, exponent = part[5]
+        for k in range(3):
+            reflectance[k] += w * rgb[k]
+        strength = w * max(rgb)
+        exponent_sum += strength * exponent
+        weight_sum += strength
+    if weight_sum <= 0.0:
+        return None
+    return tuple(min(c, 1.0) for c in reflectance), exponent_sum / weight_sum
 
 
 def active_output(tree):
@@ -293,8 +394,13 @@ def read_material(material):
     if surface is None:
         info.albedo = (0.0, 0.0, 0.0)  # Cycles renders an unconnected surface black
         return info
-    albedo, texture, emission, color_socket, factor = _read_shader(surface, info, what)
+    albedo, texture, emission, color_socket, factor, glossy = _read_shader(surface, info, what)
     info.albedo = tuple(min(max(float(a), 0.0), 1.0) for a in albedo)
+    if glossy is not None:
+        # The core refuses albedo + glossy > 1 per channel: a mix can exceed it, so the glossy
+        # lobe gives way (the diffuse albedo is what the bake's output is defined with).
+        info.glossy = tuple(max(0.0, min(float(g), 1.0 - a)) for g, a in zip(glossy[0], info.albedo))
+        info.glossy_exponent = float(glossy[1]) if max(info.glossy) > 0.0 else 0.0
     info.texture = texture
     info.emission = tuple(max(float(e), 0.0) for e in emission)
     if color_socket is not None:

@@ -6,15 +6,21 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "light_transport_fixtures.h"
+#include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "scene/scene_validation.h"
+#include "solvers/antiradiance/back_sides.h"
+#include "solvers/antiradiance/bin_spreading.h"
+#include "solvers/antiradiance/directional_bins.h"
 #include "solvers/antiradiance/element_hierarchy.h"
+#include "solvers/antiradiance/link_refinement.h"
 #include "util/error.h"
 
 namespace bakegi::test {
@@ -87,7 +93,10 @@ void expect_consistent_hierarchy(const Scene& scene, const ElementHierarchy& h) 
   EXPECT_EQ(root.parent, kNoElement);
   EXPECT_EQ(root.level, 0);
   EXPECT_EQ(root.subtree_end, elements.size());
-  EXPECT_NEAR(root.area, scene_area(scene), kRelativeTolerance * scene_area(scene));
+  // Back sides (twins of open meshes' patches) add their area once more.
+  double area = scene_area(scene);
+  for (const Patch& p : patches) area += p.back_side ? double(elements[p.element].area) : 0.0;
+  EXPECT_NEAR(root.area, area, kRelativeTolerance * area);
 
   size_t patch_elements = 0;
   for (uint32_t i = 0; i < elements.size(); ++i) {
@@ -185,14 +194,18 @@ TEST(AntiradianceHierarchy, EstimateEqualsTheBuiltCount) {
   const Scene scene = build_scene(cornell_like());
   for (const float max_edge : {10.0f, 1.0f, 0.3f, 0.1f}) {
     SCOPED_TRACE(max_edge);
-    const uint64_t estimate = antiradiance::estimate_elements(scene, max_edge);
+    // Without a tracer there are no back sides: the count without them is exact.
+    const uint64_t estimate = antiradiance::estimate_elements(scene, max_edge, false);
     const ElementHierarchy h(scene, HierarchyOptions{max_edge, 0});
     EXPECT_EQ(estimate, h.element_count());
-    EXPECT_EQ(antiradiance::estimate_patches(scene, max_edge), h.patch_count());
-    EXPECT_EQ(antiradiance::estimate_hierarchy_bytes(scene, max_edge), h.memory_bytes());
+    EXPECT_EQ(antiradiance::estimate_patches(scene, max_edge, false), h.patch_count());
+    EXPECT_EQ(antiradiance::estimate_hierarchy_bytes(scene, max_edge, false), h.memory_bytes());
+    // The default counts a back side for every triangle of the five open wall quads.
+    EXPECT_GT(antiradiance::estimate_patches(scene, max_edge), h.patch_count());
   }
-  // Coarser than every triangle: one patch per triangle.
-  EXPECT_EQ(antiradiance::estimate_patches(scene, 10.0f), scene.triangles.size());
+  // Coarser than every triangle: one patch per triangle (two for the walls' 10 triangles).
+  EXPECT_EQ(antiradiance::estimate_patches(scene, 10.0f, false), scene.triangles.size());
+  EXPECT_EQ(antiradiance::estimate_patches(scene, 10.0f), scene.triangles.size() + 10);
 }
 
 // A right triangle with legs 1 (longest edge sqrt 2) and threshold 0.5 is split twice
@@ -360,8 +373,10 @@ TEST(AntiradianceHierarchy, BudgetIsCheckedBeforeBuilding) {
   EXPECT_GT(coarser, max_edge);
   EXPECT_LE(antiradiance::estimate_elements(scene, coarser), budget);
   EXPECT_GT(antiradiance::estimate_elements(scene, 0.5f * coarser), budget);
+  // The budget estimate is an upper bound (back sides for all open meshes' triangles); the
+  // build without a tracer has none.
   EXPECT_EQ(ElementHierarchy(scene, HierarchyOptions{coarser, budget}).element_count(),
-            antiradiance::estimate_elements(scene, coarser));
+            antiradiance::estimate_elements(scene, coarser, false));
   EXPECT_EQ(antiradiance::max_edge_within_budget(scene, max_edge, needed), max_edge);
 
   for (const float bad :
@@ -390,6 +405,124 @@ TEST(AntiradianceHierarchy, LayoutIsDeterministic) {
     EXPECT_EQ(a.elements()[i].center, b.elements()[i].center);
     EXPECT_EQ(a.elements()[i].subtree_end, b.elements()[i].subtree_end);
   }
+}
+
+// ---- Back sides of open meshes (back_sides.h) ----
+
+// A closed inward room [-1, 1]² × [0, 2] divided at x = 0 by a one-sided plane facing -x
+// (both halves are rooms); in the +x half an open box (no bottom face) stands on the floor.
+SceneDescription divided_room() {
+  SceneDescription d;
+  const uint32_t white = add_material(d, glm::vec3(0.6f));
+  d.meshes.push_back(make_cube({-1, -1, 0}, {1, 1, 2}, Facing::kInward, white));
+  add_quad(d, {0, 0, 1}, {0, 0, 1}, {0, 1, 0}, 1, 1, white);  // normal (0,0,1)x(0,1,0) = -x
+  Mesh box = make_cube({0.4f, -0.3f, 0}, {0.8f, 0.1f, 0.4f}, Facing::kOutward, white);
+  box.indices.erase(box.indices.begin(), box.indices.begin() + 6);  // the bottom (z = lo) face
+  d.meshes.push_back(box);
+  d.lights.push_back(point_light({-0.5f, 0, 1.5f}, glm::vec3(5.0f)));
+  return d;
+}
+
+TEST(AntiradianceBackSides, OnlyOpenSurfacesFacingOpenSpaceGetTwins) {
+  const Scene scene = build_scene(divided_room());
+  ASSERT_EQ(scene.mesh_topology.size(), 3u);
+  EXPECT_FALSE(scene.mesh_topology[0].open());
+  EXPECT_TRUE(scene.mesh_topology[1].open());
+  EXPECT_TRUE(scene.mesh_topology[2].open());
+  const RayTracer tracer(scene);
+  const std::vector<uint8_t> exposed = antiradiance::exposed_back_sides(scene, tracer);
+  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    SCOPED_TRACE(i);
+    const uint32_t mesh = scene.triangles[i].mesh;
+    // The plane's back looks into the +x half (open); the closed room needs none; the box's
+    // backs look into the cavity it closes with the floor, whose floor sees the box's inside.
+    EXPECT_EQ(exposed[i], mesh == 1 ? 1 : 0);
+  }
+}
+
+TEST(AntiradianceBackSides, TwinsMirrorTheirPatchesAndNeverLink) {
+  const Scene scene = build_scene(divided_room());
+  const RayTracer tracer(scene);
+  const float max_edge = 0.3f;
+  const ElementHierarchy one_sided(scene, HierarchyOptions{max_edge, 0});
+  const ElementHierarchy h(scene, HierarchyOptions{max_edge, 0, &tracer});
+  EXPECT_EQ(one_sided.back_side_count(), 0u);
+  size_t plane_patches = 0;
+  for (const Patch& p : one_sided.patches()) plane_patches += scene.triangles[p.triangle].mesh == 1;
+  ASSERT_GT(plane_patches, 0u);
+  EXPECT_EQ(h.back_side_count(), plane_patches);
+  EXPECT_EQ(h.patch_count(), one_sided.patch_count() + plane_patches);
+  // The upper-bound estimate also counts the open box's triangles.
+  EXPECT_GT(antiradiance::estimate_patches(scene, max_edge), h.patch_count());
+  expect_consistent_hierarchy(scene, h);
+
+  // Each twin: the same center (bit for bit) and area as a front patch of its triangle, the
+  // opposite normal, corners counter-clockwise around it, same albedo.
+  std::map<std::pair<uint32_t, std::tuple<float, float, float>>, const Patch*> fronts;
+  auto key = [&](const Patch& p) {
+    const glm::vec3 c = h.elements()[p.element].center;
+    return std::make_pair(p.triangle, std::make_tuple(c.x, c.y, c.z));
+  };
+  for (const Patch& p : h.patches()) {
+    if (!p.back_side) fronts[key(p)] = &p;
+  }
+  size_t twins = 0;
+  for (const Patch& p : h.patches()) {
+    if (!p.back_side) continue;
+    ++twins;
+    const auto it = fronts.find(key(p));
+    ASSERT_NE(it, fronts.end());
+    const Patch& front = *it->second;
+    EXPECT_EQ(p.normal, -front.normal);
+    EXPECT_EQ(p.shading_normal, -front.shading_normal);
+    EXPECT_EQ(p.albedo, front.albedo);
+    EXPECT_NE(p.surface, front.surface);
+    EXPECT_EQ(h.elements()[p.element].area, h.elements()[front.element].area);
+    const glm::vec3 winding = glm::cross(p.corners[1] - p.corners[0], p.corners[2] - p.corners[0]);
+    EXPECT_GT(glm::dot(winding, p.normal), 0.0f);
+  }
+  EXPECT_EQ(twins, plane_patches);
+
+  // Link refinement pairs a twin with nothing in its own plane, its front patch included:
+  // centers coincide, and every patch of the plane lies in the twin's plane (Fig. 7 culls).
+  const auto bins = antiradiance::DirectionalBins::from_bin_count(48);
+  const antiradiance::BinSpreading spreading(bins);
+  const antiradiance::LinkSet links = antiradiance::build_links(h, bins, spreading);
+  ASSERT_GT(links.links.size(), 0u);
+  size_t plane_receptions = 0;
+  for (const antiradiance::Link& link : links.links) {
+    const Element& receiver = h.elements()[link.receiver];
+    const Element& sender = h.elements()[link.sender];
+    if (!receiver.is_patch || !sender.is_patch) continue;
+    const Patch& r = h.patches()[receiver.patch];
+    const Patch& s = h.patches()[sender.patch];
+    if (scene.triangles[r.triangle].mesh != 1) continue;
+    ++plane_receptions;
+    EXPECT_FALSE(scene.triangles[s.triangle].mesh == 1)
+        << "a patch of the plane receives from the plane itself";
+    // A receiver on the plane only hears senders on its own side.
+    EXPECT_GT(glm::dot(r.normal, sender.center - receiver.center), 0.0f);
+  }
+  EXPECT_GT(plane_receptions, 0u);
+}
+
+TEST(AntiradianceBackSides, EmptyOrLitWorldDecidesPlanesFacingNothing) {
+  // A lone plane: its back faces only the world. Black: nothing can arrive, no twin; lit: the
+  // sky arrives there and must be reflected and blocked, so a twin.
+  SceneDescription d;
+  const uint32_t white = add_material(d, glm::vec3(0.5f));
+  add_quad(d, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, white);
+  d.lights.push_back(point_light({0, 0, 1}, glm::vec3(1.0f)));
+  {
+    const Scene scene = build_scene(d);
+    const RayTracer tracer(scene);
+    EXPECT_EQ(ElementHierarchy(scene, HierarchyOptions{0.5f, 0, &tracer}).back_side_count(), 0u);
+  }
+  d.world_radiance = glm::vec3(0.1f);
+  const Scene scene = build_scene(d);
+  const RayTracer tracer(scene);
+  const ElementHierarchy h(scene, HierarchyOptions{0.5f, 0, &tracer});
+  EXPECT_EQ(h.back_side_count() * 2, h.patch_count());
 }
 
 }  // namespace

@@ -36,6 +36,8 @@ ScenePtr new_full_scene() {
   bakegi_material_desc glowing = grey_material(0.3f);
   glowing.emission[0] = 2.5f, glowing.emission[1] = 1.0f / 3.0f, glowing.emission[2] = 0.0f;
   glowing.emission_two_sided = 0;
+  glowing.glossy[0] = 0.5f, glowing.glossy[1] = 0.25f, glowing.glossy[2] = 0.7f;
+  glowing.glossy_exponent = 1234.5f;
   EXPECT_EQ(bakegi_scene_add_material(scene.get(), &glowing, nullptr), BAKEGI_OK);
 
   const BoxMesh box;
@@ -129,7 +131,10 @@ TEST(SceneFile, RoundTripIsExact) {
     EXPECT_EQ(a.materials[i].albedo_texture, b.materials[i].albedo_texture);
     EXPECT_EQ(a.materials[i].emission, b.materials[i].emission);
     EXPECT_EQ(a.materials[i].emission_two_sided, b.materials[i].emission_two_sided);
+    EXPECT_EQ(a.materials[i].glossy, b.materials[i].glossy);
+    EXPECT_TRUE(same_bits(a.materials[i].glossy_exponent, b.materials[i].glossy_exponent));
   }
+  EXPECT_TRUE(b.materials[1].has_glossy());
   EXPECT_FALSE(b.materials[1].emission_two_sided);
   ASSERT_EQ(b.meshes.size(), 2u);
   for (size_t i = 0; i < 2; ++i) {
@@ -245,9 +250,9 @@ void reseal(std::vector<uint8_t>& bytes) {
 TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   ScenePtr scene = new_box_scene();
   const std::vector<uint8_t> bytes = encode_scene_file(scene->description, nullptr);
-  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 32), then MESH: 16-byte
+  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 48), then MESH: 16-byte
   // section header, u32 mesh count, then object_id, material, vertex count.
-  const size_t vertex_count_at = 24 + 20 + 52 + 16 + 4 + 8;
+  const size_t vertex_count_at = 24 + 20 + 68 + 16 + 4 + 8;
   ASSERT_EQ(bytes[vertex_count_at], 8u);  // the box has 8 vertices
   std::vector<uint8_t> forged = bytes;
   for (int i = 0; i < 4; ++i) forged[vertex_count_at + i] = 0xFF;  // 4 billion vertices
@@ -273,6 +278,48 @@ TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE);
     EXPECT_NE(std::string(e.what()).find("vertex 0: position is NaN"), std::string::npos)
+        << e.what();
+  }
+}
+
+// Rewrites a version-2 encoding of a scene with one material as version 1 (32-byte
+// materials without the glossy lobe), as older builds wrote it.
+std::vector<uint8_t> as_version_1(const std::vector<uint8_t>& v2) {
+  const size_t materials_at = 24 + 20;  // MATL section header
+  const size_t glossy_at = materials_at + 16 + 4 + 32;
+  std::vector<uint8_t> v1(v2.begin(), v2.begin() + std::ptrdiff_t(glossy_at));
+  v1.insert(v1.end(), v2.begin() + std::ptrdiff_t(glossy_at + 16), v2.end());
+  auto put_u64 = [&](size_t at, uint64_t value) {
+    for (int i = 0; i < 8; ++i) v1[at + i] = uint8_t(value >> (8 * i));
+  };
+  v1[8] = 1;                          // format version
+  put_u64(materials_at + 8, 4 + 32);  // MATL section bytes
+  put_u64(16, v1.size() - 24 - 8);    // payload bytes
+  reseal(v1);
+  return v1;
+}
+
+TEST(SceneFile, VersionOneFilesAreReadAsDiffuse) {
+  ScenePtr scene = new_box_scene();
+  ASSERT_EQ(scene->description.materials.size(), 1u);
+  const std::vector<uint8_t> v2 = encode_scene_file(scene->description, nullptr);
+  EXPECT_EQ(v2[8], kSceneFileVersion);
+  const SceneFile read = decode_scene_file(as_version_1(v2), "v1");
+  ASSERT_EQ(read.scene.materials.size(), 1u);
+  EXPECT_EQ(read.scene.materials[0].albedo, scene->description.materials[0].albedo);
+  EXPECT_FALSE(read.scene.materials[0].has_glossy());
+  EXPECT_EQ(read.scene.meshes.size(), scene->description.meshes.size());
+  EXPECT_EQ(read.scene.meshes[0].positions, scene->description.meshes[0].positions);
+
+  std::vector<uint8_t> future = v2;
+  future[8] = uint8_t(kSceneFileVersion + 1);
+  reseal(future);
+  try {
+    decode_scene_file(future, "future");
+    ADD_FAILURE() << "a future format version was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE);
+    EXPECT_NE(std::string(e.what()).find("format version 3 is not supported"), std::string::npos)
         << e.what();
   }
 }

@@ -84,6 +84,16 @@ typedef struct bakegi_material_desc {
   uint32_t albedo_texture;     /* BAKEGI_NO_TEXTURE, or a texture that multiplies albedo */
   float emission[3];           /* emitted radiance W/(m^2 sr), linear RGB; 0 = not emissive */
   uint32_t emission_two_sided; /* 1: emits from both sides (Cycles 3.4 mesh emission) */
+  /* Optional glossy lobe, added to the diffuse one: the normalized modified Phong BRDF
+   * (Lafortune & Willems 1994) f_g = glossy * (n + 2) / (2 pi) * cos^n(alpha), alpha the
+   * angle between the outgoing direction and the mirror direction of the incoming one
+   * (about the shading normal), n = glossy_exponent. Energy conserving: its directional
+   * albedo is at most `glossy` (equal at normal incidence). Zero-initialized = no glossy
+   * lobe, so callers that set only the fields above keep a purely diffuse material. */
+  float glossy[3];       /* glossy reflectance in [0,1] per channel, linear RGB; albedo +
+                            glossy must not exceed 1 in any channel */
+  float glossy_exponent; /* n >= 0, finite, at most 1e6 (0 = a second diffuse lobe;
+                            ~1000+ is a near mirror) */
 } bakegi_material_desc;
 
 BAKEGI_API bakegi_status bakegi_scene_add_material(bakegi_scene* scene,
@@ -140,6 +150,11 @@ typedef struct bakegi_light_desc {
 
 BAKEGI_API bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_desc* light,
                                                 uint32_t* out_light);
+/* Copies light `index` (in the order added) into *out_light. */
+BAKEGI_API bakegi_status bakegi_scene_get_light(const bakegi_scene* scene, uint32_t index,
+                                                bakegi_light_desc* out_light);
+/* Removes every light, so that changed ones can be added for a relight. */
+BAKEGI_API bakegi_status bakegi_scene_clear_lights(bakegi_scene* scene);
 
 /* Constant world (background) radiance W/(m^2 sr), seen by rays that leave the scene. */
 BAKEGI_API bakegi_status bakegi_scene_set_world(bakegi_scene* scene, const float radiance[3]);
@@ -200,6 +215,11 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *   "patch_size"   float   largest patch edge in metres, 0 = automatic (default 0:
  *                          scene extent / 32, coarsened to fit the memory budget)
  *   "direct_samples" int   direct-light samples per patch, 1..65536 (default 64)
+ *   "oracle"       string  how linking measures an element's solid angle: "sphere" (default,
+ *                          its bounding sphere's disk) | "projected" (its projected area:
+ *                          3-6x fewer links, a little more error)
+ *   "oracle_factor" float  refine links while an end subtends more than this many bins,
+ *                          0.05..64 (default 1, the paper's criterion)
  */
 typedef struct bakegi_settings bakegi_settings;
 
@@ -244,6 +264,25 @@ BAKEGI_API bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buff
                                                size_t* out_length);
 /* Cancels if still running, waits, and frees. */
 BAKEGI_API void bakegi_job_destroy(bakegi_job* job);
+
+/* ---- relighting ------------------------------------------------------------------------- */
+
+/* 1 if `job` finished successfully and its method kept what a relight reuses (antiradiance:
+ * bins, element hierarchy and links), else 0. */
+BAKEGI_API int bakegi_job_can_relight(const bakegi_job* job);
+/* Starts a bake of `scene` that reuses the finished `previous` job's precomputation, with
+ * the previous job's settings: only direct light and the solve run again. `settings` (NULL =
+ * none) may change what does not shape the precomputation (antiradiance: iterations,
+ * tolerance, scheme, direct_samples, seed; any method: threads); another changed key fails
+ * with BAKEGI_ERROR_INVALID_ARGUMENT. `scene` must have
+ * the same meshes, materials and textures as the previous bake's scene (lights and world may
+ * differ); a difference fails the new job with BAKEGI_ERROR_INVALID_ARGUMENT. points: NULL =
+ * the previous job's points. The previous job may be destroyed while the new one runs. */
+BAKEGI_API bakegi_status bakegi_job_start_relight(const bakegi_job* previous,
+                                                  const bakegi_scene* scene,
+                                                  const bakegi_points* points,
+                                                  const bakegi_settings* settings,
+                                                  bakegi_job** out_job);
 
 #ifdef __cplusplus
 }

@@ -80,6 +80,8 @@ bakegi_status bakegi_scene_add_material(bakegi_scene* scene, const bakegi_materi
     m.albedo_texture = material->albedo_texture;
     m.emission = {material->emission[0], material->emission[1], material->emission[2]};
     m.emission_two_sided = material->emission_two_sided == 1;
+    m.glossy = {material->glossy[0], material->glossy[1], material->glossy[2]};
+    m.glossy_exponent = material->glossy_exponent;
     bakegi::check_material(m, index);
     scene->description.materials.push_back(m);
     if (out_material) *out_material = uint32_t(index);
@@ -163,6 +165,47 @@ bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_des
     bakegi::check_light(l, index);
     scene->description.lights.push_back(l);
     if (out_light) *out_light = uint32_t(index);
+  });
+}
+
+bakegi_status bakegi_scene_get_light(const bakegi_scene* scene, uint32_t index,
+                                     bakegi_light_desc* out_light) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(out_light, "out_light");
+    const std::vector<bakegi::Light>& lights = scene->description.lights;
+    if (index >= lights.size()) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(index) +
+                                                     " is not below the light count " +
+                                                     std::to_string(lights.size()));
+    }
+    const bakegi::Light& l = lights[index];
+    auto put = [](const glm::vec3& v, float* out) {
+      out[0] = v.x;
+      out[1] = v.y;
+      out[2] = v.z;
+    };
+    bakegi_light_desc d{};
+    d.type = l.type;
+    put(l.position, d.position);
+    put(l.direction, d.direction);
+    put(l.axis_u, d.axis_u);
+    put(l.color, d.color);
+    d.radius = l.radius;
+    d.spot_size = l.spot_size;
+    d.spot_blend = l.spot_blend;
+    d.angle = l.angle;
+    d.shape = l.shape;
+    d.size_x = l.size_x;
+    d.size_y = l.size_y;
+    *out_light = d;
+  });
+}
+
+bakegi_status bakegi_scene_clear_lights(bakegi_scene* scene) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    scene->description.lights.clear();
   });
 }
 

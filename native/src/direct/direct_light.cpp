@@ -44,46 +44,66 @@ DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
   }
 }
 
-glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
-  // Light geometry is seen from the surface point itself; only the shadow ray starts off
-  // the surface, aimed at the sampled point, so the offset adds no bias to 1/d^2.
-  const glm::vec3 origin = ray_origin(x);
-  const float margin = 2.0f * ray_epsilon_;
-  glm::vec3 irradiance(0.0f);
-  auto gather = [&](const LightSample& s) {
-    const float cos_receiver = glm::dot(x.shading_normal, s.direction);
-    if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
-    const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, cos_receiver * kInvPi) : 1.0f;
-    if (!(weight > 0.0f)) return;
-    Ray shadow{origin, s.direction, 0.0f, 1e30f};
-    if (std::isfinite(s.distance)) {
-      const glm::vec3 to_light = x.position + s.direction * s.distance - origin;
-      const float distance = glm::length(to_light);
-      shadow.direction = to_light / distance;
-      shadow.tfar = distance - margin;
-    }
-    ++rays;
-    if (tracer_.occluded(shadow)) return;
-    irradiance += s.contribution * (cos_receiver * weight);
-  };
+template <typename Visit>
+void DirectLight::for_each_light_sample(const SurfacePoint& x, Pcg32& rng, Visit&& visit) const {
   LightSample s;
   for (const PointLight& light : point_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
-    if (light.sample(x.position, u1, u2, s)) gather(s);
+    if (light.sample(x.position, u1, u2, s)) visit(s);
   }
   for (const AreaLight& light : area_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
-    if (light.sample(x.position, u1, u2, s)) gather(s);
+    if (light.sample(x.position, u1, u2, s)) visit(s);
   }
   for (const SunLight& light : sun_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
-    if (light.sample(u1, u2, s)) gather(s);
+    if (light.sample(u1, u2, s)) visit(s);
   }
   if (!emissive_triangles_.empty()) {
     const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
-    if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) gather(s);
+    if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) visit(s);
   }
+}
+
+bool DirectLight::unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const {
+  // Light geometry is seen from the surface point itself; only the shadow ray starts off
+  // the surface, aimed at the sampled point, so the offset adds no bias to 1/d^2.
+  const glm::vec3 origin = ray_origin(x);
+  Ray shadow{origin, s.direction, 0.0f, 1e30f};
+  if (std::isfinite(s.distance)) {
+    const glm::vec3 to_light = x.position + s.direction * s.distance - origin;
+    const float distance = glm::length(to_light);
+    shadow.direction = to_light / distance;
+    shadow.tfar = distance - 2.0f * ray_epsilon_;
+  }
+  ++rays;
+  return !tracer_.occluded(shadow);
+}
+
+glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+  glm::vec3 irradiance(0.0f);
+  for_each_light_sample(x, rng, [&](const LightSample& s) {
+    const float cos_receiver = glm::dot(x.shading_normal, s.direction);
+    if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
+    const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, cos_receiver * kInvPi) : 1.0f;
+    if (!(weight > 0.0f) || !unoccluded(x, s, rays)) return;
+    irradiance += s.contribution * (cos_receiver * weight);
+  });
   return irradiance;
+}
+
+glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf, Pcg32& rng,
+                                     uint64_t& rays) const {
+  glm::vec3 radiance(0.0f);
+  for_each_light_sample(x, rng, [&](const LightSample& s) {
+    if (glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
+    const glm::vec3 reflected = bsdf.reflected(s.direction);
+    if (!(max_component(reflected) > 0.0f)) return;
+    const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, bsdf.pdf(s.direction)) : 1.0f;
+    if (!(weight > 0.0f) || !unoccluded(x, s, rays)) return;
+    radiance += s.contribution * reflected * weight;
+  });
+  return radiance;
 }
 
 glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3& direction,

@@ -23,6 +23,7 @@
 #include "direct/sun_light.h"
 #include "direct/surface_point.h"
 #include "scene/ray_tracer.h"
+#include "scene/surface_bsdf.h"
 
 namespace bakegi {
 
@@ -43,6 +44,12 @@ class DirectLight {
   // shadow rays into `rays`.
   glm::vec3 sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const;
 
+  // The same light samples for a general BSDF (glossy materials): the light-sampling
+  // estimate of the radiance `bsdf` reflects (Σ contribution · f cos), each sample weighted
+  // against the BSDF's own sampling density. Consumes the same random numbers as above.
+  glm::vec3 sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf, Pcg32& rng,
+                          uint64_t& rays) const;
+
   // BSDF-sampling counterpart: the MIS-weighted radiance arriving at the surface point
   // `position` along the unit `direction` (drawn with solid-angle density bsdf_pdf), given
   // the hit of the ray traced from ray_origin(): lamp shapes crossed before the hit, the hit
@@ -57,6 +64,12 @@ class DirectLight {
   const RayTracer& tracer() const { return tracer_; }
 
  private:
+  // Calls visit(sample) for one sample of every lamp and one of the emissive triangles.
+  template <typename Visit>
+  void for_each_light_sample(const SurfacePoint& x, Pcg32& rng, Visit&& visit) const;
+  // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
+  bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
+
   const Scene& scene_;
   const RayTracer& tracer_;
   float ray_epsilon_;

@@ -10,12 +10,15 @@
 #include <glm/glm.hpp>
 
 #include "bakegi/bakegi.h"
+#include "scene/mesh_topology.h"
 
 namespace bakegi {
 
 struct Texture {
   uint32_t width = 0, height = 0;
   std::vector<glm::vec3> pixels;  // linear RGB, row 0 at v = 0
+
+  bool operator==(const Texture&) const = default;
 };
 
 struct Material {
@@ -23,8 +26,14 @@ struct Material {
   uint32_t albedo_texture = BAKEGI_NO_TEXTURE;
   glm::vec3 emission{0.0f};  // radiance W/(m^2 sr)
   bool emission_two_sided = true;
+  // Optional modified Phong lobe (see bakegi_material_desc and scene/phong_lobe.h):
+  // reflectance rho_g and exponent n; rho_g = 0 means a purely diffuse material.
+  glm::vec3 glossy{0.0f};
+  float glossy_exponent = 0.0f;
 
+  bool has_glossy() const { return glossy.x > 0 || glossy.y > 0 || glossy.z > 0; }
   bool is_emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+  bool operator==(const Material&) const = default;
 };
 
 // One input mesh, kept as received (for scene files and messages).
@@ -36,6 +45,8 @@ struct Mesh {
   std::vector<uint32_t> triangle_materials;  // empty or 1 per triangle
   uint32_t material = 0;
   uint32_t object_id = 0;
+
+  bool operator==(const Mesh&) const = default;
 };
 
 struct Light {
@@ -82,6 +93,7 @@ struct Scene {
   std::vector<uint32_t> emissive_triangles;  // indices into triangles
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
   std::vector<std::string> warnings;
+  std::vector<MeshTopology> mesh_topology;  // per description.meshes entry (mesh_topology.h)
 
   const Material& material_of(const Triangle& t) const { return description.materials[t.material]; }
   float extent() const { return glm::length(bounds_max - bounds_min); }

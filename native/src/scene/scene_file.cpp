@@ -130,6 +130,8 @@ void write_scene(Writer& w, const SceneDescription& scene) {
     w.u32(m.albedo_texture);
     w.vec3(m.emission);
     w.u32(m.emission_two_sided ? 1 : 0);
+    w.vec3(m.glossy);
+    w.f32(m.glossy_exponent);
   }
   w.end_section(at);
 
@@ -193,9 +195,10 @@ void read_textures(Reader& r, SceneDescription& scene) {
   }
 }
 
-void read_materials(Reader& r, SceneDescription& scene) {
+void read_materials(Reader& r, SceneDescription& scene, uint32_t version) {
   const uint32_t count = r.u32();
-  r.array(scene.materials, count, 32, "materials", [&] {
+  const bool has_glossy = version >= 2;
+  r.array(scene.materials, count, has_glossy ? 48 : 32, "materials", [&] {
     Material m;
     m.albedo = r.vec3();
     m.albedo_texture = r.u32();
@@ -203,6 +206,10 @@ void read_materials(Reader& r, SceneDescription& scene) {
     const uint32_t two_sided = r.u32();
     if (two_sided > 1) r.fail("material emission_two_sided must be 0 or 1");
     m.emission_two_sided = two_sided == 1;
+    if (has_glossy) {
+      m.glossy = r.vec3();
+      m.glossy_exponent = r.f32();
+    }
     return m;
   });
 }
@@ -312,9 +319,10 @@ SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& n
   }
   Reader header(bytes.subspan(8, kHeaderBytes - 8), name);
   const uint32_t version = header.u32();
-  if (version != kSceneFileVersion) {
+  if (version < kOldestSceneFileVersion || version > kSceneFileVersion) {
     fail("format version " + std::to_string(version) + " is not supported (this build reads " +
-         std::to_string(kSceneFileVersion) + ")");
+         std::to_string(kOldestSceneFileVersion) + " to " + std::to_string(kSceneFileVersion) +
+         ")");
   }
   header.u32();
   const uint64_t payload_bytes = header.u64();
@@ -339,7 +347,7 @@ SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& n
     r.need(size, 1, "section");
     const size_t end = r.position() + size;
     if (expected == kTextures) read_textures(r, file.scene);
-    if (expected == kMaterials) read_materials(r, file.scene);
+    if (expected == kMaterials) read_materials(r, file.scene, version);
     if (expected == kMeshes) read_meshes(r, file.scene);
     if (expected == kLights) read_lights(r, file.scene);
     if (expected == kWorld) file.scene.world_radiance = r.vec3();

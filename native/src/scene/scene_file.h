@@ -23,7 +23,10 @@
 
 namespace bakegi {
 
-inline constexpr uint32_t kSceneFileVersion = 1;
+// Version 2 added the glossy lobe to materials (48 bytes each instead of 32). Version 1
+// files are still read: their materials are diffuse.
+inline constexpr uint32_t kSceneFileVersion = 2;
+inline constexpr uint32_t kOldestSceneFileVersion = 1;
 
 struct SceneFile {
   SceneDescription scene;

@@ -16,6 +16,10 @@ namespace {
 
 // Texture values are reflectances; a little above 1 is float rounding of a 1.
 constexpr float kTextureTolerance = 1e-4f;
+// albedo + glossy <= 1: the same rounding slack for sums made by callers in single precision.
+constexpr float kReflectanceTolerance = 1e-4f;
+// Past ~1e6 cos^n is a mirror sharper than float directions resolve (1 - cos alpha ~ 1e-6).
+constexpr float kMaxGlossyExponent = 1e6f;
 // A triangle whose doubled area is below this fraction of its longest edge squared is a
 // needle or a point: its normal is noise and it can receive no light. The threshold is
 // about float precision (2^-23 ~ 1.2e-7).
@@ -131,6 +135,24 @@ void check_material(const Material& material, size_t index) {
     invalid(name + ": albedo must be in [0,1], got " + vec(a));
   }
   check_color(material.emission, name + ": emission");
+  const glm::vec3& g = material.glossy;
+  if (!finite(g)) invalid(name + ": glossy reflectance is " + non_finite_word(g));
+  if (g.x < 0 || g.y < 0 || g.z < 0 || g.x > 1 || g.y > 1 || g.z > 1) {
+    invalid(name + ": glossy reflectance must be in [0,1], got " + vec(g));
+  }
+  // Energy conservation of the sum of both lobes (each one's directional albedo is at most
+  // its reflectance). A little slack for colors computed in single precision by callers.
+  const glm::vec3 total = a + g;
+  if (total.x > 1 + kReflectanceTolerance || total.y > 1 + kReflectanceTolerance ||
+      total.z > 1 + kReflectanceTolerance) {
+    invalid(name + ": albedo + glossy reflectance must not exceed 1 in any channel, got " + vec(a) +
+            " + " + vec(g));
+  }
+  const float n = material.glossy_exponent;
+  if (!std::isfinite(n) || n < 0 || n > kMaxGlossyExponent) {
+    invalid(name + ": glossy exponent must be finite and in [0, " + num(kMaxGlossyExponent) +
+            "], got " + num(n));
+  }
 }
 
 void check_mesh(const Mesh& mesh, size_t index) {
@@ -324,6 +346,7 @@ Scene build_scene(const SceneDescription& description) {
   size_t dropped_total = 0;
   for (size_t m = 0; m < description.meshes.size(); ++m) {
     const Mesh& mesh = description.meshes[m];
+    scene.mesh_topology.push_back(analyze_mesh_topology(mesh.positions, mesh.indices));
     const size_t triangle_count = mesh.indices.size() / 3;
     if (triangle_count == 0) continue;
     if (mesh.triangle_materials.empty() && mesh.material >= material_count) {

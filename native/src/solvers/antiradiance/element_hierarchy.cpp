@@ -5,8 +5,10 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
+#include "solvers/antiradiance/back_sides.h"
 #include "util/error.h"
 
 namespace bakegi::antiradiance {
@@ -95,6 +97,8 @@ class TriangleSubdivider {
     patch.shading_normal = shading_length > 1e-6f ? shading / shading_length : patch.normal;
     patch.albedo = scene_.albedo_at(triangle_, centroid.x, centroid.y);
     patch.emission = emission_;
+    patch.glossy = scene_.material_of(triangle_).glossy;
+    patch.glossy_exponent = scene_.material_of(triangle_).glossy_exponent;
     patch.triangle = triangle_index_;
     patch.surface = surface_;
     patch.subdivision_level = uint16_t(level_);
@@ -228,25 +232,25 @@ int subdivision_level(float longest_edge, float max_edge) {
   return level;
 }
 
-uint64_t estimate_patches(const Scene& scene, float max_edge) {
+uint64_t estimate_patches(const Scene& scene, float max_edge, bool include_back_sides) {
   check_max_edge(max_edge);
   uint64_t patches = 0;
   for (const Triangle& t : scene.triangles) {
-    patches =
-        saturating_add(patches, uint64_t(1) << (2 * subdivision_level(longest_edge(t), max_edge)));
+    const uint64_t sides = include_back_sides && on_open_mesh(scene, t) ? 2 : 1;
+    patches = saturating_add(patches, sides << (2 * subdivision_level(longest_edge(t), max_edge)));
   }
   return patches;
 }
 
-uint64_t estimate_elements(const Scene& scene, float max_edge) {
-  const uint64_t patches = estimate_patches(scene, max_edge);
+uint64_t estimate_elements(const Scene& scene, float max_edge, bool include_back_sides) {
+  const uint64_t patches = estimate_patches(scene, max_edge, include_back_sides);
   if (patches == 0) return 0;
   return patches > std::numeric_limits<uint64_t>::max() / 2 ? std::numeric_limits<uint64_t>::max()
                                                             : 2 * patches - 1;
 }
 
-uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge) {
-  const uint64_t patches = estimate_patches(scene, max_edge);
+uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge, bool include_back_sides) {
+  const uint64_t patches = estimate_patches(scene, max_edge, include_back_sides);
   const uint64_t per_patch = 2 * sizeof(Element) + sizeof(Patch);
   if (patches > std::numeric_limits<uint64_t>::max() / per_patch) {
     return std::numeric_limits<uint64_t>::max();
@@ -273,7 +277,19 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     throw Error(BAKEGI_ERROR_INVALID_SCENE, "antiradiance: the scene has no triangles");
   }
 
-  const uint64_t elements = estimate_elements(scene, max_edge_);
+  // Which triangles get a back side decides the exact count, so it comes first (cheap: a few
+  // rays per triangle of an open mesh).
+  std::vector<uint8_t> back_side;
+  if (options.back_sides != nullptr) back_side = exposed_back_sides(scene, *options.back_sides);
+  uint64_t patch_count = 0;
+  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+    const uint64_t sides = !back_side.empty() && back_side[i] ? 2 : 1;
+    patch_count = saturating_add(
+        patch_count, sides << (2 * subdivision_level(longest_edge(scene.triangles[i]), max_edge_)));
+  }
+  const uint64_t elements = patch_count > std::numeric_limits<uint64_t>::max() / 2
+                                ? std::numeric_limits<uint64_t>::max()
+                                : 2 * patch_count - 1;
   const uint64_t budget = options.max_elements > 0
                               ? std::min(options.max_elements, kHardElementLimit)
                               : kHardElementLimit;
@@ -285,15 +301,33 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, message.str());
   }
 
-  std::map<std::pair<uint32_t, uint32_t>, uint32_t> surfaces;  // (mesh, material) -> id
+  // (mesh, material, side) -> id
+  std::map<std::tuple<uint32_t, uint32_t, bool>, uint32_t> surfaces;
   std::vector<PatchSeed> seeds;
-  seeds.reserve(size_t(estimate_patches(scene, max_edge_)));
+  seeds.reserve(size_t(patch_count));
   for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
     const Triangle& t = scene.triangles[i];
     const auto [it, inserted] =
-        surfaces.try_emplace({t.mesh, t.material}, uint32_t(surfaces.size()));
+        surfaces.try_emplace({t.mesh, t.material, false}, uint32_t(surfaces.size()));
+    const size_t first = seeds.size();
     TriangleSubdivider(scene, i, it->second, subdivision_level(longest_edge(t), max_edge_), seeds)
         .run();
+    if (back_side.empty() || !back_side[i]) continue;
+    const uint32_t back_surface =
+        surfaces.try_emplace({t.mesh, t.material, true}, uint32_t(surfaces.size())).first->second;
+    const bool emits_back = scene.material_of(t).emission_two_sided;
+    const size_t last = seeds.size();
+    for (size_t s = first; s < last; ++s) {
+      PatchSeed twin = seeds[s];  // the same center, bit for bit: link refinement pairs nothing
+      std::swap(twin.patch.corners[1], twin.patch.corners[2]);
+      twin.patch.normal = -twin.patch.normal;
+      twin.patch.shading_normal = -twin.patch.shading_normal;
+      if (!emits_back) twin.patch.emission = glm::vec3(0.0f);
+      twin.patch.surface = back_surface;
+      twin.patch.back_side = true;
+      seeds.push_back(twin);
+    }
+    back_side_count_ += last - first;
   }
   surface_count_ = uint32_t(surfaces.size());
 

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/ray_tracer.h"
 #include "scene/scene.h"
 
 namespace bakegi::antiradiance {
@@ -40,10 +41,15 @@ struct Patch {
   glm::vec3 shading_normal{0.0f};  // unit mean of the interpolated shading normals
   glm::vec3 albedo{0.0f};          // diffuse albedo at the centroid (texture applied)
   glm::vec3 emission{0.0f};        // radiance W/(m^2 sr) of the material
+  glm::vec3 glossy{0.0f};          // the material's Phong lobe (scene/phong_lobe.h); 0: none
+  float glossy_exponent = 0.0f;
   uint32_t element = kNoElement;   // this patch's index in ElementHierarchy::elements()
   uint32_t triangle = 0;           // index into Scene::triangles
   uint32_t surface = 0;            // see ElementHierarchy::surface_count()
   uint16_t subdivision_level = 0;  // times the source triangle was split 4-way
+  // The twin on the back of an open mesh's triangle (back_sides.h): same place, flipped
+  // normal (corners in reverse order), emission only for two-sided emissive materials.
+  bool back_side = false;
 };
 
 struct HierarchyOptions {
@@ -52,6 +58,10 @@ struct HierarchyOptions {
   // Refuse (Error OUT_OF_MEMORY, naming a patch size that fits) when the hierarchy would
   // have more elements than this; 0 leaves only the hard limit of 32-bit indices.
   uint64_t max_elements = 0;
+  // When set, triangles of open meshes whose back faces open space get a twin patch for that
+  // side (back_sides.h), decided with rays through this tracer of the same scene; when null
+  // every surface is one-sided (the paper's solids).
+  const RayTracer* back_sides = nullptr;
 };
 
 // Default patch size: the scene's bounding-box diagonal / 32. For the Cornell box (2 m room,
@@ -65,13 +75,16 @@ float default_max_edge(const Scene& scene);
 inline constexpr int kMaxSubdivisionLevel = 20;
 int subdivision_level(float longest_edge, float max_edge);
 
-// Exact counts the build will produce, computed before allocating anything (saturate at
-// UINT64_MAX). elements = 2 * patches - 1 (a binary tree with patches as leaves).
-uint64_t estimate_patches(const Scene& scene, float max_edge);
-uint64_t estimate_elements(const Scene& scene, float max_edge);
+// Counts the build will produce, computed before allocating anything (saturate at
+// UINT64_MAX). elements = 2 * patches - 1 (a binary tree with patches as leaves). Exact for a
+// build without back sides when include_back_sides is false; with it, an upper bound that
+// gives every triangle of an open mesh a twin (the exposure test drops some).
+uint64_t estimate_patches(const Scene& scene, float max_edge, bool include_back_sides = true);
+uint64_t estimate_elements(const Scene& scene, float max_edge, bool include_back_sides = true);
 // Bytes the built hierarchy holds (elements and patches, not the solver's bin tables);
 // the build briefly needs about as much again for the patches before they are ordered.
-uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge);
+uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge,
+                                  bool include_back_sides = true);
 
 // The smallest max_edge * 2^k (k >= 0) whose hierarchy has at most max_elements elements:
 // the coarsening to offer when a budget is exceeded. Returns max_edge when it already fits.
@@ -93,11 +106,13 @@ class ElementHierarchy {
   size_t patch_count() const { return patches_.size(); }
   float max_edge() const { return max_edge_; }
 
-  // Surfaces: the triangles of one mesh that share a material. Bake points interpolate only
-  // among patches of one surface; creases inside a surface (the faces of a box) are kept
-  // apart by also weighting with normal agreement, which a mesh-wide id cannot break into
-  // seams on smooth curved meshes the way a per-plane id would.
+  // Surfaces: the triangles of one mesh that share a material (and side). Bake points interpolate
+  // only among patches of one surface; creases inside a surface (the faces of a box) are kept apart
+  // by also weighting with normal agreement, which a mesh-wide id cannot break into seams on smooth
+  // curved meshes the way a per-plane id would.
   uint32_t surface_count() const { return surface_count_; }
+  // Patches that are back sides of open meshes' triangles (Patch::back_side).
+  size_t back_side_count() const { return back_side_count_; }
 
   size_t memory_bytes() const;
 
@@ -105,6 +120,7 @@ class ElementHierarchy {
   std::vector<Element> elements_;
   std::vector<Patch> patches_;
   uint32_t surface_count_ = 0;
+  size_t back_side_count_ = 0;
   float max_edge_ = 0.0f;
 };
 

@@ -3,8 +3,19 @@
 //
 // With ω_j the direction light travels (link.h), at a patch of area a and unit normal n:
 //
-//   E          = ω_bin Σ_l ⟨n|−ω_l⟩₊ L_in(ω_l)        irradiance from the front hemisphere
-//   I_L(ω_j)   = a ⟨n|ω_j⟩₊ (ρ/π) E                    Eq. 18 for a diffuse BRDF ρ/π (§4.2)
+//   E          = π Σ_l ⟨n|−ω_l⟩₊ L_in(ω_l) / Σ_l ⟨n|−ω_l⟩₊
+//                                                   irradiance from the front hemisphere: the
+//                                                   quadrature ω_bin Σ_l ⟨n|−ω_l⟩₊ L_in(ω_l)
+//                                                   normalized so a uniform field gives π L
+//                                                   (ω_bin Σ⟨n|−ω_l⟩₊ is off π by up to 0.7%
+//                                                   at 192 bins, 2.8% at 48)
+//   I_L(ω_j)   = a ⟨n|ω_j⟩₊ [(ρ_d/π) E + ρ_g G(ω_j)]  Eq. 18 for ρ_d/π plus the Phong lobe
+//   G(ω_j)     = A(⟨n|ω_j⟩) Σ_l t_l ⟨n|−ω_l⟩₊ L_in(ω_l) / Σ_l t_l ⟨n|−ω_l⟩₊
+//                                                   t: the lobe around the mirror image of ω_j
+//                                                   integrated over the bins (glossy_lobe_table.h),
+//                                                   A the analytic directional albedo; the row
+//                                                   is then scaled so its flux equals
+//                                                   Σ_l A(μ_l) E_l (no energy is created)
 //   I_A(ω_j)   = a ⟨n|−ω_j⟩₊ L_in(ω_j)                 Eq. 19: what arrived at the front goes
 //                                                       on through the back along ω_j
 //   I_ex(ω_j)  = I_L(ω_j) − I_A(ω_j)                   the two live in opposite hemispheres
@@ -13,9 +24,8 @@
 // pull() rebuilds them afterwards. The normal is the face normal, the side that defines the
 // solid (§3.1).
 //
-// Extension point for glossy materials: reflect_patch() dispatches per patch; a glossy lobe
-// (Eq. 18 with a Phong or Lafortune f) adds a branch there that computes I_L from the full
-// L_in row instead of from E. Only the diffuse path exists today.
+// Patches without a glossy lobe (Patch::glossy = 0) take the diffuse fast path only; the
+// glossy branch costs about Σ over front bins of the lobe's table size per patch.
 #pragma once
 
 #include "solvers/antiradiance/directional_bins.h"

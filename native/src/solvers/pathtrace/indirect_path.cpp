@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "direct/direct_light.h"
+#include "scene/surface_bsdf.h"
 #include "util/random.h"
 #include "util/sampling.h"
 
@@ -52,15 +53,31 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
     const SurfacePoint x = surface_at_hit(scene, hit, direction);
     const Triangle& triangle = scene.triangles[hit.triangle];
     const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
-    if (!(max_component(albedo) > 0.0f)) break;
+    const Material& material = scene.material_of(triangle);
 
-    // Next-event estimation: rho / pi * E_light.
-    radiance += throughput * albedo * (kInvPi * direct.sample_lights(x, rng, rays));
-
-    // BSDF sampling: rho / pi * (pi L) per cosine-weighted sample.
-    const DirectionSample next = sample_cosine(x, rng);
-    if (!(next.pdf > 0.0f) || glm::dot(next.direction, x.geometric_normal) <= 0.0f) break;
-    throughput *= albedo;
+    DirectionSample next;
+    if (!material.has_glossy()) {
+      // Diffuse fast path. Next-event estimation: rho / pi * E_light.
+      if (!(max_component(albedo) > 0.0f)) break;
+      radiance += throughput * albedo * (kInvPi * direct.sample_lights(x, rng, rays));
+      // BSDF sampling: rho / pi * (pi L) per cosine-weighted sample.
+      next = sample_cosine(x, rng);
+      if (!(next.pdf > 0.0f) || glm::dot(next.direction, x.geometric_normal) <= 0.0f) break;
+      throughput *= albedo;
+    } else {
+      // Diffuse + Phong: the same two strategies with the mixture's f cos and density.
+      const SurfaceBsdf bsdf(x.shading_normal, -direction, albedo, material.glossy,
+                             material.glossy_exponent);
+      radiance += throughput * direct.sample_lights(x, bsdf, rng, rays);
+      const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
+      const BsdfSample sampled = bsdf.sample(u0, u1, u2);
+      if (!(sampled.pdf > 0.0f) || glm::dot(sampled.direction, x.geometric_normal) <= 0.0f) {
+        break;
+      }
+      next = {sampled.direction, sampled.pdf};
+      throughput *= sampled.weight;
+      if (!(max_component(throughput) > 0.0f)) break;
+    }
     origin = direct.ray_origin(x);
     direction = next.direction;
     ++rays;

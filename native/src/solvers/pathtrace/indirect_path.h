@@ -8,9 +8,12 @@
 //   reflected radiance = rho_k / pi * E(x_k),
 //   E(x_k) = next-event estimate (MIS-weighted) + pi * L along a cosine-sampled ray
 //            (emission found by that ray MIS-weighted, then the next vertex's reflection),
-// so the path throughput is multiplied by rho_k per bounce. Russian roulette after a few
-// bounces keeps it unbiased; max_bounces caps the number of reflecting vertices (the last
-// one still traces its BSDF ray so that emission MIS stays consistent).
+// so the path throughput is multiplied by rho_k per bounce. A vertex whose material has a
+// glossy lobe uses the same two strategies with the diffuse + Phong mixture of
+// scene/surface_bsdf.h (f cos in the light samples, the mixture's density in MIS, f cos / pdf
+// in the throughput); diffuse vertices keep the path above exactly, random numbers included.
+// Russian roulette after a few bounces keeps it unbiased; max_bounces caps the number of reflecting
+// vertices (the last one still traces its BSDF ray so that emission MIS stays consistent).
 #pragma once
 
 #include <cstdint>
