@@ -35,6 +35,8 @@ using antiradiance::HierarchyOptions;
 using antiradiance::Link;
 using antiradiance::LinkingOptions;
 using antiradiance::LinkSet;
+using antiradiance::OracleExtent;
+using antiradiance::SpreadFilter;
 
 // One triangle with legs `leg` along x and y from `origin`, facing +z, or -z when `flipped`.
 Mesh triangle(glm::vec3 origin, float leg, bool flipped, uint32_t material) {
@@ -93,17 +95,69 @@ bool is_ancestor_or_self(const std::vector<Element>& elements, uint32_t a, uint3
   return a <= b && b < elements[a].subtree_end;
 }
 
-// Every kept link: the Eq. 17 form factor and the travel-direction bin of its centers.
+// The oracle's measure (link_refinement.h): π r²/d² for kBoundingSphere; for kProjectedArea a
+// patch's projected area, a cluster's min(π r², area), over d².
+double oracle_solid_angle(const ElementHierarchy& h, uint32_t e, const glm::dvec3& direction,
+                          double d2, OracleExtent extent = LinkingOptions{}.extent) {
+  const Element& element = h.elements()[e];
+  if (extent == OracleExtent::kBoundingSphere) {
+    return std::numbers::pi * double(element.radius) * element.radius / d2;
+  }
+  if (element.is_patch) {
+    const glm::dvec3 n(h.patches()[element.patch].normal);
+    return double(element.area) * std::abs(glm::dot(n, glm::normalize(direction))) / d2;
+  }
+  return std::min(std::numbers::pi * double(element.radius) * element.radius,
+                  double(element.area)) /
+         d2;
+}
+
+// Every kept link: the travel-direction bin of its centers and the Eq. 17 form factor, which
+// only patch pairs closer than twice their radii may lower (the near-field bound): further
+// apart, the point model a |cos| cos / d² ≤ π r² / (4 r²) stays below the bound of π/2.
 void expect_link_geometry(const ElementHierarchy& h, const DirectionalBins& bins,
                           const std::vector<Link>& links) {
   for (const Link& link : links) {
-    const glm::dvec3 travel = glm::dvec3(h.elements()[link.receiver].center) -
-                              glm::dvec3(h.elements()[link.sender].center);
+    const Element& r = h.elements()[link.receiver];
+    const Element& k = h.elements()[link.sender];
+    const glm::dvec3 travel = glm::dvec3(r.center) - glm::dvec3(k.center);
     const double d2 = glm::dot(travel, travel);
+    const double eq17 = link.form_factor * d2 * bins.solid_angle();
     // Computed in double, stored as float: one float rounding.
-    EXPECT_NEAR(link.form_factor * d2 * bins.solid_angle(), 1.0, 1e-6);
+    if (!r.is_patch || !k.is_patch || std::sqrt(d2) >= 2.0 * (r.radius + k.radius)) {
+      EXPECT_NEAR(eq17, 1.0, 1e-6);
+    } else {
+      EXPECT_GT(eq17, 0.0);
+      EXPECT_LE(eq17, 1.0 + 1e-6);
+    }
     EXPECT_EQ(link.bin, bins.bin_of(travel));
   }
+}
+
+// ∫ ⟨n|ω⟩₊ dω over the triangle (a, b, c) seen from x with normal n, by the midpoint rule on
+// `cells`² sub-triangles of the barycentric grid: Σ cos_x cos_t / r² dA, with cos_t the
+// triangle's own cosine.
+double projected_solid_angle_by_quadrature(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 x,
+                                           glm::dvec3 n, int cells) {
+  const glm::dvec3 u = (b - a) / double(cells), v = (c - a) / double(cells);
+  const glm::dvec3 cross = glm::cross(u, v);
+  const double cell_area = 0.5 * glm::length(cross);
+  const glm::dvec3 normal_t = glm::normalize(cross);
+  double sum = 0.0;
+  for (int i = 0; i < cells; ++i) {
+    for (int j = 0; i + j < cells; ++j) {
+      const glm::dvec3 centroids[2] = {a + (i + 1.0 / 3) * u + (j + 1.0 / 3) * v,
+                                       a + (i + 2.0 / 3) * u + (j + 2.0 / 3) * v};
+      for (int t = 0; t < (i + j + 1 < cells ? 2 : 1); ++t) {
+        const glm::dvec3 r = centroids[t] - x;
+        const double r2 = glm::dot(r, r), length = std::sqrt(r2);
+        const double cos_x = glm::dot(n, r) / length;
+        if (cos_x <= 0.0) continue;
+        sum += cos_x * std::abs(glm::dot(normal_t, r)) / length / r2 * cell_area;
+      }
+    }
+  }
+  return sum;
 }
 
 TEST(AntiradianceLinking, TwoFacingPatchesExchangeTheIrradianceOfEq15) {
@@ -223,17 +277,18 @@ TEST(AntiradianceLinking, ABigCloseSenderIsRefinedUntilTheOracleHolds) {
   ASSERT_FALSE(set.links.empty());
   expect_link_geometry(h, bins, set.links);
   const double omega = bins.solid_angle();
+  const double threshold = LinkingOptions{}.oracle_factor * omega;
   size_t links_to_small = 0, wide = 0;
   for (const Link& link : set.links) {
     const Element& r = elements[link.receiver];
     const Element& k = elements[link.sender];
     const glm::dvec3 between = glm::dvec3(r.center) - glm::dvec3(k.center);
     const double d2 = glm::dot(between, between);
-    const double sender_angle = std::numbers::pi * double(k.radius) * k.radius / d2;
-    const double receiver_angle = std::numbers::pi * double(r.radius) * r.radius / d2;
+    const double sender_angle = oracle_solid_angle(h, link.sender, between, d2);
+    const double receiver_angle = oracle_solid_angle(h, link.receiver, between, d2);
     if (!(r.is_patch && k.is_patch)) {
-      EXPECT_LE(sender_angle, omega);
-      EXPECT_LE(receiver_angle, omega);
+      EXPECT_LE(sender_angle, threshold);
+      EXPECT_LE(receiver_angle, threshold);
     }
     EXPECT_EQ(link.spread_class, spreading.class_of(sender_angle));
     if (sender_angle > omega) ++wide;
@@ -273,49 +328,101 @@ TEST(AntiradianceLinking, EveryPatchSeesEveryOtherPatchOfAClosedRoomExactlyOnce)
   const ElementHierarchy h(scene, HierarchyOptions{0.4f, 0});
   const size_t patches = h.patch_count();
   ASSERT_EQ(patches, 192u);
-  for (int bin_count : {48, 192}) {
-    SCOPED_TRACE(bin_count);
-    const DirectionalBins bins = DirectionalBins::from_bin_count(bin_count);
-    const BinSpreading spreading(bins);
+  // Every oracle variant: the default (bounding spheres, both ends), the projected areas at
+  // half a bin, and a coarse sender-only one.
+  LinkingOptions projected, coarse_sender_only;
+  projected.extent = coarse_sender_only.extent = OracleExtent::kProjectedArea;
+  projected.oracle_factor = 0.5;
+  coarse_sender_only.test_receiver = false;
+  coarse_sender_only.oracle_factor = 2.0;
+  for (const LinkingOptions& oracle : {LinkingOptions{}, projected, coarse_sender_only}) {
+    for (int bin_count : {48, 192}) {
+      SCOPED_TRACE(bin_count);
+      SCOPED_TRACE(oracle.oracle_factor);
+      const DirectionalBins bins = DirectionalBins::from_bin_count(bin_count);
+      const BinSpreading spreading(bins);
 
-    // Without culling, the links are a partition of all patch pairs: no gaps, no double
-    // counting, nothing from a patch to itself.
-    const LinkSet all = build_links(h, bins, spreading, LinkingOptions{0, false});
-    expect_link_geometry(h, bins, all.links);
-    const std::vector<int> full = coverage(h, all.links);
-    for (size_t p = 0; p < patches; ++p) {
-      for (size_t q = 0; q < patches; ++q) {
-        ASSERT_EQ(full[p * patches + q], p == q ? 0 : 1) << p << " " << q;
-      }
-    }
-    // The hierarchy pays: far fewer links than patch pairs.
-    EXPECT_LT(all.links.size(), patches * (patches - 1));
-
-    // With the solid assumption: every point of a convex room is in front of every wall, so
-    // only coplanar pairs (same wall) may lose their exchange; nothing counts twice.
-    const LinkSet solid = build_links(h, bins, spreading);
-    const std::vector<int> culled = coverage(h, solid.links);
-    for (size_t p = 0; p < patches; ++p) {
-      const auto& pp = h.patches()[p];
-      for (size_t q = 0; q < patches; ++q) {
-        const auto& pq = h.patches()[q];
-        const float offset =
-            glm::dot(pp.normal, h.elements()[pq.element].center - h.elements()[pp.element].center);
-        const bool coplanar = std::abs(offset) < 1e-5f;
-        if (coplanar) {
-          ASSERT_LE(culled[p * patches + q], 1);
-        } else {
-          ASSERT_EQ(culled[p * patches + q], 1) << p << " " << q;
+      // Without culling, the links are a partition of all patch pairs: no gaps, no double
+      // counting, nothing from a patch to itself.
+      LinkingOptions without_culling = oracle;
+      without_culling.cull_behind_receiver = false;
+      const LinkSet all = build_links(h, bins, spreading, without_culling);
+      expect_link_geometry(h, bins, all.links);
+      const std::vector<int> full = coverage(h, all.links);
+      for (size_t p = 0; p < patches; ++p) {
+        for (size_t q = 0; q < patches; ++q) {
+          ASSERT_EQ(full[p * patches + q], p == q ? 0 : 1) << p << " " << q;
         }
       }
+      // The hierarchy pays: far fewer links than patch pairs.
+      EXPECT_LT(all.links.size(), patches * (patches - 1));
+
+      // With the solid assumption: every point of a convex room is in front of every wall, so
+      // only coplanar pairs (same wall) may lose their exchange; nothing counts twice.
+      const LinkSet solid = build_links(h, bins, spreading, oracle);
+      const std::vector<int> culled = coverage(h, solid.links);
+      for (size_t p = 0; p < patches; ++p) {
+        const auto& pp = h.patches()[p];
+        for (size_t q = 0; q < patches; ++q) {
+          const auto& pq = h.patches()[q];
+          const float offset = glm::dot(
+              pp.normal, h.elements()[pq.element].center - h.elements()[pp.element].center);
+          const bool coplanar = std::abs(offset) < 1e-5f;
+          if (coplanar) {
+            ASSERT_LE(culled[p * patches + q], 1);
+          } else {
+            ASSERT_EQ(culled[p * patches + q], 1) << p << " " << q;
+          }
+        }
+      }
+      // No link lets a patch receive from a sender on its own plane or behind it.
+      for (const Link& link : solid.links) {
+        const Element& r = h.elements()[link.receiver];
+        if (!r.is_patch) continue;
+        EXPECT_GT(
+            glm::dot(h.patches()[r.patch].normal, h.elements()[link.sender].center - r.center),
+            0.0f);
+      }
     }
-    // No link lets a patch receive from a sender on its own plane or behind it.
-    for (const Link& link : solid.links) {
-      const Element& r = h.elements()[link.receiver];
-      if (!r.is_patch) continue;
-      EXPECT_GT(glm::dot(h.patches()[r.patch].normal, h.elements()[link.sender].center - r.center),
-                0.0f);
+  }
+}
+
+// An object resting just above a floor (here a triangle 2 cm over a congruent one, facing it):
+// Eq. 17's point model would give the floor's center a/d² ≈ 300 sr of the sender, two orders
+// of magnitude beyond any irradiance (π L), and in a scene such pairs blow the iteration up.
+// The link must deliver the exact cosine-weighted solid angle instead, as the passes compute
+// it: L_in(b) = w_b F I_ex(j) with I_ex(j) = a |⟨n_k|ω_j⟩| L, E = ω_bin Σ_b ⟨n|−ω_b⟩₊ L_in(b).
+TEST(AntiradianceLinking, ANearlyTouchingPairDeliversTheExactIrradianceNotThePointModel) {
+  const float leg = 0.5f, gap = 0.02f;
+  const Scene scene = build_scene(two_patches(leg, gap, /*lower_up=*/true, /*upper_up=*/false));
+  const ElementHierarchy h(scene, HierarchyOptions{1.0f, 0});
+  ASSERT_EQ(h.patch_count(), 2u);
+  const DirectionalBins bins = DirectionalBins::from_bin_count(192);
+  const BinSpreading spreading(bins);
+  const LinkSet set = build_links(h, bins, spreading);
+  ASSERT_EQ(set.links.size(), 2u);
+  expect_link_geometry(h, bins, set.links);
+  for (const Link& link : set.links) {
+    const Element& r = h.elements()[link.receiver];
+    const Element& k = h.elements()[link.sender];
+    const auto& to = h.patches()[r.patch];
+    const auto& from = h.patches()[k.patch];
+    const SpreadFilter filter = spreading.filter(link.spread_class, link.bin);
+    double cosines = 0.0;
+    for (size_t f = 0; f < filter.bins.size(); ++f) {
+      cosines += filter.weights[f] *
+                 std::max(0.0, -double(glm::dot(to.normal, bins.direction(filter.bins[f]))));
     }
+    const double delivered = double(k.area) *
+                             std::abs(double(glm::dot(from.normal, bins.direction(link.bin)))) *
+                             link.form_factor * bins.solid_angle() * cosines;
+    // 256² cells of 2 mm against a 20 mm gap: the midpoint rule is within 0.2%.
+    const double exact = projected_solid_angle_by_quadrature(
+        glm::dvec3(from.corners[0]), glm::dvec3(from.corners[1]), glm::dvec3(from.corners[2]),
+        glm::dvec3(r.center), glm::dvec3(to.normal), 256);
+    ASSERT_GT(exact, 0.5 * std::numbers::pi);  // the case where the bound applies
+    EXPECT_NEAR(delivered, exact, 5e-3 * exact);
+    EXPECT_LT(delivered, std::numbers::pi);
   }
 }
 

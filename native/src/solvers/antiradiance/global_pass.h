@@ -8,9 +8,12 @@
 //   L_in(i, b) += w_b · F · I_ex(k, j)   for (b, w_b) in BinSpreading::filter(class, j).
 //
 // L_in is cleared first (only exchanges of this pass are in it). Links are grouped by receiver
-// once, at construction (a stable counting sort): each receiver's row is then written by one
-// task, summing its links in their input order, so the result is free of races and
-// bit-identical for any thread count.
+// once, at construction (a stable counting sort), and sorted within a receiver by (spread
+// class, bin, sender): each receiver's row is then written by one task in that fixed order, so
+// the result is free of races and bit-identical for any thread count. Links of a receiver that
+// share class and bin have their F · I_ex summed first and the filter applied once (the same
+// sum, fewer bin updates); the senders' bins are prefetched a few links ahead, since they are
+// scattered over the whole I_ex table.
 #pragma once
 
 #include <cstddef>
@@ -36,7 +39,8 @@ class GlobalPass {
   // or bin count differs from the one the links were built for.
   void run(const BinSpreading& spreading, RadianceTables& tables) const;
 
-  // The links grouped by receiver (ascending), input order kept within a receiver.
+  // The links grouped by receiver (ascending), by (spread class, bin, sender) within a
+  // receiver, input order kept among equal keys.
   std::span<const Link> links() const { return links_; }
   size_t element_count() const { return element_count_; }
   size_t memory_bytes() const;

@@ -5,18 +5,26 @@
 // Rules, for a pair receiver i ← sender k:
 // - i == k (a self-link) is always replaced by the links between all ordered pairs of i's
 //   children, each child's self-link included; a patch's self-link produces nothing.
-// - i != k: the oracle compares the solid angle of the sender seen from the receiver,
-//   ω_k = π r_k² / d², and symmetrically ω_i = π r_i² / d² (a big receiver sees the sender in
-//   different bins from its different parts), with the bin's solid angle ω_bin = 4π/m. Here
-//   r is the element's bounding radius and d the distance of the centers: π r²/d² is the solid
-//   angle of the disk of the bounding sphere's radius facing the viewer (exact for a far
-//   sphere, an upper bound of a flat patch's, and defined for clusters, which have no normal).
-//   If either exceeds ω_bin, the element with the larger radius that is not a patch is
-//   subdivided (the sender on a tie) and its children are linked recursively. When both are
-//   patches, the link is kept as it is (the discretization threshold of §3.2) and carries the
-//   spreading class of its sender's cone (Fig. 8).
+// - i != k: the oracle compares the solid angle of the sender seen from the receiver, ω_k,
+//   and (LinkingOptions::test_receiver, the default) symmetrically ω_i (a big receiver sees
+//   the sender in different bins from its different parts) with oracle_factor · ω_bin,
+//   ω_bin = 4π/m. By default ω = π r² / d² with r the element's bounding radius and d the
+//   distance of the centers: the solid angle of the disk of the bounding sphere's radius
+//   facing the viewer (exact for a far sphere, an upper bound of a flat patch's, and defined
+//   for clusters, which have no normal). OracleExtent::kProjectedArea uses the projected area
+//   instead (fewer links; measured trade-offs in the report of issue 3). If either exceeds the
+//   bound, the element with the larger radius that is not a patch is subdivided (the sender
+//   on a tie) and its children are linked recursively. When both are patches, the link is
+//   kept as it is (the discretization threshold of §3.2) and carries the spreading class of
+//   its sender's cone (Fig. 8).
 // - A kept link gets bin = bin_of(x_i − x_k) (the direction light travels, see link.h) and
-//   form factor 1 / (d² ω_bin) (Eq. 17).
+//   form factor 1 / (d² ω_bin) (Eq. 17), except for patch pairs so close that the point model
+//   would deliver more than π/2 of cosine-weighted solid angle (objects resting on others:
+//   it can exceed π, any possible irradiance, by orders of magnitude, and the iteration blows
+//   up): their form factor is lowered so that the link delivers, through the cosines the
+//   passes apply, max(exact, π/2), with "exact" the cosine-weighted solid angle of the sender
+//   triangle from the receiver's center (Lambert's contour formula). Pairs farther apart than
+//   twice their radii never reach the bound.
 // - Solids only (Fig. 7): a link to a PATCH receiver is dropped when the sender's center lies
 //   on or behind the receiver's plane (⟨n_i | x_k − x_i⟩ ≤ 0): light arriving at the back of a
 //   solid's surface is never received. A patch sender sends into both hemispheres (radiance in
@@ -40,12 +48,29 @@ class JobContext;
 
 namespace bakegi::antiradiance {
 
+// How the oracle measures the solid angle an element subtends from a point at distance d.
+enum class OracleExtent {
+  // π r²/d² with the bounding radius r: the disk of the bounding sphere facing the viewer
+  // (exact for a far sphere; for a flat triangle ~2.4× its area even face-on).
+  kBoundingSphere,
+  // The projected area over d²: a |⟨n|ω⟩| / d² for a patch (its solid angle when far), and
+  // min(π r², a) / d² for a cluster, whose summed area bounds its projected area and which
+  // has no normal.
+  kProjectedArea,
+};
+
 struct LinkingOptions {
   // Refuse with Error(OUT_OF_MEMORY) as soon as more links than this would be kept; 0 leaves
   // only the limit of the address space. 16 bytes per link (link.h).
   uint64_t max_links = 0;
   // The Fig. 7 culling at patch receivers; off only to test the hierarchy's coverage.
   bool cull_behind_receiver = true;
+  // The oracle: a pair is refined while the sender (and, with test_receiver, the receiver)
+  // subtends more than oracle_factor · ω_bin as seen from the other end. Factor 1 is the
+  // paper's "larger than the solid angle of a bin".
+  double oracle_factor = 1.0;
+  bool test_receiver = true;
+  OracleExtent extent = OracleExtent::kBoundingSphere;
 };
 
 struct LinkingStatistics {

@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <limits>
+#include <new>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace bakegi::antiradiance {
 
@@ -19,7 +24,40 @@ uint64_t saturating_add(uint64_t a, uint64_t b) {
                                                       : a + b;
 }
 
+// Transparent huge pages are 2 MiB on x86-64 and most aarch64 kernels.
+constexpr size_t kHugePageBytes = size_t(2) << 20;
+// Smaller tables gain nothing from huge pages and would waste most of one.
+constexpr size_t kHugePageMinimumBytes = 4 * kHugePageBytes;
+
+size_t rounded_to_huge_pages(size_t bytes) {
+  return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+}
+
 }  // namespace
+
+template <class T>
+void* HugePageAllocator<T>::allocate_bytes(size_t bytes) {
+  if (bytes < kHugePageMinimumBytes) {
+    return ::operator new(bytes, std::align_val_t(alignof(T)));
+  }
+  void* p = ::operator new(rounded_to_huge_pages(bytes), std::align_val_t(kHugePageBytes));
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  // Advice only: a refusal leaves ordinary pages, which is still correct.
+  madvise(p, rounded_to_huge_pages(bytes), MADV_HUGEPAGE);
+#endif
+  return p;
+}
+
+template <class T>
+void HugePageAllocator<T>::deallocate_bytes(void* p, size_t bytes) {
+  if (bytes < kHugePageMinimumBytes) {
+    ::operator delete(p, std::align_val_t(alignof(T)));
+  } else {
+    ::operator delete(p, std::align_val_t(kHugePageBytes));
+  }
+}
+
+template struct HugePageAllocator<glm::vec3>;
 
 uint64_t RadianceTables::bytes(uint64_t elements, uint64_t patches, uint64_t bins) {
   const uint64_t per_table =

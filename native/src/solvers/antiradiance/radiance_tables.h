@@ -20,6 +20,27 @@
 
 namespace bakegi::antiradiance {
 
+// Allocates the bin tables on 2 MiB boundaries and, on Linux, asks for transparent huge pages
+// before the memory is first touched: the global pass reads one bin of a sender row scattered
+// over the whole I_ex table (tens of MB), and with 4 KiB pages nearly every such read also
+// misses the TLB. Elsewhere (or when the kernel declines) it is an ordinary aligned allocation.
+template <class T>
+struct HugePageAllocator {
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <class U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}
+  T* allocate(size_t n) { return static_cast<T*>(allocate_bytes(n * sizeof(T))); }
+  void deallocate(T* p, size_t n) { deallocate_bytes(p, n * sizeof(T)); }
+  template <class U>
+  bool operator==(const HugePageAllocator<U>&) const {
+    return true;
+  }
+
+  static void* allocate_bytes(size_t bytes);
+  static void deallocate_bytes(void* p, size_t bytes);
+};
+
 class RadianceTables {
  public:
   // Bytes the tables of `elements` × `bins` plus `patches` accumulators take (saturates at
@@ -51,17 +72,20 @@ class RadianceTables {
   size_t memory_bytes() const;
 
  private:
-  std::span<glm::vec3> row(std::vector<glm::vec3>& table, size_t element) {
+  template <class Table>
+  std::span<glm::vec3> row(Table& table, size_t element) {
     return {table.data() + element * size_t(bin_count_), size_t(bin_count_)};
   }
-  std::span<const glm::vec3> row(const std::vector<glm::vec3>& table, size_t element) const {
+  template <class Table>
+  std::span<const glm::vec3> row(const Table& table, size_t element) const {
     return {table.data() + element * size_t(bin_count_), size_t(bin_count_)};
   }
 
   size_t element_count_ = 0;
   int bin_count_ = 0;
-  std::vector<glm::vec3> exitant_;   // I_ex, element-major
-  std::vector<glm::vec3> incident_;  // L_in, element-major
+  using Table = std::vector<glm::vec3, HugePageAllocator<glm::vec3>>;
+  Table exitant_;   // I_ex, element-major
+  Table incident_;  // L_in, element-major
   std::vector<glm::vec3> accumulated_irradiance_;
 };
 
