@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "scene/ray_tracer.h"
 
 namespace bakegi::antiradiance {
 namespace {
@@ -20,8 +23,9 @@ float power(float x, int exponent) {
 
 }  // namespace
 
-SurfaceInterpolation::SurfaceInterpolation(std::vector<SurfaceSample> samples)
-    : samples_(std::move(samples)) {
+SurfaceInterpolation::SurfaceInterpolation(std::vector<SurfaceSample> samples,
+                                           const RayTracer* visibility)
+    : samples_(std::move(samples)), visibility_(visibility) {
   if (samples_.empty()) return;
   double area = 0.0;
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -82,11 +86,16 @@ glm::ivec3 SurfaceInterpolation::cell_of(const glm::vec3& position) const {
 
 glm::vec3 SurfaceInterpolation::evaluate(const glm::vec3& position, const glm::vec3& normal) const {
   if (samples_.empty()) return glm::vec3(0.0f);
+  struct Candidate {
+    uint32_t sample;
+    double weight;
+  };
+  // Reused per thread: evaluate() runs once per bake point.
+  thread_local std::vector<Candidate> candidates;
+  candidates.clear();
   const glm::ivec3 center = cell_of(position);
   const glm::ivec3 lo = glm::max(center - 1, glm::ivec3(0));
   const glm::ivec3 hi = glm::min(center + 1, dims_ - 1);
-  glm::dvec3 sum(0.0);
-  double weight_sum = 0.0;
   for (int z = lo.z; z <= hi.z; ++z) {
     for (int y = lo.y; y <= hi.y; ++y) {
       for (int x = lo.x; x <= hi.x; ++x) {
@@ -103,15 +112,41 @@ glm::vec3 SurfaceInterpolation::evaluate(const glm::vec3& position, const glm::v
           const float t2 = d2 / (h * h);
           if (!(t2 < 1.0f)) continue;
           const float falloff = (1.0f - t2) * (1.0f - t2);
-          const double w = double(falloff) * double(power(agreement, kNormalExponent));
-          sum += w * glm::dvec3(s.value);
-          weight_sum += w;
+          candidates.push_back({i, double(falloff) * double(power(agreement, kNormalExponent))});
         }
       }
     }
   }
+  glm::dvec3 sum(0.0), all_sum(0.0);
+  double weight_sum = 0.0, all_weight_sum = 0.0;
+  for (const Candidate& c : candidates) {
+    const SurfaceSample& s = samples_[c.sample];
+    all_sum += c.weight * glm::dvec3(s.value);
+    all_weight_sum += c.weight;
+    if (visibility_ != nullptr && !sees(position, normal, s)) continue;
+    sum += c.weight * glm::dvec3(s.value);
+    weight_sum += c.weight;
+  }
   if (weight_sum > 0.0 && std::isfinite(weight_sum)) return glm::vec3(sum / weight_sum);
+  if (all_weight_sum > 0.0 && std::isfinite(all_weight_sum)) {
+    return glm::vec3(all_sum / all_weight_sum);
+  }
   return nearest_fallback(position, normal);
+}
+
+bool SurfaceInterpolation::sees(const glm::vec3& position, const glm::vec3& normal,
+                                const SurfaceSample& s) const {
+  const float distance = glm::length(position - s.center);
+  if (!(distance > 0.0f)) return true;
+  const float lift = kLiftAbsolute * support_ + kLiftPerDistance * distance;
+  const glm::vec3 from = position + lift * normal;
+  const glm::vec3 to = s.center + lift * s.normal;
+  Ray ray;
+  ray.origin = from;
+  ray.direction = to - from;  // t in (0, 1) spans the segment
+  ray.tnear = 0.0f;
+  ray.tfar = 1.0f;
+  return !visibility_->occluded(ray);
 }
 
 glm::vec3 SurfaceInterpolation::nearest_fallback(const glm::vec3& position,
