@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "solvers/antiradiance/local_pass.h"
 #include "solvers/antiradiance/push_pull.h"
 #include "util/error.h"
@@ -41,6 +44,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// A bounce adding this many times the flux of the smallest bounce so far is divergence: a
+// converging iteration adds less and less (the symmetric one wobbles by a few times at most
+// when its late antiradiance arrives).
+constexpr double kSurgeFactor = 10.0;
+
+// Patch rows per task when snapshotting the tables.
+constexpr size_t kSnapshotRowsPerTask = 256;
+
 double luminance(glm::vec3 v) {
   return 0.2126 * double(v.x) + 0.7152 * double(v.y) + 0.0722 * double(v.z);
 }
@@ -71,10 +82,15 @@ void take(const ElementHierarchy& hierarchy, const RadianceTables& tables, size_
           Snapshot& snapshot) {
   const size_t m = size_t(tables.bin_count());
   snapshot.exitant.resize(hierarchy.patch_count() * m);
-  for (size_t p = 0; p < hierarchy.patch_count(); ++p) {
-    const auto row = tables.exitant(hierarchy.patches()[p].element);
-    std::copy(row.begin(), row.end(), snapshot.exitant.begin() + std::ptrdiff_t(p * m));
-  }
+  // Tens of MB per iteration: copied in parallel (each row by one task, so no ordering issue).
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, hierarchy.patch_count(), kSnapshotRowsPerTask),
+                    [&](const tbb::blocked_range<size_t>& block) {
+                      for (size_t p = block.begin(); p != block.end(); ++p) {
+                        const auto row = tables.exitant(hierarchy.patches()[p].element);
+                        std::copy(row.begin(), row.end(),
+                                  snapshot.exitant.begin() + std::ptrdiff_t(p * m));
+                      }
+                    });
   const auto accumulated = tables.accumulated_irradiance();
   snapshot.accumulated.assign(accumulated.begin(), accumulated.end());
   snapshot.history_size = history_size;
@@ -168,10 +184,14 @@ IterationResult iterate(const ElementHierarchy& hierarchy, const DirectionalBins
   const int patience = std::max(options.growth_patience, 1);
   if (scheme == IterationScheme::kAsymmetric) clear_antiradiance(hierarchy, bins, tables);
 
-  Snapshot good;
-  take(hierarchy, tables, 0, good);
+  // The direct seed (the symmetric scheme's fallback restarts from it) and the last state
+  // whose iteration did not grow.
+  Snapshot initial, good;
+  take(hierarchy, tables, 0, initial);
+  good = initial;
   std::vector<glm::vec3> before;
   int growing = 0;  // consecutive iterations whose added flux exceeded the previous one's
+  double smallest_added = std::numeric_limits<double>::infinity();  // of the current scheme
   double previous_added = std::numeric_limits<double>::infinity();
 
   // At most one fallback, so at most 2 · max_iterations iterations run; the history (the
@@ -198,28 +218,50 @@ IterationResult iterate(const ElementHierarchy& hierarchy, const DirectionalBins
     // arriving one bounce late), so its added flux can be negative.
     const bool grew = std::abs(added) > previous_added;
     growing = grew ? growing + 1 : 0;
+    // Light no closed scene of these albedos could hold (either sign: a large negative total
+    // is over-cancelled light): the discretized transport creates energy.
+    const bool over_bound = is_finite && std::abs(total) > options.flux_bound;
+    // Growth that alternates with shrinking never grows `patience` times in a row: also
+    // catch a bounce adding far more than the smallest one so far, while not converged.
+    const bool residual_large = std::abs(added) > 10.0 * options.tolerance * std::abs(total);
+    const bool surged = residual_large && std::abs(added) > kSurgeFactor * smallest_added;
+    smallest_added = std::min(smallest_added, std::abs(added));
 
-    if (!is_finite || (scheme == IterationScheme::kSymmetric && growing >= patience)) {
+    if (!is_finite || over_bound || growing >= patience || surged) {
       const size_t failed_at = result.history.size() + 1;
-      restore(hierarchy, good, tables);
-      result.history.resize(good.history_size);
+      const std::string what = !is_finite   ? "turned non-finite"
+                               : over_bound ? "exceeded the energy the lights allow"
+                                            : "grew";
       if (scheme == IterationScheme::kSymmetric) {
+        // Start the asymmetric scheme over from the direct seed: the symmetric iterates before
+        // the failure may already carry the oscillation that grew (its added flux alternates
+        // in sign, so growth shows late), and the asymmetric scheme converges from any start
+        // only to the solution of the start's own bounces.
+        restore(hierarchy, initial, tables);
+        result.history.clear();
         scheme = IterationScheme::kAsymmetric;
         result.fell_back = true;
-        result.warning = std::string("the symmetric iteration ") +
-                         (is_finite ? "grew" : "turned non-finite") + " at iteration " +
+        result.warning = std::string("the symmetric iteration ") + what + " at iteration " +
                          std::to_string(failed_at) +
-                         "; continued with the asymmetric scheme from iteration " +
-                         std::to_string(result.history.size());
+                         "; solved again with the asymmetric scheme (provably convergent, slower)";
         clear_antiradiance(hierarchy, bins, tables);
+        good = initial;
         growing = 0;
+        smallest_added = std::numeric_limits<double>::infinity();
         previous_added = result.history.empty() ? std::numeric_limits<double>::infinity()
                                                 : std::abs(result.history.back().added_flux);
         continue;
       }
+      // The asymmetric scheme converges for the continuous operators only; with too few
+      // bins or too coarse patches it can grow as well. Keep the last state that did not.
+      restore(hierarchy, good, tables);
+      result.history.resize(good.history_size);
+      result.stopped_early = true;
       result.warning += std::string(result.warning.empty() ? "" : "; ") +
-                        "the asymmetric iteration turned non-finite at iteration " +
-                        std::to_string(failed_at) + "; stopped at the last finite state";
+                        "the asymmetric iteration " + what + " at iteration " +
+                        std::to_string(failed_at) + "; kept the result of iteration " +
+                        std::to_string(result.history.size()) +
+                        " (more bins or smaller patches make the transport more accurate)";
       break;
     }
 
@@ -237,7 +279,7 @@ IterationResult iterate(const ElementHierarchy& hierarchy, const DirectionalBins
     }
   }
   result.scheme_used = scheme;
-  if (!result.converged) {
+  if (!result.converged && !result.stopped_early) {
     const std::string residual =
         result.history.empty() ? "none" : std::to_string(result.history.back().residual);
     result.warning += std::string(result.warning.empty() ? "" : "; ") + "the " +

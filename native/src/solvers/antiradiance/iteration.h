@@ -11,10 +11,14 @@
 //
 // The residual of an iteration is the flux it added to E_acc relative to the total so far.
 // The symmetric scheme is not proven to converge: when the added flux grows for
-// `growth_patience` iterations in a row, or anything turns non-finite, the driver falls back
-// to the asymmetric scheme from the last good state and records a warning.
+// `growth_patience` iterations in a row, the total exceeds `flux_bound`, or anything turns
+// non-finite, the driver solves again with the asymmetric scheme from the direct seed and
+// records a warning. The asymmetric scheme converges for the continuous operators, but the
+// discretized U can create energy (few bins, coarse patches near each other): when it fails
+// the same way, the driver restores the last good state, stops and warns.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,7 +41,10 @@ struct IterationOptions {
   int max_iterations = 32;     // radiance bounces (both schemes)
   double tolerance = 1e-4;     // stop when the residual falls below it
   int antiradiance_steps = 4;  // asymmetric: J steps per bounce at most
-  int growth_patience = 3;     // symmetric: growing iterations before the fallback
+  int growth_patience = 3;     // growing iterations before the fallback (or the stop)
+  // Σ_patches a · luminance(E_acc) that no solution can exceed (see flux_bound() in the
+  // solver); beyond it the iteration counts as diverged.
+  double flux_bound = std::numeric_limits<double>::infinity();
 };
 
 struct IterationRecord {
@@ -51,8 +58,9 @@ struct IterationResult {
   std::vector<IterationRecord> history;
   IterationScheme scheme_used = IterationScheme::kSymmetric;
   bool converged = false;
-  bool fell_back = false;  // the symmetric scheme grew and the asymmetric one finished
-  std::string warning;     // empty unless fell_back or not converged
+  bool fell_back = false;  // the symmetric scheme grew; the asymmetric one solved from the start
+  bool stopped_early = false;  // the asymmetric scheme grew too: the last good state is kept
+  std::string warning;         // empty unless fell_back or not converged
 };
 
 // Precondition: tables initialised by initialize_direct (I_ex seeded and pulled, E_acc 0).
