@@ -66,6 +66,8 @@ class MaterialDesc(Structure):
         ("albedo_texture", c_uint32),
         ("emission", c_float * 3),
         ("emission_two_sided", c_uint32),
+        ("glossy", c_float * 3),
+        ("glossy_exponent", c_float),
     ]
 
 
@@ -141,6 +143,10 @@ _SIGNATURES = {
     "bakegi_job_get_result": (c_int, [_P, POINTER(c_float), c_uint64]),
     "bakegi_job_get_report": (c_int, [_P, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
     "bakegi_job_destroy": (None, [_P]),
+    "bakegi_scene_get_light": (c_int, [_P, c_uint32, _P]),
+    "bakegi_scene_clear_lights": (c_int, [_P]),
+    "bakegi_job_can_relight": (c_int, [_P]),
+    "bakegi_job_start_relight": (c_int, [_P, _P, _P, _P, _PP]),
 }
 
 _library = None
@@ -313,12 +319,16 @@ class Scene(_Handle):
         return out.value
 
     def add_material(self, albedo, emission=(0.0, 0.0, 0.0), albedo_texture=None,
-                     emission_two_sided=True):
+                     emission_two_sided=True, glossy=(0.0, 0.0, 0.0), glossy_exponent=0.0):
+        """glossy, glossy_exponent: the optional modified Phong lobe (bakegi.h);
+        albedo + glossy must not exceed 1 per channel."""
         desc = MaterialDesc()
         desc.albedo = _triple(albedo, "albedo")
         desc.albedo_texture = NO_TEXTURE if albedo_texture is None else int(albedo_texture)
         desc.emission = _triple(emission, "emission")
         desc.emission_two_sided = 1 if emission_two_sided else 0
+        desc.glossy = _triple(glossy, "glossy")
+        desc.glossy_exponent = float(glossy_exponent)
         out = c_uint32()
         _check(load_library().bakegi_scene_add_material(self.handle, byref(desc), byref(out)),
                "bakegi_scene_add_material")
@@ -368,6 +378,10 @@ class Scene(_Handle):
         _check(load_library().bakegi_scene_add_light(self.handle, byref(desc), byref(out)),
                "bakegi_scene_add_light")
         return out.value
+
+    def clear_lights(self):
+        """Removes every light (to add changed ones for a relight)."""
+        _check(load_library().bakegi_scene_clear_lights(self.handle), "bakegi_scene_clear_lights")
 
     def set_world(self, radiance):
         _check(load_library().bakegi_scene_set_world(self.handle, _triple(radiance, "world")),
@@ -476,13 +490,33 @@ class Job(_Handle):
 
     _destroy_name = "bakegi_job_destroy"
 
-    def __init__(self, scene, points, settings):
+    def __init__(self, scene, points, settings, _handle=None, _point_count=None):
+        if _handle is not None:  # made by relight()
+            super().__init__(_handle)
+            self.point_count = _point_count
+            return
         lib = load_library()
         out = c_void_p()
         _check(lib.bakegi_job_start(scene.handle, points.handle, settings.handle, byref(out)),
                "bakegi_job_start")
         super().__init__(out.value)
         self.point_count = len(points)
+
+    @property
+    def can_relight(self):
+        """True once the job finished and its method kept what a relight reuses."""
+        return bool(load_library().bakegi_job_can_relight(self.handle))
+
+    def relight(self, scene, settings=None):
+        """Starts a job that bakes `scene` (same geometry and materials, other lights) at
+        this job's points, reusing its precomputation (bakegi_job_start_relight). `settings`
+        may change only what the method allows (antiradiance: iterations, tolerance,
+        scheme, direct_samples, seed)."""
+        out = c_void_p()
+        _check(load_library().bakegi_job_start_relight(
+            self.handle, scene.handle, None, settings.handle if settings is not None else None,
+            byref(out)), "bakegi_job_start_relight")
+        return Job(None, None, None, _handle=out.value, _point_count=self.point_count)
 
     @property
     def progress(self):

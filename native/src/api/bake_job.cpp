@@ -1,5 +1,6 @@
 #include "api/bake_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -65,6 +66,36 @@ BakeJob::BakeJob(SceneDescription description, BakePoints points, Settings setti
     : description_(std::move(description)),
       points_(std::move(points)),
       settings_(std::move(settings)) {
+  start();
+}
+
+BakeJob::BakeJob(SceneDescription description, BakePoints points,
+                 std::shared_ptr<const JobPrecomputation> previous, const Settings& overrides)
+    : description_(std::move(description)), points_(std::move(points)) {
+  if (!previous || !previous->solver || !previous->scene || !previous->tracer) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "the previous bake left nothing to relight from (it failed, was cancelled, or "
+                "its method cannot relight)");
+  }
+  settings_ = previous->settings;
+  const std::vector<std::string> changeable = make_solver(previous->method)->relight_settings();
+  for (const auto& [key, value] : overrides.values()) {
+    const bool allowed = key == "threads" ||
+                         std::find(changeable.begin(), changeable.end(), key) != changeable.end();
+    const auto before = settings_.values().find(key);
+    const bool same = before != settings_.values().end() && before->second == value;
+    if (!allowed && !same) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "setting \"" + key + "\" shaped the bake that is relit and cannot change in a " +
+                      "relight; start a full bake");
+    }
+    settings_.set(key, value);
+  }
+  previous_ = std::move(previous);
+  start();
+}
+
+void BakeJob::start() {
   settings_.check_known_keys(known_setting_keys());
   method_ = settings_.get_string("method", "pathtrace");
   // Common keys are checked here so that a bad value fails at once; their defaults belong
@@ -80,8 +111,13 @@ BakeJob::BakeJob(SceneDescription description, BakePoints points, Settings setti
   memory_budget_bytes_ = size_t(settings_.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30))
                          << 20;
   solver_ = make_solver(method_);
+  if (previous_ && !solver_->can_relight()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "method '" + method_ + "' cannot relight; start a full bake");
+  }
 
   context_.report().set_text("method", method_);
+  context_.report().set_number("relight", previous_ ? 1.0 : 0.0);
   context_.report().add_count("bake_points", points_.size());
   context_.report().add_count("rays", 0);
   context_.set_stage("queued", 0.0, 0.0);
@@ -123,6 +159,11 @@ std::string BakeJob::report_json() const {
   return context_.report().to_json();
 }
 
+std::shared_ptr<const JobPrecomputation> BakeJob::precomputation() const {
+  std::lock_guard lock(mutex_);
+  return precomputed_;
+}
+
 void BakeJob::run() noexcept {
   try {
     execute();
@@ -145,52 +186,15 @@ void BakeJob::execute() {
   report.add_count("threads", uint64_t(arena.max_concurrency()));
 
   arena.execute([&] {
-    context_.set_stage("validating", 0.0, 0.02);
-    auto stage_start = std::chrono::steady_clock::now();
-    const size_t estimate = estimate_memory(description_, points_.size());
-    report.add_count("memory_estimate_bytes", estimate);
-    if (estimate > memory_budget_bytes_) {
-      throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
-                  "the bake needs an estimated " + megabytes(estimate) + " (" +
-                      std::to_string(triangle_count(description_)) + " triangles, " +
-                      std::to_string(points_.size()) + " bake points), more than the budget of " +
-                      megabytes(memory_budget_bytes_) + " (setting memory_budget_mb)");
-    }
-    const Scene scene = build_scene(description_);
-    for (const std::string& warning : scene.warnings) report.warn(warning);
-    report.add_count("triangles", scene.triangles.size());
-    report.add_count("lights", scene.description.lights.size());
-    report.add_count("emissive_triangles", scene.emissive_triangles.size());
-    report.add_seconds("validate", seconds_since(stage_start));
-    context_.throw_if_cancelled();
-
-    context_.set_stage("building BVH", 0.02, 0.1);
-    stage_start = std::chrono::steady_clock::now();
-    RayTracerOptions options;
-    const size_t other_bytes = estimate - triangle_count(description_) * kEmbreeBytesPerTriangle;
-    options.memory_budget_bytes =
-        memory_budget_bytes_ > other_bytes ? memory_budget_bytes_ - other_bytes : 1;
-    options.progress = [this](double fraction) {
-      context_.set_stage_progress(fraction);
-      return !context_.is_cancelled();
-    };
-    const RayTracer tracer(scene, options);
-    report.add_seconds("bvh", seconds_since(stage_start));
-    context_.throw_if_cancelled();
-
-    context_.set_stage("solving", 0.1, 0.6);
-    stage_start = std::chrono::steady_clock::now();
-    const DirectLight direct(scene, tracer);
-    const SolveInputs inputs{scene, tracer, direct, settings_};
-    const std::unique_ptr<IndirectField> field = solver_->solve(inputs, context_);
+    const std::unique_ptr<IndirectField> field =
+        previous_ ? solve_relight(report) : solve_full(report);
     if (!field) throw Error(BAKEGI_ERROR_INTERNAL, "solver '" + method_ + "' returned no field");
-    report.add_seconds("solve", seconds_since(stage_start));
     context_.throw_if_cancelled();
 
     // Whatever part of the solve range the solver did not report is skipped, so progress
     // runs on smoothly from where it stands.
     context_.set_stage("evaluating", context_.progress(), 1.0);
-    stage_start = std::chrono::steady_clock::now();
+    const auto stage_start = std::chrono::steady_clock::now();
     results_.assign(points_.size(), glm::vec3(0.0f));
     field->evaluate(points_, results_, context_);
     context_.throw_if_cancelled();
@@ -203,14 +207,111 @@ void BakeJob::execute() {
       }
     }
     report.add_seconds("evaluate", seconds_since(stage_start));
-    report.add_count("memory_bytes", tracer.memory_bytes() + description_bytes(description_) +
-                                         scene.triangles.capacity() * sizeof(Triangle) +
-                                         points_.size() * (kBytesPerPoint + kBytesPerResult));
   });
   report.add_seconds("total", seconds_since(start));
 }
 
+std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
+  context_.set_stage("validating", 0.0, 0.02);
+  auto stage_start = std::chrono::steady_clock::now();
+  const size_t estimate = estimate_memory(description_, points_.size());
+  report.add_count("memory_estimate_bytes", estimate);
+  if (estimate > memory_budget_bytes_) {
+    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                "the bake needs an estimated " + megabytes(estimate) + " (" +
+                    std::to_string(triangle_count(description_)) + " triangles, " +
+                    std::to_string(points_.size()) + " bake points), more than the budget of " +
+                    megabytes(memory_budget_bytes_) + " (setting memory_budget_mb)");
+  }
+  scene_ = std::make_shared<const Scene>(build_scene(description_));
+  const Scene& scene = *scene_;
+  for (const std::string& warning : scene.warnings) report.warn(warning);
+  report.add_count("triangles", scene.triangles.size());
+  report.add_count("lights", scene.description.lights.size());
+  report.add_count("emissive_triangles", scene.emissive_triangles.size());
+  report.add_seconds("validate", seconds_since(stage_start));
+  context_.throw_if_cancelled();
+
+  context_.set_stage("building BVH", 0.02, 0.1);
+  stage_start = std::chrono::steady_clock::now();
+  RayTracerOptions options;
+  const size_t other_bytes = estimate - triangle_count(description_) * kEmbreeBytesPerTriangle;
+  options.memory_budget_bytes =
+      memory_budget_bytes_ > other_bytes ? memory_budget_bytes_ - other_bytes : 1;
+  options.progress = [this](double fraction) {
+    context_.set_stage_progress(fraction);
+    return !context_.is_cancelled();
+  };
+  tracer_ = std::make_shared<const RayTracer>(scene, options);
+  report.add_seconds("bvh", seconds_since(stage_start));
+  context_.throw_if_cancelled();
+
+  context_.set_stage("solving", 0.1, 0.6);
+  stage_start = std::chrono::steady_clock::now();
+  direct_ = std::make_unique<const DirectLight>(scene, *tracer_);
+  const SolveInputs inputs{scene, *tracer_, *direct_, settings_};
+  std::unique_ptr<IndirectField> field = solver_->solve(inputs, context_);
+  report.add_seconds("solve", seconds_since(stage_start));
+
+  std::shared_ptr<const Precomputation> kept = solver_->precomputation();
+  // Solvers add what they hold to memory_bytes themselves.
+  const size_t memory = tracer_->memory_bytes() + description_bytes(description_) +
+                        scene.triangles.capacity() * sizeof(Triangle) +
+                        points_.size() * (kBytesPerPoint + kBytesPerResult);
+  report.add_count("memory_bytes", memory);
+  if (kept) {
+    auto precomputed = std::make_shared<JobPrecomputation>();
+    precomputed->method = method_;
+    precomputed->settings = settings_;
+    precomputed->scene = scene_;
+    precomputed->tracer = tracer_;
+    precomputed->solver = std::move(kept);
+    std::lock_guard lock(mutex_);
+    precomputed_ = std::move(precomputed);
+  }
+  return field;
+}
+
+std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
+  context_.set_stage("validating", 0.0, 0.02);
+  auto stage_start = std::chrono::steady_clock::now();
+  const Scene& previous_scene = *previous_->scene;
+  const SceneDescription& before = previous_scene.description;
+  if (description_.meshes != before.meshes || description_.materials != before.materials ||
+      description_.textures != before.textures) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "relight: the scene's geometry or materials differ from the bake it relights "
+                "(only lights and the world may change); start a full bake");
+  }
+  // Same meshes and materials make the same triangles, so the previous BVH serves this scene.
+  scene_ = std::make_shared<const Scene>(build_scene(description_));
+  const Scene& scene = *scene_;
+  for (const std::string& warning : scene.warnings) report.warn(warning);
+  report.add_count("triangles", scene.triangles.size());
+  report.add_count("lights", scene.description.lights.size());
+  report.add_count("emissive_triangles", scene.emissive_triangles.size());
+  report.add_seconds("validate", seconds_since(stage_start));
+  context_.throw_if_cancelled();
+
+  context_.set_stage("relighting", 0.1, 0.6);
+  stage_start = std::chrono::steady_clock::now();
+  tracer_ = previous_->tracer;
+  const RayTracer& tracer = *tracer_;
+  direct_ = std::make_unique<const DirectLight>(scene, tracer);
+  const SolveInputs inputs{scene, tracer, *direct_, settings_};
+  std::unique_ptr<IndirectField> field = solver_->relight(inputs, *previous_->solver, context_);
+  report.add_seconds("solve", seconds_since(stage_start));
+  report.add_count("memory_bytes", tracer.memory_bytes() + description_bytes(description_) +
+                                       scene.triangles.capacity() * sizeof(Triangle) +
+                                       points_.size() * (kBytesPerPoint + kBytesPerResult));
+  return field;
+}
+
 void BakeJob::finish(bakegi_status status, const std::string& message) noexcept {
+  // The field has been evaluated (or never will be); a relight keeps its own references.
+  direct_.reset();
+  tracer_.reset();
+  scene_.reset();
   try {
     Report& report = context_.report();
     std::string settings = "{";

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "bake_points/bake_points.h"
+#include "field/indirect_field.h"
 #include "scene/scene.h"
 #include "util/job_context.h"
 #include "util/settings.h"
@@ -20,12 +21,33 @@
 namespace bakegi {
 
 class Solver;
+class Precomputation;
+class RayTracer;
+class DirectLight;
+struct Scene;
+
+// What a finished bake leaves for relighting: its scene and BVH, and the solver's
+// precomputation, made with `settings` by `method`. Immutable; shared between jobs.
+struct JobPrecomputation {
+  std::string method;
+  Settings settings;
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const RayTracer> tracer;
+  std::shared_ptr<const Precomputation> solver;
+};
 
 class BakeJob {
  public:
   // Checks the settings (unknown keys, types and ranges of the common ones, the method
   // name) and throws Error(INVALID_ARGUMENT) before anything starts; then starts the thread.
   BakeJob(SceneDescription description, BakePoints points, Settings settings);
+  // A relight: bakes `description`, which must have the same geometry and materials as the
+  // previous bake's scene (only lights and world may differ; checked when the job runs), at
+  // `points` with the previous bake's settings, reusing its precomputation. `overrides` may
+  // change the settings the method lists in Solver::relight_settings() (and "threads");
+  // another key with another value is refused (Error INVALID_ARGUMENT).
+  BakeJob(SceneDescription description, BakePoints points,
+          std::shared_ptr<const JobPrecomputation> previous, const Settings& overrides = {});
   // Cancels if still running and waits for the thread.
   ~BakeJob();
   BakeJob(const BakeJob&) = delete;
@@ -43,6 +65,10 @@ class BakeJob {
   const std::vector<glm::vec3>& results() const { return results_; }
   size_t point_count() const { return points_.size(); }
   std::string report_json() const;
+  // After success, for methods that can relight: what a relight job reuses; else null.
+  std::shared_ptr<const JobPrecomputation> precomputation() const;
+  // The points the job bakes (a relight may reuse them).
+  const BakePoints& points() const { return points_; }
 
   // Bytes a bake is expected to need (flattened scene, BVH, points and results), before
   // any of it is allocated.
@@ -50,13 +76,23 @@ class BakeJob {
 
  private:
   void run() noexcept;
+  void start();
   void execute();
+  // Validates the description, builds the scene (and the BVH unless relighting) and solves.
+  std::unique_ptr<IndirectField> solve_full(Report& report);
+  std::unique_ptr<IndirectField> solve_relight(Report& report);
   void finish(bakegi_status status, const std::string& message) noexcept;
 
   SceneDescription description_;
   BakePoints points_;
   Settings settings_;
   std::unique_ptr<Solver> solver_;
+  std::shared_ptr<const JobPrecomputation> previous_;     // relight jobs only
+  std::shared_ptr<const JobPrecomputation> precomputed_;  // set on success, guarded by mutex_
+  // What the field may refer to until it has been evaluated; released after that.
+  std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<const RayTracer> tracer_;
+  std::unique_ptr<const DirectLight> direct_;
   std::string method_;
   int threads_ = 0;
   size_t memory_budget_bytes_ = 0;

@@ -118,6 +118,37 @@ bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buffer, size_t 
   });
 }
 
+int bakegi_job_can_relight(const bakegi_job* job) {
+  try {
+    return job && job->job && job->job->is_done() && job->job->precomputation() ? 1 : 0;
+  } catch (...) {
+    return 0;
+  }
+}
+
+bakegi_status bakegi_job_start_relight(const bakegi_job* previous, const bakegi_scene* scene,
+                                       const bakegi_points* points, const bakegi_settings* settings,
+                                       bakegi_job** out_job) {
+  return guarded(__func__, [&] {
+    require(out_job, "out_job");
+    *out_job = nullptr;
+    const bakegi::BakeJob& before = job_of(previous);
+    require(scene, "scene");
+    if (!before.is_done()) {
+      throw Error(BAKEGI_ERROR_NOT_READY, "the previous job has not finished yet");
+    }
+    if (before.status() != BAKEGI_OK) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "the previous job failed, there is nothing to relight from: " + before.error());
+    }
+    auto handle = std::make_unique<bakegi_job>();
+    handle->job = std::make_unique<bakegi::BakeJob>(
+        scene->description, points ? points->points : before.points(), before.precomputation(),
+        settings ? settings->settings : bakegi::Settings());
+    *out_job = handle.release();
+  });
+}
+
 void bakegi_job_destroy(bakegi_job* job) {
   try {
     delete job;

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "field/indirect_field.h"
 
@@ -22,10 +23,32 @@ struct SolveInputs {
   const Settings& settings;
 };
 
+// What a method computed from geometry, materials and settings alone, so that a later bake
+// with other lights can skip it ("relighting without relinking", Antiradiance §3.3).
+// Immutable once made; jobs share it.
+class Precomputation {
+ public:
+  virtual ~Precomputation() = default;
+  virtual size_t memory_bytes() const = 0;
+};
+
 class Solver {
  public:
   virtual ~Solver() = default;
+  // A full solve. A method that can relight keeps its precomputation for precomputation().
   virtual std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) = 0;
+
+  // Whether relight() works for this method.
+  virtual bool can_relight() const { return false; }
+  // Setting keys a relight may change (the rest shaped the precomputation).
+  virtual std::vector<std::string> relight_settings() const { return {}; }
+  // The precomputation of the last successful solve(), or null.
+  virtual std::shared_ptr<const Precomputation> precomputation() const { return nullptr; }
+  // Solves again with the lights of inputs.scene, reusing `reuse` (made by a solver of the same
+  // method from a scene with the same geometry and materials and the same settings; the caller
+  // checks that). Throws Error(INVALID_ARGUMENT) for methods that cannot relight.
+  virtual std::unique_ptr<IndirectField> relight(const SolveInputs& inputs,
+                                                 const Precomputation& reuse, JobContext& context);
 };
 
 // Throws bakegi::Error(INVALID_ARGUMENT) for an unknown method name.

@@ -9,6 +9,12 @@
 
 namespace bakegi {
 
+std::unique_ptr<IndirectField> Solver::relight(const SolveInputs&, const Precomputation&,
+                                               JobContext&) {
+  throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+              "this method cannot relight; start a full bake (methods that can: antiradiance)");
+}
+
 std::unique_ptr<Solver> make_solver(const std::string& method) {
   if (method == "pathtrace") return std::make_unique<PathTracer>();
   if (method == "direct") return std::make_unique<DirectOnlySolver>();

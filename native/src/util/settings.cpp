@@ -126,7 +126,8 @@ const std::vector<std::string>& known_setting_keys() {
   static const std::vector<std::string> keys = {
       "method", "samples", "seed", "sample_offset", "threads", "max_bounces", "memory_budget_mb",
       // antiradiance
-      "bins", "iterations", "tolerance", "scheme", "patch_size", "direct_samples"};
+      "bins", "iterations", "tolerance", "scheme", "patch_size", "direct_samples", "oracle",
+      "oracle_factor"};
   return keys;
 }
 

@@ -15,6 +15,7 @@
 
 #include "direct/direct_light.h"
 #include "scene/ray_tracer.h"
+#include "solvers/antiradiance/back_sides.h"
 #include "solvers/antiradiance/bin_spreading.h"
 #include "solvers/antiradiance/direct_initialization.h"
 #include "solvers/antiradiance/directional_bins.h"
@@ -52,6 +53,8 @@ struct AntiradianceSettings {
   IterationScheme scheme = IterationScheme::kSymmetric;
   double patch_size = 0.0;
   int64_t direct_samples = 64;
+  OracleExtent oracle = OracleExtent::kBoundingSphere;
+  double oracle_factor = 1.0;
   int64_t seed = 0;
   uint64_t memory_budget_bytes = uint64_t(4096) << 20;
 
@@ -72,6 +75,16 @@ struct AntiradianceSettings {
     }
     s.patch_size = settings.get_float("patch_size", 0.0, 0.0, 1e9);
     s.direct_samples = settings.get_int("direct_samples", 64, 1, 65536);
+    const std::string oracle = settings.get_string("oracle", "sphere");
+    if (oracle == "sphere") {
+      s.oracle = OracleExtent::kBoundingSphere;
+    } else if (oracle == "projected") {
+      s.oracle = OracleExtent::kProjectedArea;
+    } else {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "setting \"oracle\" must be \"sphere\" or \"projected\", not \"" + oracle + "\"");
+    }
+    s.oracle_factor = settings.get_float("oracle_factor", 1.0, 0.05, 64.0);
     s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
     s.memory_budget_bytes =
         uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
@@ -141,6 +154,33 @@ std::optional<float> patch_size_within(const Scene& scene, float max_edge, int b
   return edge;
 }
 
+LinkingOptions linking_options(const AntiradianceSettings& settings, uint64_t max_links) {
+  LinkingOptions options;
+  options.max_links = max_links;
+  options.extent = settings.oracle;
+  options.oracle_factor = settings.oracle_factor;
+  return options;
+}
+
+// The most Σ_patches a · luminance(E_acc) any solution can reach: each bounce reflects at most
+// the largest reflectance ρ (diffuse + glossy, any channel) of what arrived, and in a closed
+// scene at most all of it arrives again, so E_acc's flux is at most Φ_direct (ρ + ρ² + …) =
+// Φ_direct ρ / (1 − ρ). Twice that leaves room for the discretization's own error; a
+// solution beyond it is garbage (the iteration's divergence test). Infinite for ρ ≥ 1.
+double flux_bound(const ElementHierarchy& hierarchy, std::span<const glm::vec3> direct) {
+  double rho = 0.0, direct_flux = 0.0;
+  for (size_t p = 0; p < hierarchy.patch_count(); ++p) {
+    const Patch& patch = hierarchy.patches()[p];
+    const glm::vec3 reflectance = patch.albedo + patch.glossy;
+    rho = std::max({rho, double(reflectance.x), double(reflectance.y), double(reflectance.z)});
+    const glm::vec3 e = direct[p];
+    direct_flux += double(hierarchy.elements()[patch.element].area) *
+                   (0.2126 * double(e.x) + 0.7152 * double(e.y) + 0.0722 * double(e.z));
+  }
+  if (rho >= 1.0 || !std::isfinite(direct_flux)) return std::numeric_limits<double>::infinity();
+  return 2.0 * std::max(direct_flux, 0.0) * rho / (1.0 - rho);
+}
+
 std::string residual_history_json(const IterationResult& result) {
   std::string json = "[";
   for (const IterationRecord& record : result.history) {
@@ -171,25 +211,65 @@ void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> 
   context.throw_if_cancelled();
 }
 
+// What relighting reuses: everything that depends on geometry, materials and settings only.
+struct AntiradiancePrecomputation : Precomputation {
+  AntiradiancePrecomputation(DirectionalBins bins_in, BinSpreading spreading_in)
+      : bins(std::move(bins_in)), spreading(std::move(spreading_in)) {}
+
+  DirectionalBins bins;
+  BinSpreading spreading;
+  ElementHierarchy hierarchy;
+  GlobalPass transport;
+  LinkingStatistics link_statistics;
+
+  size_t memory_bytes() const override {
+    return spreading.memory_bytes() + hierarchy.memory_bytes() + transport.memory_bytes();
+  }
+};
+
 std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inputs,
                                                          JobContext& context) {
+  precomputation_.reset();
+  // Bad settings fail here, before any work.
+  (void)AntiradianceSettings::from(inputs.settings);
+  if (inputs.scene.triangles.empty()) {
+    return std::make_unique<AntiradianceField>(SurfaceInterpolation{});
+  }
+  std::shared_ptr<const AntiradiancePrecomputation> system = prepare(inputs, context);
+  std::unique_ptr<IndirectField> field = light(inputs, *system, context);
+  precomputation_ = std::move(system);
+  return field;
+}
+
+std::unique_ptr<IndirectField> AntiradianceSolver::relight(const SolveInputs& inputs,
+                                                           const Precomputation& reuse,
+                                                           JobContext& context) {
+  const auto* system = dynamic_cast<const AntiradiancePrecomputation*>(&reuse);
+  if (!system) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "antiradiance: the precomputation to relight from was made by another method");
+  }
+  context.report().set_number("antiradiance_relit", 1.0);
+  return light(inputs, *system, context);
+}
+
+std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
+    const SolveInputs& inputs, JobContext& context) {
   const AntiradianceSettings settings = AntiradianceSettings::from(inputs.settings);
   const Scene& scene = inputs.scene;
   Report& report = context.report();
-  if (scene.triangles.empty()) {
-    return std::make_unique<AntiradianceField>(SurfaceInterpolation{});
-  }
 
   context.set_stage("antiradiance: bins", 0.10, 0.11);
   auto stage_start = std::chrono::steady_clock::now();
-  const DirectionalBins bins = DirectionalBins::from_bin_count(settings.bins);
-  const BinSpreading spreading(bins);
-  const int m = bins.bin_count();
-  const double bins_seconds = seconds_since(stage_start);
+  DirectionalBins bins = DirectionalBins::from_bin_count(settings.bins);
+  BinSpreading spreading(bins);
+  auto system = std::make_shared<AntiradiancePrecomputation>(std::move(bins), std::move(spreading));
+  const int m = system->bins.bin_count();
+  report.add_seconds("antiradiance_bins", seconds_since(stage_start));
   context.throw_if_cancelled();
 
   // What the ray tracer and the spreading tables leave of the budget.
-  const uint64_t used = uint64_t(inputs.tracer.memory_bytes()) + spreading.memory_bytes();
+  const uint64_t used = uint64_t(inputs.tracer.memory_bytes()) + system->spreading.memory_bytes();
   const uint64_t available =
       settings.memory_budget_bytes > used ? settings.memory_budget_bytes - used : 0;
   const bool automatic = settings.patch_size == 0.0;
@@ -224,13 +304,13 @@ std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inpu
 
   // Hierarchy and links; when the links turn out more than the estimate allowed, an automatic
   // patch size is coarsened once more.
-  ElementHierarchy hierarchy;
+  ElementHierarchy& hierarchy = system->hierarchy;
   LinkSet link_set;
   double hierarchy_seconds = 0.0, linking_seconds = 0.0;
   for (int attempt = 0;; ++attempt) {
     context.set_stage("antiradiance: hierarchy", 0.11, 0.12);
     stage_start = std::chrono::steady_clock::now();
-    hierarchy = ElementHierarchy(scene, HierarchyOptions{max_edge, 0});
+    hierarchy = ElementHierarchy(scene, HierarchyOptions{max_edge, 0, &inputs.tracer});
     hierarchy_seconds += seconds_since(stage_start);
     context.throw_if_cancelled();
 
@@ -242,7 +322,8 @@ std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inpu
       if (max_links == 0) {
         throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, "no room is left for links");
       }
-      link_set = build_links(hierarchy, bins, spreading, LinkingOptions{max_links, true}, &context);
+      link_set = build_links(hierarchy, system->bins, system->spreading,
+                             linking_options(settings, max_links), &context);
       linking_seconds += seconds_since(stage_start);
       break;
     } catch (const Error& e) {
@@ -261,14 +342,35 @@ std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inpu
       max_edge *= 2.0f;
     }
   }
-  const LinkingStatistics link_statistics = link_set.statistics;
+  system->link_statistics = link_set.statistics;
+  for (const std::string& warning : open_mesh_warnings(scene, hierarchy.back_side_count() > 0)) {
+    report.warn("antiradiance: " + warning);
+  }
   context.throw_if_cancelled();
 
   stage_start = std::chrono::steady_clock::now();
-  const GlobalPass transport(std::move(link_set.links), hierarchy.element_count(), spreading);
+  system->transport =
+      GlobalPass(std::move(link_set.links), hierarchy.element_count(), system->spreading);
   link_set = LinkSet{};
+  report.add_seconds("antiradiance_hierarchy", hierarchy_seconds);
+  report.add_seconds("antiradiance_linking", linking_seconds);
+  // Grouping the links by receiver.
+  report.add_seconds("antiradiance_tables", seconds_since(stage_start));
+  return system;
+}
+
+std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inputs,
+                                                         const AntiradiancePrecomputation& system,
+                                                         JobContext& context) const {
+  const AntiradianceSettings settings = AntiradianceSettings::from(inputs.settings);
+  Report& report = context.report();
+  const ElementHierarchy& hierarchy = system.hierarchy;
+  const DirectionalBins& bins = system.bins;
+  const int m = bins.bin_count();
+
+  auto stage_start = std::chrono::steady_clock::now();
   RadianceTables tables(hierarchy.element_count(), hierarchy.patch_count(), m);
-  const double allocation_seconds = seconds_since(stage_start);
+  report.add_seconds("antiradiance_tables", seconds_since(stage_start));
 
   context.set_stage("antiradiance: direct light", 0.30, 0.40);
   stage_start = std::chrono::steady_clock::now();
@@ -284,8 +386,9 @@ std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inpu
   options.scheme = settings.scheme;
   options.max_iterations = int(settings.iterations);
   options.tolerance = settings.tolerance;
+  options.flux_bound = flux_bound(hierarchy, direct);
   const IterationResult result =
-      iterate(hierarchy, bins, spreading, transport, tables, options, &context);
+      iterate(hierarchy, bins, system.spreading, system.transport, tables, options, &context);
   const double iterate_seconds = seconds_since(stage_start);
   context.throw_if_cancelled();
   if (!result.warning.empty()) report.warn("antiradiance: " + result.warning);
@@ -313,29 +416,29 @@ std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inpu
     }
     s.value = glm::max(value, glm::vec3(0.0f));
   }
-  SurfaceInterpolation interpolation(std::move(samples));
+  SurfaceInterpolation interpolation(std::move(samples), &inputs.tracer);
   const double output_seconds = seconds_since(stage_start);
 
   report.add_count("antiradiance_bins", uint64_t(m));
   report.add_count("antiradiance_elements", hierarchy.element_count());
   report.add_count("antiradiance_patches", hierarchy.patch_count());
-  report.add_count("antiradiance_links", link_statistics.link_count);
+  report.add_count("antiradiance_back_side_patches", hierarchy.back_side_count());
+  report.add_count("antiradiance_links", system.link_statistics.link_count);
   report.add_count("antiradiance_iterations", result.history.size());
   report.add_count("antiradiance_table_bytes", tables.memory_bytes());
-  report.add_count("antiradiance_link_bytes", transport.memory_bytes());
+  report.add_count("antiradiance_link_bytes", system.transport.memory_bytes());
   report.add_count("antiradiance_hierarchy_bytes", hierarchy.memory_bytes());
+  // The job's memory: what relighting keeps, the bin tables (the peak is during the
+  // iteration), and the output field.
+  report.add_count("memory_bytes",
+                   system.memory_bytes() + tables.memory_bytes() + interpolation.memory_bytes());
   report.set_number("antiradiance_patch_size", double(hierarchy.max_edge()));
   report.set_number("antiradiance_support_radius", double(interpolation.support_radius()));
   report.set_text("antiradiance_scheme",
                   result.scheme_used == IterationScheme::kSymmetric ? "symmetric" : "asymmetric");
   report.set_json("antiradiance_residuals", residual_history_json(result));
   report.set_number("antiradiance_converged", result.converged ? 1.0 : 0.0);
-  report.add_seconds("antiradiance_bins", bins_seconds);
-  report.add_seconds("antiradiance_hierarchy", hierarchy_seconds);
-  report.add_seconds("antiradiance_linking", linking_seconds);
   report.add_seconds("antiradiance_direct", direct_seconds);
-  // Grouping the links by receiver and allocating the bin tables.
-  report.add_seconds("antiradiance_tables", allocation_seconds);
   report.add_seconds("antiradiance_iterate", iterate_seconds);
   report.add_seconds("antiradiance_output", output_seconds);
   return std::make_unique<AntiradianceField>(std::move(interpolation));

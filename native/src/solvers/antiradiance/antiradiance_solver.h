@@ -1,7 +1,8 @@
 // The Antiradiance solver ("antiradiance", Dachsbacher et al. 2007): indirect light without
 // visibility rays. solve() builds the whole solution (bins, element hierarchy, links, direct
-// light at the patches, iteration); the returned field only interpolates the patches'
-// indirect irradiance at the bake points (surface_interpolation.h), so evaluation is cheap.
+// light at the patches, iteration); relight() reuses the first three; the returned field only
+// interpolates the patches' indirect irradiance at the bake points (surface_interpolation.h), so
+// evaluation is cheap.
 //
 // Settings (read with ranges; a bad value fails before any work):
 //   bins            directional bins, 12..3072 (default 192; rounded to a HEALPix count)
@@ -39,9 +40,32 @@ class AntiradianceField : public IndirectField {
   antiradiance::SurfaceInterpolation interpolation_;
 };
 
+struct AntiradiancePrecomputation;
+
 class AntiradianceSolver : public Solver {
  public:
   std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
+
+  // Relighting without relinking (§3.3): bins, hierarchy and links stay; direct light is
+  // initialized anew from inputs.scene's lights and the iteration runs again.
+  bool can_relight() const override { return true; }
+  std::vector<std::string> relight_settings() const override {
+    return {"iterations", "tolerance", "scheme", "direct_samples", "seed"};
+  }
+  std::shared_ptr<const Precomputation> precomputation() const override { return precomputation_; }
+  std::unique_ptr<IndirectField> relight(const SolveInputs& inputs, const Precomputation& reuse,
+                                         JobContext& context) override;
+
+ private:
+  // Bins, spreading tables, hierarchy (patch size from the budget) and links.
+  std::shared_ptr<const AntiradiancePrecomputation> prepare(const SolveInputs& inputs,
+                                                            JobContext& context);
+  // Bin tables, direct light, iteration and the output field.
+  std::unique_ptr<IndirectField> light(const SolveInputs& inputs,
+                                       const AntiradiancePrecomputation& system,
+                                       JobContext& context) const;
+
+  std::shared_ptr<const Precomputation> precomputation_;
 };
 
 }  // namespace bakegi
