@@ -21,12 +21,26 @@ std::string job_report(const bakegi_job* job) {
 BakeRun run_bake(const bakegi_scene* scene, const bakegi_points* points,
                  const BakeSettings& settings, const std::string& label) {
   const SettingsHandle core_settings = settings.to_core();
-  const uint64_t count = bakegi_points_count(points);
-  BakeRun run;
+  return run_job(
+      [&](bakegi_job** out) { return bakegi_job_start(scene, points, core_settings.get(), out); },
+      bakegi_points_count(points), label);
+}
 
+BakeRun run_relight(const bakegi_job* previous, const bakegi_scene* scene, uint64_t point_count,
+                    const bakegi_settings* overrides, const std::string& label) {
+  return run_job(
+      [&](bakegi_job** out) {
+        return bakegi_job_start_relight(previous, scene, nullptr, overrides, out);
+      },
+      point_count, label);
+}
+
+BakeRun run_job(const std::function<bakegi_status(bakegi_job**)>& start_job, uint64_t count,
+                const std::string& label) {
+  BakeRun run;
   const auto start = std::chrono::steady_clock::now();
   bakegi_job* raw = nullptr;
-  check(bakegi_job_start(scene, points, core_settings.get(), &raw), "starting the bake");
+  check(start_job(&raw), "starting the bake");
   JobHandle job(raw);
 
   // The main thread blocks in bakegi_job_wait so the measured time ends when the job does;
@@ -57,6 +71,7 @@ BakeRun run_bake(const bakegi_scene* scene, const bakegi_points* points,
   run.values.resize(3 * count);
   check(bakegi_job_get_result(job.get(), run.values.data(), count), "reading the result");
   run.report_json = job_report(job.get());
+  run.job = std::move(job);
   return run;
 }
 

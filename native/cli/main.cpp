@@ -33,6 +33,16 @@ commands:
       Prints the error of values against reference.
   points scene.bgs [--positions p.npy] [--normals n.npy] [--object-ids ids.npy]
       Writes the file's bake points as float32 arrays.
+  relight scene.bgs --out values.npy [--move x,y,z] [--scale k] [--repeat R] [--check]
+          [settings]
+      Bakes once, moves every light by (x,y,z) metres and scales its power by k, then
+      relights from the first bake's precomputation (antiradiance), keeping the fastest of
+      R relights; --check also bakes the changed scene from scratch and compares. Prints
+      JSON with the seconds of the full bake and of the relight.
+  converge scene.bgs --method antiradiance --iterations K [--reference-iterations R]
+           --out convergence.json [settings]
+      Antiradiance Fig. 5: error after 1..K iterations of the symmetric and asymmetric
+      schemes against an R-iteration solution (default 300), by relighting one bake.
 
 settings (passed to the core, which checks them):
   --method M          pathtrace (default) | direct | antiradiance
@@ -72,6 +82,8 @@ int main(int argc, char** argv) {
     if (command == "info") return run_info_command(args);
     if (command == "compare") return run_compare_command(args);
     if (command == "points") return run_points_command(args);
+    if (command == "relight") return run_relight_command(args);
+    if (command == "converge") return run_converge_command(args);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "bakegi: %s\n(run 'bakegi --help' for usage)\n", e.what());

@@ -1,0 +1,80 @@
+"""The command-line tool on a scene file the add-on exported: bake, relight, converge.
+
+The CLI (`bakegi`, built next to libbakegi.so) only calls the C API, so these tests check the
+commands themselves: exit codes, the files and JSON they write, and the relight check
+(a relight must equal a full bake with the changed lights, error exactly 0).
+"""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+import numpy  # noqa: E402
+
+
+def cli_path():
+    library = os.environ.get("BAKEGI_LIBRARY", "")
+    return os.path.join(os.path.dirname(library), "bakegi") if library else ""
+
+
+class CommandLine(common.SmallCornellCase):
+    def setUp(self):
+        super().setUp()
+        self.cli = cli_path()
+        if not os.path.isfile(self.cli):
+            self.skipTest("no bakegi CLI next to the library (run with --library build/libbakegi.so)")
+        self.work = tempfile.mkdtemp(prefix="bakegi_cli_")
+        self.scene = os.path.join(self.work, "cornell.bgs")
+        self.bakegi.export_scene_file(self.scene, target="CORNER", objects="VISIBLE")
+
+    def run_cli(self, *arguments, expect=0):
+        completed = subprocess.run([self.cli, *arguments], capture_output=True, text=True)
+        self.assertEqual(completed.returncode, expect, completed.stderr)
+        return completed
+
+    def test_bake_writes_values_and_a_report(self):
+        out = os.path.join(self.work, "values.npy")
+        report = json.loads(self.run_cli("bake", self.scene, "--method", "antiradiance", "--set", "bins=48",
+                                         "--out", out).stdout)
+        self.assertEqual(report["method"], "antiradiance")
+        self.assertEqual(report["status"], "BAKEGI_OK")
+        values = numpy.load(out)
+        self.assertEqual(values.shape, (report["bake_points"], 3))
+        self.assertTrue(numpy.isfinite(values).all())
+        self.assertGreater(float(values.mean()), 0.0)
+
+    def test_relight_equals_a_full_bake_of_the_moved_lights(self):
+        out = os.path.join(self.work, "relit.npy")
+        result = json.loads(self.run_cli("relight", self.scene, "--method", "antiradiance", "--set", "bins=48",
+                                         "--move", "0.2,0,-0.1", "--scale", "1.5", "--check", "--out", out).stdout)
+        self.assertEqual(result["check"]["error"], 0.0)
+        self.assertGreater(result["full_seconds"], 0.0)
+        self.assertGreater(result["relight_seconds"], 0.0)
+        self.assertEqual(numpy.load(out).shape, (result["points"], 3))
+
+    def test_relight_refuses_a_method_without_precomputation(self):
+        completed = self.run_cli("relight", self.scene, "--samples", "1", "--out",
+                                 os.path.join(self.work, "x.npy"), expect=2)
+        self.assertIn("cannot relight", completed.stderr)
+
+    def test_converge_reaches_its_reference(self):
+        out = os.path.join(self.work, "convergence.json")
+        self.run_cli("converge", self.scene, "--method", "antiradiance", "--set", "bins=48", "--iterations", "4",
+                     "--reference-iterations", "4", "--out", out)
+        with open(out) as f:
+            study = json.load(f)
+        symmetric = study["schemes"]["symmetric"]
+        self.assertEqual([r["iterations"] for r in symmetric], [1, 2, 3, 4])
+        self.assertEqual(len(study["schemes"]["asymmetric"]), 4)
+        # Four symmetric iterations are the reference itself; one is far from it.
+        self.assertEqual(symmetric[-1]["error"], 0.0)
+        self.assertGreater(symmetric[0]["error"], 0.05)
+
+
+if __name__ == "__main__":
+    common.run_tests(__name__)
