@@ -185,6 +185,33 @@ def pathtrace_sweep(cli, bgs, reference, work, samples, threads, repeat):
     return runs
 
 
+def antiradiance_sweep(cli, bgs, reference, work, bins_list, threads, repeat):
+    """One antiradiance bake per bin count (other settings at their defaults), each timed
+    `repeat` times keeping the fastest; seconds are the core's job time, as for the path
+    tracer's sweep."""
+    runs = []
+    for bins in bins_list:
+        values = os.path.join(work, f"antiradiance_{bins}.npy")
+        report_path = os.path.join(work, f"antiradiance_{bins}.json")
+        best = None
+        for _ in range(repeat):
+            run([cli, "bake", bgs, "--method", "antiradiance", "--set", f"bins={bins}", "--threads", str(threads),
+                 "--out", values, "--report", report_path], quiet=True)
+            with open(report_path) as f:
+                report = json.load(f)
+            if best is None or report["seconds"]["total"] < best["seconds"]["total"]:
+                best = report
+        entry = {"method": "antiradiance", "settings": {"bins": bins}, "label": f"{bins} bins",
+                 "seconds": best["seconds"]["total"], "error": compare(cli, values, reference),
+                 "bake_points": best["bake_points"], "memory_bytes": best.get("memory_bytes"),
+                 "links": best.get("antiradiance_links"), "elements": best.get("antiradiance_elements"),
+                 "iterations": best.get("antiradiance_iterations"),
+                 "stage_seconds": {k: v for k, v in best["seconds"].items() if k.startswith("antiradiance_")}}
+        log(f"antiradiance {bins} bins: {entry['seconds']:.3f} s, error {entry['error']:.4f}")
+        runs.append(entry)
+    return runs
+
+
 def cycles_sweep(work, build, blend, samples, objects, cli, reference, positions, repeat):
     out_dir = os.path.join(work, "cycles")
     command = ["blender", "-b", blend, "--python-exit-code", "1", "--python", os.path.join(ROOT, "tools", "sweep_cycles.py"),
@@ -271,6 +298,25 @@ def interpolate_time_at_error(curve, error):
     return None
 
 
+def antiradiance_table(sweep):
+    """Antiradiance runs with the time pathtrace and Cycles need for the same error."""
+    comparable_above = 1.5 * sweep["agreement"]["bias_estimate"]
+    lines = ["| antiradiance bins | seconds | error | links | pathtrace time at equal error / antiradiance time "
+             "| Cycles time at equal error / antiradiance time |",
+             "|---:|---:|---:|---:|---:|---:|"]
+    for r in sweep["methods"].get("antiradiance", []):
+        ratios = []
+        for other in ("pathtrace", "cycles"):
+            t = interpolate_time_at_error(sweep["methods"][other], r["error"])
+            if other == "cycles" and r["error"] < comparable_above:
+                ratios.append("— (below 1.5 × Cycles' bias)")
+            else:
+                ratios.append(f"{t / r['seconds']:.1f}x" if t else "outside its range")
+        lines.append(f"| {r['settings']['bins']} | {r['seconds']:.3f} | {r['error']:.4f} | {r.get('links') or ''} "
+                     f"| {ratios[0]} | {ratios[1]} |")
+    return "\n".join(lines)
+
+
 def markdown_table(sweep):
     cycles = sweep["methods"]["cycles"]
     # Where Cycles' curve flattens onto its disagreement with the reference (the bias
@@ -289,7 +335,10 @@ def markdown_table(sweep):
                     ratio = f"{t / r['seconds']:.1f}x" if t else "outside Cycles' range"
             lines.append(f"| {'bakegi pathtrace' if method == 'pathtrace' else 'Cycles'} | {r['settings']['samples']} "
                          f"| {r['seconds']:.3f} | {r['error']:.4f} | {ratio} |")
-    return "\n".join(lines)
+    table = "\n".join(lines)
+    if sweep["methods"].get("antiradiance"):
+        table += "\n\n" + antiradiance_table(sweep)
+    return table
 
 
 def update_benchmarks_page(table, sweep):
@@ -335,6 +384,11 @@ def main():
     parser.add_argument("--reference-chunk", type=int, default=4096, help="samples per CLI run while making the reference")
     parser.add_argument("--pathtrace-samples", default="1,2,4,8,16,32,64,128,256,512,1024")
     parser.add_argument("--cycles-samples", default="1,4,16,64,256,1024")
+    parser.add_argument("--antiradiance-bins", default="48,108,192,432,768",
+                        help="bin counts of the antiradiance curve (empty: no antiradiance curve)")
+    parser.add_argument("--only-antiradiance", action="store_true",
+                        help="keep the pathtrace and Cycles runs of the existing sweep JSON (docs/ with --docs, else "
+                             "--work) and run only the antiradiance curve; implies --reuse")
     parser.add_argument("--threads", type=int, default=0, help="path tracer threads (0 = all cores, as Cycles)")
     parser.add_argument("--repeat", type=int, default=2, help="time each setting R times (both methods), keep the fastest")
     parser.add_argument("--reuse", action="store_true", help="reuse scene, export and reference already in --work")
@@ -355,6 +409,8 @@ def main():
     reference = os.path.join(work, "reference.npy")
     reference_info_path = os.path.join(work, "reference.json")
     export_path = os.path.join(work, "export_objects.json")
+    if arguments.only_antiradiance:
+        arguments.reuse = True
     if arguments.reuse and all(os.path.exists(p) for p in (blend, bgs, reference, reference_info_path, export_path)):
         log("reusing scene, export and reference")
         with open(reference_info_path) as f:
@@ -373,9 +429,24 @@ def main():
     object_ids_path = os.path.join(work, "bake_object_ids.npy")
     run([cli, "points", bgs, "--positions", positions, "--object-ids", object_ids_path], quiet=True)
 
+    sweep_json = os.path.join(DOCS if arguments.docs else work, "cornell_sweep.json")
+    bins_list = [int(b) for b in arguments.antiradiance_bins.split(",") if b.strip()]
+    if arguments.only_antiradiance:
+        with open(sweep_json) as f:
+            sweep = json.load(f)
+        load_before = os.getloadavg()
+        sweep["methods"]["antiradiance"] = antiradiance_sweep(cli, bgs, reference, work, bins_list, arguments.threads,
+                                                              arguments.repeat)
+        sweep["antiradiance_date"] = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+        sweep["antiradiance_load_average"] = [load_before, os.getloadavg()]
+        sweep["antiradiance_command"] = "/usr/bin/python3 tools/sweep_cornell.py " + " ".join(sys.argv[1:])
+        write_results(sweep, sweep_json, work, arguments.docs, started)
+        return
+
     load_before = os.getloadavg()
     pathtrace_runs = pathtrace_sweep(cli, bgs, reference, work, [int(s) for s in arguments.pathtrace_samples.split(",")],
                                      arguments.threads, arguments.repeat)
+    antiradiance_runs = antiradiance_sweep(cli, bgs, reference, work, bins_list, arguments.threads, arguments.repeat)
     cycles_runs, cycles_extra, cycles_result = cycles_sweep(
         work, build, blend, [int(s) for s in arguments.cycles_samples.split(",")], objects, cli, reference, positions, arguments.repeat)
     load_after = os.getloadavg()
@@ -411,21 +482,23 @@ def main():
         "blender": cycles_result.get("blender"),
         "cycles_bounces": cycles_result.get("bounces"),
         "methods": {"pathtrace": pathtrace_runs,
-                    "cycles": [{k: v for k, v in r.items() if k != "file"} for r in cycles_runs]},
+                    "cycles": [{k: v for k, v in r.items() if k != "file"} for r in cycles_runs],
+                    "antiradiance": antiradiance_runs},
         "agreement": agreement,
         "command": "/usr/bin/python3 tools/sweep_cornell.py " + " ".join(sys.argv[1:]),
     }
+    write_results(sweep, sweep_json, work, arguments.docs, started)
+
+
+def write_results(sweep, sweep_json, work, docs, started):
+    """The sweep JSON, the chart next to it, and (with --docs) the table in benchmarks.md."""
     table = markdown_table(sweep)
     print(table)
-    sweep_json = os.path.join(work, "cornell_sweep.json")
-    chart = os.path.join(work, "cornell_speed_accuracy.png")
-    if arguments.docs:
-        sweep_json = os.path.join(DOCS, "cornell_sweep.json")
-        chart = os.path.join(DOCS, "cornell_speed_accuracy.png")
+    chart = os.path.join(DOCS if docs else work, "cornell_speed_accuracy.png")
     with open(sweep_json, "w") as f:
         json.dump(sweep, f, indent=1)
     run([sys.executable, os.path.join(ROOT, "tools", "plot_sweep.py"), sweep_json, "--out", chart])
-    if arguments.docs:
+    if docs:
         update_benchmarks_page(table, sweep)
     log(f"wrote {sweep_json} and {chart} in {time.perf_counter() - started:.0f} s")
 
