@@ -28,10 +28,16 @@ STYLES = {"symmetric": {"color": "tab:blue", "marker": "o"},
 def plot(study, out_path, title):
     figure, (linear, logarithmic) = plt.subplots(1, 2, figsize=(10, 4.2), dpi=120)
     for scheme, runs in study["schemes"].items():
-        xs = [r["iterations"] for r in runs]
-        ys = [r["error"] for r in runs]
+        # A symmetric run that diverged was solved again by the asymmetric scheme: those
+        # points belong to the asymmetric curve, so the symmetric one ends where they start.
+        own = [r for r in runs if r.get("scheme_used", scheme) == scheme]
+        xs = [r["iterations"] for r in own]
+        ys = [r["error"] for r in own]
+        label = scheme
+        if len(own) < len(runs):
+            label += f" (diverged at {len(own) + 1}: the driver falls back)"
         for axes in (linear, logarithmic):
-            axes.plot(xs, ys, label=scheme, linewidth=1.3, markersize=3, **STYLES.get(scheme, {}))
+            axes.plot(xs, ys, label=label, linewidth=1.3, markersize=3, **STYLES.get(scheme, {}))
     logarithmic.set_yscale("log")
     for axes, name in ((linear, "(a) linear"), (logarithmic, "(b) log")):
         axes.set_xlabel("iterations")
@@ -39,8 +45,9 @@ def plot(study, out_path, title):
         axes.set_title(name, fontsize=9)
         axes.grid(True, which="both", linewidth=0.3, alpha=0.6)
         axes.legend(fontsize=8)
-    figure.suptitle(f"{title}: {study['points']} bake points, reference = "
-                    f"{study['reference_iterations']} symmetric iterations", fontsize=10)
+    reference = study.get("reference_scheme") or "symmetric"
+    figure.suptitle(f"{title}: {study['points']} bake points; reference: "
+                    f"{study['reference_iterations']} iterations ({reference})", fontsize=10)
     figure.tight_layout()
     figure.savefig(out_path)
     plt.close(figure)

@@ -5,8 +5,9 @@
 // Bakes once (R iterations, symmetric) and relights from that bake for every (scheme, k),
 // so hierarchy and links are shared and only the iteration count differs. Error is the
 // project's metric over the scene file's bake points (relative RMSE, luminance-weighted).
-// Writes JSON: per scheme, per k, the error, the relight's seconds and the core's residual
-// history (the flux each iteration added, relative).
+// Writes JSON: per scheme, per k, the error, the relight's seconds, the scheme that produced
+// the result (a diverging symmetric run is solved again by the asymmetric scheme) and, for
+// the last k, the core's residual history (the flux each iteration added, relative).
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -34,6 +35,14 @@ SettingsHandle iteration_settings(int64_t iterations, const char* scheme) {
   check(bakegi_settings_set_float(raw, "tolerance", 0.0), "setting tolerance");
   check(bakegi_settings_set_string(raw, "scheme", scheme), "setting scheme");
   return settings;
+}
+
+// The scheme that produced the result ("antiradiance_scheme"): the symmetric scheme falls
+// back to the asymmetric one when it diverges.
+std::string scheme_of(const std::string& report) {
+  const JsonValue json = JsonValue::parse(report);
+  const JsonValue* scheme = json.find("antiradiance_scheme");
+  return scheme ? scheme->string().value_or("") : "";
 }
 
 // The "antiradiance_residuals" array of a report, as JSON text ("[]" when absent).
@@ -82,6 +91,7 @@ int run_converge_command(const std::vector<std::string>& words) {
                      ", \"reference_iterations\": " + std::to_string(reference_iterations) +
                      ", \"reference_seconds\": " + std::to_string(reference.wall_seconds) +
                      ", \"reference_residuals\": " + residuals_of(reference.report_json) +
+                     ", \"reference_scheme\": " + json_quote(scheme_of(reference.report_json)) +
                      ", \"settings\": " + settings.to_json() + ", \"schemes\": {";
   const char* schemes[] = {"symmetric", "asymmetric"};
   for (int s = 0; s < 2; ++s) {
@@ -96,6 +106,7 @@ int run_converge_command(const std::vector<std::string>& words) {
                     "{\"iterations\": %lld, \"error\": %.9g, \"seconds\": %.6f",
                     static_cast<long long>(k), error ? *error : -1.0, run.wall_seconds);
       json += std::string(k > 1 ? ", " : "") + entry;
+      json += ", \"scheme_used\": " + json_quote(scheme_of(run.report_json));
       if (k == iterations) json += ", \"residuals\": " + residuals_of(run.report_json);
       json += "}";
     }

@@ -71,7 +71,8 @@ void change_lights(bakegi_scene* scene, const float offset[3], float scale) {
 
 // The core's seconds for `stage` in a report (0 when absent).
 double stage_seconds(const std::string& report, const std::string& stage) {
-  const JsonValue* value = JsonValue::parse(report).find_path({"seconds", stage});
+  const JsonValue json = JsonValue::parse(report);
+  const JsonValue* value = json.find_path({"seconds", stage});
   return value ? value->number().value_or(0.0) : 0.0;
 }
 
