@@ -178,6 +178,17 @@ class Baker {
   DirectLight direct_;
 };
 
+// Total area of a mesh's triangles (m²), in double precision.
+inline double mesh_area(const Mesh& mesh) {
+  double area = 0.0;
+  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+    const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
+        c(mesh.positions[mesh.indices[t + 2]]);
+    area += 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+  return area;
+}
+
 inline double mean(const std::vector<double>& v) {
   double s = 0.0;
   for (double x : v) s += x;

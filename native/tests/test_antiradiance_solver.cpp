@@ -42,16 +42,6 @@ class AntiradianceBaker {
   DirectLight direct_;
 };
 
-double mesh_area(const Mesh& mesh) {
-  double area = 0.0;
-  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-    const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
-        c(mesh.positions[mesh.indices[t + 2]]);
-    area += 0.5 * glm::length(glm::cross(b - a, c - a));
-  }
-  return area;
-}
-
 glm::vec3 uniform_direction(Pcg32& rng) {
   const float z = 1.0f - 2.0f * rng.next_float();
   const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
@@ -138,7 +128,7 @@ TEST(AntiradianceSolver, ClosedSphereWithCentralLampMatchesClosedForm) {
   }
   d.meshes.push_back(std::move(sphere));
   d.lights.push_back(test::point_light(glm::vec3(0.0f), intensity));
-  const double area = mesh_area(d.meshes[0]);
+  const double area = test::mesh_area(d.meshes[0]);
   const glm::dvec3 expected =
       glm::dvec3(intensity) * (4.0 * M_PI / area) * double(rho) / (M_PI * (1.0 - rho));
 

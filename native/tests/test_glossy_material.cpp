@@ -150,16 +150,6 @@ double sphere_reference(double rho_d, double rho_g, double n, double e0) {
   return value;
 }
 
-double mesh_area(const Mesh& mesh) {
-  double area = 0.0;
-  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-    const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
-        c(mesh.positions[mesh.indices[t + 2]]);
-    area += 0.5 * glm::length(glm::cross(b - a, c - a));
-  }
-  return area;
-}
-
 struct GlossySphere {
   SceneDescription d;
   double e0 = 0.0;
@@ -177,7 +167,7 @@ GlossySphere glossy_sphere(float rho_d, float rho_g, float exponent) {
   sphere.corner_normals.clear();
   const float intensity = 3.0f;
   s.d.lights.push_back(test::point_light(glm::vec3(0.0f), glm::vec3(intensity)));
-  s.e0 = intensity * 4.0 * std::numbers::pi / mesh_area(sphere);
+  s.e0 = intensity * 4.0 * std::numbers::pi / test::mesh_area(sphere);
   std::vector<glm::vec3> positions, normals;
   for (size_t t = 0; t < 64; ++t) {  // triangle centroids spread over the sphere
     const size_t tri = (t * 79) % (sphere.indices.size() / 3);

@@ -36,16 +36,6 @@ using test::Baker;
 constexpr float kRadius = 1.5f;
 constexpr int kSubdivisions = 4;  // 5120 triangles
 
-double mesh_area(const Mesh& mesh) {
-  double area = 0.0;
-  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-    const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
-        c(mesh.positions[mesh.indices[t + 2]]);
-    area += 0.5 * glm::length(glm::cross(b - a, c - a));
-  }
-  return area;
-}
-
 // Bake points at random places on the sphere's triangles, facing the centre.
 BakePoints points_inside(const Mesh& sphere, int count) {
   std::vector<glm::vec3> positions, normals;
@@ -93,7 +83,7 @@ TEST(PathTraceSphere, PointLightAtCentreGivesClosedFormIndirect) {
   const uint32_t wall = test::add_material(d, albedo);
   d.meshes.push_back(test::make_icosphere(glm::vec3(0.0f), kRadius, kSubdivisions, wall));
   d.lights.push_back(test::point_light(glm::vec3(0.0f), intensity));
-  const double area = mesh_area(d.meshes[0]);
+  const double area = test::mesh_area(d.meshes[0]);
   const glm::dvec3 mean_direct = glm::dvec3(intensity) * (4.0 * M_PI / area);
   const glm::dvec3 rho(albedo);
   const glm::dvec3 expected = rho * mean_direct / (M_PI * (1.0 - rho));
@@ -130,7 +120,7 @@ TEST(PathTraceSphere, MaxBouncesOneKeepsOnlyTheFirstBounce) {
   const uint32_t wall = test::add_material(d, albedo);
   d.meshes.push_back(test::make_icosphere(glm::vec3(0.0f), kRadius, kSubdivisions, wall));
   d.lights.push_back(test::point_light(glm::vec3(0.0f), intensity));
-  const double area = mesh_area(d.meshes[0]);
+  const double area = test::mesh_area(d.meshes[0]);
   const double expected = 0.6 * 3.0 * (4.0 * M_PI / area) / M_PI;
 
   Baker baker(d);

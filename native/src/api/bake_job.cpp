@@ -211,6 +211,18 @@ void BakeJob::execute() {
   report.add_seconds("total", seconds_since(start));
 }
 
+const Scene& BakeJob::build_scene_and_report(Report& report,
+                                             std::chrono::steady_clock::time_point start) {
+  scene_ = std::make_shared<const Scene>(build_scene(description_));
+  for (const std::string& warning : scene_->warnings) report.warn(warning);
+  report.add_count("triangles", scene_->triangles.size());
+  report.add_count("lights", scene_->description.lights.size());
+  report.add_count("emissive_triangles", scene_->emissive_triangles.size());
+  report.add_seconds("validate", seconds_since(start));
+  context_.throw_if_cancelled();
+  return *scene_;
+}
+
 std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   context_.set_stage("validating", 0.0, 0.02);
   auto stage_start = std::chrono::steady_clock::now();
@@ -223,14 +235,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
                     std::to_string(points_.size()) + " bake points), more than the budget of " +
                     megabytes(memory_budget_bytes_) + " (setting memory_budget_mb)");
   }
-  scene_ = std::make_shared<const Scene>(build_scene(description_));
-  const Scene& scene = *scene_;
-  for (const std::string& warning : scene.warnings) report.warn(warning);
-  report.add_count("triangles", scene.triangles.size());
-  report.add_count("lights", scene.description.lights.size());
-  report.add_count("emissive_triangles", scene.emissive_triangles.size());
-  report.add_seconds("validate", seconds_since(stage_start));
-  context_.throw_if_cancelled();
+  const Scene& scene = build_scene_and_report(report, stage_start);
 
   context_.set_stage("building BVH", 0.02, 0.1);
   stage_start = std::chrono::steady_clock::now();
@@ -284,14 +289,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
                 "(only lights and the world may change); start a full bake");
   }
   // Same meshes and materials make the same triangles, so the previous BVH serves this scene.
-  scene_ = std::make_shared<const Scene>(build_scene(description_));
-  const Scene& scene = *scene_;
-  for (const std::string& warning : scene.warnings) report.warn(warning);
-  report.add_count("triangles", scene.triangles.size());
-  report.add_count("lights", scene.description.lights.size());
-  report.add_count("emissive_triangles", scene.emissive_triangles.size());
-  report.add_seconds("validate", seconds_since(stage_start));
-  context_.throw_if_cancelled();
+  const Scene& scene = build_scene_and_report(report, stage_start);
 
   context_.set_stage("relighting", 0.1, 0.6);
   stage_start = std::chrono::steady_clock::now();

@@ -3,6 +3,7 @@
 // cancel are safe to use from any thread while it runs.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -79,6 +80,8 @@ class BakeJob {
   void start();
   void execute();
   // Validates the description, builds the scene (and the BVH unless relighting) and solves.
+  // Validates and flattens the description into scene_, with its counts in the report.
+  const Scene& build_scene_and_report(Report& report, std::chrono::steady_clock::time_point start);
   std::unique_ptr<IndirectField> solve_full(Report& report);
   std::unique_ptr<IndirectField> solve_relight(Report& report);
   void finish(bakegi_status status, const std::string& message) noexcept;
