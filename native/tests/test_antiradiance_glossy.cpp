@@ -340,3 +340,61 @@ TEST(AntiradianceGlossy, GlossyRoomAgreesWithThePathTracer) {
 
 }  // namespace
 }  // namespace bakegi
+
+namespace bakegi {
+namespace {
+
+// 2 ∫ A(μ) μ dμ in two closed forms. For n = 0 the lobe is 1/π over the hemisphere around the
+// mirror direction (zero beyond 90°), which is tilted by θ = acos μ from the normal: the
+// clamped cosine over it integrates to π (1 + μ)/2, so A = (1 + μ)/2 and the integral 5/6. For
+// a narrow lobe A(μ) → μ (n+2)/(n+1) (phong_lobe.h), so the integral → 2/3 · (n+2)/(n+1).
+TEST(AntiradianceGlossyFold, HemisphericalAlbedoHasItsLimits) {
+  EXPECT_NEAR(antiradiance::phong_hemispherical_albedo(0.0), 5.0 / 6.0, 1e-4);
+  const double n = 1e4;
+  EXPECT_NEAR(antiradiance::phong_hemispherical_albedo(n), 2.0 / 3.0 * (n + 2) / (n + 1), 2e-3);
+  double previous = 5.0 / 6.0 + 1e-4;
+  for (const double exponent : {0.5, 2.0, 7.5, 16.0, 100.0}) {
+    const double h = antiradiance::phong_hemispherical_albedo(exponent);
+    EXPECT_LT(h, previous) << exponent;  // a narrower lobe loses more towards grazing
+    previous = h;
+  }
+}
+
+TEST(AntiradianceGlossyFold, WideLobesJoinTheAlbedoNarrowOnesStay) {
+  SceneDescription d;
+  const uint32_t wide = test::add_material(d, glm::vec3(0.5f));
+  d.materials[wide].glossy = glm::vec3(0.1f, 0.2f, 0.3f);
+  d.materials[wide].glossy_exponent = 7.5f;
+  const uint32_t narrow = test::add_material(d, glm::vec3(0.5f));
+  d.materials[narrow].glossy = glm::vec3(0.4f);
+  d.materials[narrow].glossy_exponent = 500.0f;
+  test::add_quad(d, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, wide);
+  test::add_quad(d, {0, 0, 1}, {1, 0, 0}, {0, -1, 0}, 1, 1, narrow);
+  d.lights.push_back(test::point_light({0, 0, 0.5f}, glm::vec3(1.0f)));
+  const Scene scene = build_scene(d);
+  const float h = float(antiradiance::phong_hemispherical_albedo(7.5));
+
+  antiradiance::HierarchyOptions options;
+  options.max_edge = 1.0f;
+  options.glossy_fold_exponent = 16.0f;
+  for (const antiradiance::Patch& patch :
+       antiradiance::ElementHierarchy(scene, options).patches()) {
+    if (scene.triangles[patch.triangle].material == wide) {
+      EXPECT_EQ(patch.glossy, glm::vec3(0.0f));
+      EXPECT_NEAR(patch.albedo.x, 0.5f + 0.1f * h, 1e-6f);
+      EXPECT_NEAR(patch.albedo.z, 0.5f + 0.3f * h, 1e-6f);
+    } else {
+      EXPECT_EQ(patch.glossy, glm::vec3(0.4f));
+      EXPECT_EQ(patch.glossy_exponent, 500.0f);
+      EXPECT_EQ(patch.albedo, glm::vec3(0.5f));
+    }
+  }
+  options.glossy_fold_exponent = 0.0f;  // keeps every lobe
+  for (const antiradiance::Patch& patch :
+       antiradiance::ElementHierarchy(scene, options).patches()) {
+    EXPECT_GT(patch.glossy.x, 0.0f);
+  }
+}
+
+}  // namespace
+}  // namespace bakegi

@@ -220,6 +220,9 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *                          3-6x fewer links, a little more error)
  *   "oracle_factor" float  refine links while an end subtends more than this many bins,
  *                          0.05..64 (default 1, the paper's criterion)
+ *   "glossy_fold_exponent" float  glossy lobes with a lower exponent reflect as diffuse
+ *                          (energy kept), 0..1e6 (default 16, roughness above ~0.42; 0 keeps
+ *                          every lobe): wide lobes cost the local pass up to m/4 times more
  */
 typedef struct bakegi_settings bakegi_settings;
 

@@ -127,7 +127,7 @@ const std::vector<std::string>& known_setting_keys() {
       "method", "samples", "seed", "sample_offset", "threads", "max_bounces", "memory_budget_mb",
       // antiradiance
       "bins", "iterations", "tolerance", "scheme", "patch_size", "direct_samples", "oracle",
-      "oracle_factor"};
+      "oracle_factor", "glossy_fold_exponent"};
   return keys;
 }
 

@@ -61,6 +61,7 @@ struct AntiradianceSettings {
   int64_t direct_samples = 64;
   OracleExtent oracle = OracleExtent::kBoundingSphere;
   double oracle_factor = 1.0;
+  double glossy_fold_exponent = 16.0;
   int64_t seed = 0;
   uint64_t memory_budget_bytes = uint64_t(4096) << 20;
 
@@ -91,6 +92,7 @@ struct AntiradianceSettings {
                   "setting \"oracle\" must be \"sphere\" or \"projected\", not \"" + oracle + "\"");
     }
     s.oracle_factor = settings.get_float("oracle_factor", 1.0, 0.05, 64.0);
+    s.glossy_fold_exponent = settings.get_float("glossy_fold_exponent", 16.0, 0.0, 1e6);
     s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
     s.memory_budget_bytes =
         uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
@@ -321,7 +323,8 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   for (int attempt = 0;; ++attempt) {
     context.set_stage("antiradiance: hierarchy", 0.11, 0.12);
     stage_start = std::chrono::steady_clock::now();
-    hierarchy = ElementHierarchy(scene, HierarchyOptions{max_edge, 0, &inputs.tracer});
+    hierarchy = ElementHierarchy(
+        scene, HierarchyOptions{max_edge, 0, &inputs.tracer, float(settings.glossy_fold_exponent)});
     hierarchy_seconds += seconds_since(stage_start);
     context.throw_if_cancelled();
 

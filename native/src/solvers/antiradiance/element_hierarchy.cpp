@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "scene/phong_lobe.h"
 #include "solvers/antiradiance/back_sides.h"
 #include "util/error.h"
 
@@ -270,6 +271,30 @@ float max_edge_within_budget(const Scene& scene, float max_edge, uint64_t max_el
   return max_edge;
 }
 
+namespace {
+
+// A lobe this wide spreads a bounce over a large part of the hemisphere, so reflecting it as
+// diffuse moves little light, while the glossy local pass costs up to m²/2 per patch instead of
+// 2m: Principled BSDF's defaults (roughness 0.5: exponent 7.5, ρ_g 0.086) made the Cornell box's
+// iterations 3.7x slower. Energy is kept for a uniform field (the hemispherical albedo).
+void fold_wide_glossy_lobes(std::vector<PatchSeed>& seeds, float below_exponent) {
+  std::map<float, float> albedo_by_exponent;
+  for (PatchSeed& seed : seeds) {
+    Patch& patch = seed.patch;
+    const float strongest = std::max({patch.glossy.x, patch.glossy.y, patch.glossy.z});
+    if (!(strongest > 0.0f) || !(patch.glossy_exponent < below_exponent)) {
+      continue;
+    }
+    auto [it, inserted] = albedo_by_exponent.try_emplace(patch.glossy_exponent, 0.0f);
+    if (inserted) it->second = float(phong_hemispherical_albedo(patch.glossy_exponent));
+    patch.albedo += it->second * patch.glossy;
+    patch.glossy = glm::vec3(0.0f);
+    patch.glossy_exponent = 0.0f;
+  }
+}
+
+}  // namespace
+
 ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& options) {
   max_edge_ = options.max_edge == 0.0f ? default_max_edge(scene) : options.max_edge;
   check_max_edge(max_edge_);
@@ -330,8 +355,20 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     back_side_count_ += last - first;
   }
   surface_count_ = uint32_t(surfaces.size());
+  if (options.glossy_fold_exponent > 0.0f)
+    fold_wide_glossy_lobes(seeds, options.glossy_fold_exponent);
 
   TreeBuilder(seeds, elements_, patches_).run();
+}
+
+double phong_hemispherical_albedo(double exponent) {
+  // Midpoint rule in μ²: 2 ∫ A(μ) μ dμ = ∫ A(√s) ds over s in [0, 1]; A is smooth in s.
+  constexpr int kSteps = 64;
+  double sum = 0.0;
+  for (int k = 0; k < kSteps; ++k) {
+    sum += phong_directional_albedo(exponent, std::sqrt((k + 0.5) / kSteps));
+  }
+  return sum / kSteps;
 }
 
 size_t ElementHierarchy::memory_bytes() const {

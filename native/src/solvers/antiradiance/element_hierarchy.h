@@ -62,7 +62,16 @@ struct HierarchyOptions {
   // side (back_sides.h), decided with rays through this tracer of the same scene; when null
   // every surface is one-sided (the paper's solids).
   const RayTracer* back_sides = nullptr;
+  // Glossy lobes with an exponent below this reflect as diffuse: their cosine-weighted
+  // hemispherical albedo joins the patch's albedo and the lobe is dropped (see
+  // fold_wide_glossy_lobes). 0 keeps every lobe.
+  float glossy_fold_exponent = 0.0f;
 };
+
+// The cosine-weighted hemispherical albedo of the normalized Phong lobe of exponent n, per
+// unit ρ_g: 2 ∫ A(μ) μ dμ with A from phong_directional_albedo. What a uniform field loses to
+// the lobe, so folding it into the diffuse albedo conserves energy in that field.
+double phong_hemispherical_albedo(double exponent);
 
 // Default patch size: the scene's bounding-box diagonal / 32. For the Cornell box (2 m room,
 // diagonal 3.46 m: patches of at most 0.108 m) this gives 13,312 patches and 26,623 elements,
