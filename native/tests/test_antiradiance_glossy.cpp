@@ -377,8 +377,8 @@ TEST(AntiradianceGlossyFold, WideLobesJoinTheAlbedoNarrowOnesStay) {
   antiradiance::HierarchyOptions options;
   options.max_edge = 1.0f;
   options.glossy_fold_exponent = 16.0f;
-  for (const antiradiance::Patch& patch :
-       antiradiance::ElementHierarchy(scene, options).patches()) {
+  const antiradiance::ElementHierarchy folded(scene, options);
+  for (const antiradiance::Patch& patch : folded.patches()) {
     if (scene.triangles[patch.triangle].material == wide) {
       EXPECT_EQ(patch.glossy, glm::vec3(0.0f));
       EXPECT_NEAR(patch.albedo.x, 0.5f + 0.1f * h, 1e-6f);
@@ -390,8 +390,8 @@ TEST(AntiradianceGlossyFold, WideLobesJoinTheAlbedoNarrowOnesStay) {
     }
   }
   options.glossy_fold_exponent = 0.0f;  // keeps every lobe
-  for (const antiradiance::Patch& patch :
-       antiradiance::ElementHierarchy(scene, options).patches()) {
+  const antiradiance::ElementHierarchy kept(scene, options);
+  for (const antiradiance::Patch& patch : kept.patches()) {
     EXPECT_GT(patch.glossy.x, 0.0f);
   }
 }
