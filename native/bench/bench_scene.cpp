@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "api/light_desc.h"
 #include "procedural_box.h"
 #include "scene/scene_file.h"
 #include "scene/scene_validation.h"
@@ -47,21 +48,7 @@ bakegi_scene* to_c_api(const SceneDescription& d) {
     check(bakegi_scene_add_mesh(scene, &desc, &id), "mesh");
   }
   for (const Light& l : d.lights) {
-    bakegi_light_desc desc{};
-    desc.type = l.type;
-    for (int c = 0; c < 3; ++c) {
-      desc.position[c] = l.position[c];
-      desc.direction[c] = l.direction[c];
-      desc.axis_u[c] = l.axis_u[c];
-      desc.color[c] = l.color[c];
-    }
-    desc.radius = l.radius;
-    desc.spot_size = l.spot_size;
-    desc.spot_blend = l.spot_blend;
-    desc.angle = l.angle;
-    desc.shape = l.shape;
-    desc.size_x = l.size_x;
-    desc.size_y = l.size_y;
+    const bakegi_light_desc desc = to_light_desc(l);
     uint32_t id = 0;
     check(bakegi_scene_add_light(scene, &desc, &id), "light");
   }

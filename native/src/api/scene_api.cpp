@@ -5,6 +5,7 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
+#include "api/light_desc.h"
 #include "scene/scene_validation.h"
 
 using bakegi::Error;
@@ -179,26 +180,7 @@ bakegi_status bakegi_scene_get_light(const bakegi_scene* scene, uint32_t index,
                                                      " is not below the light count " +
                                                      std::to_string(lights.size()));
     }
-    const bakegi::Light& l = lights[index];
-    auto put = [](const glm::vec3& v, float* out) {
-      out[0] = v.x;
-      out[1] = v.y;
-      out[2] = v.z;
-    };
-    bakegi_light_desc d{};
-    d.type = l.type;
-    put(l.position, d.position);
-    put(l.direction, d.direction);
-    put(l.axis_u, d.axis_u);
-    put(l.color, d.color);
-    d.radius = l.radius;
-    d.spot_size = l.spot_size;
-    d.spot_blend = l.spot_blend;
-    d.angle = l.angle;
-    d.shape = l.shape;
-    d.size_x = l.size_x;
-    d.size_y = l.size_y;
-    *out_light = d;
+    *out_light = bakegi::to_light_desc(lights[index]);
   });
 }
 
