@@ -199,7 +199,9 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *   "method"       string  "pathtrace" (default) | "direct" (direct light, E_direct/pi,
  *                          for checking light units against Cycles) | "antiradiance"
  *                          (Dachsbacher et al. 2007: hierarchical radiosity-like transport
- *                          without visibility rays, interpolated at the bake points)
+ *                          without visibility rays, interpolated at the bake points) |
+ *                          "meshless" (Lehtinen et al. 2008: precomputed direct-to-indirect
+ *                          transfer in a meshless hierarchical basis; relights in ms)
  *   "samples"      int     samples per bake point, >= 1 (default 64)
  *   "seed"         int     >= 0 (default 0); results are deterministic for a seed
  *   "threads"      int     0 = all cores (default 0)
@@ -223,6 +225,21 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *   "glossy_fold_exponent" float  glossy lobes with a lower exponent reflect as diffuse
  *                          (energy kept), 0..1e6 (default 16, roughness above ~0.42; 0 keeps
  *                          every lobe): wide lobes cost the local pass up to m/4 times more
+ *   "near_field_rays" int  0..65536 (default 256): bake points near another surface (concave
+ *                          edges, contact lines) gather this many rays from the solution
+ *                          instead of interpolating patches; 0 = interpolate everywhere
+ *   "near_field_distance" float  0..100 (default 0.5): "near" in units of the interpolation's
+ *                          support radius (about two patch edges); blended over its last half
+ * Meshless only (Lehtinen et al. 2008; in progress, see docs/methods/meshless.md):
+ *   "levels"       int     receiver levels of the basis 0..12 (default 0 = automatic, 6)
+ *   "coarse_spacing" float Poisson-disk spacing of level 0 in metres (default 0 = automatic)
+ *   "sender_levels" int    levels that send light, 0..12 (default 0 = half the levels)
+ *   "epsilon"      float   link threshold, the paper's units (default 0.025)
+ *   "gather_rays"  int     hemisphere rays per receiver basis function (default 256)
+ *   "bounces"      int     bounces at most, the first included (default 16)
+ *   "direct_samples" int   direct-light samples per sender point (default 16)
+ *   "viewpoint"    string  "x,y,z": importance particles start there; empty (default): they
+ *                          leave the bake points
  */
 typedef struct bakegi_settings bakegi_settings;
 

@@ -154,4 +154,30 @@ glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint
   return irradiance + kPi * emission_along(x.position, direction, hit, bsdf_pdf);
 }
 
+glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                                               const IrradianceTermVisitor& visit) const {
+  // Mirrors sample_lights(x, rng, rays) + irradiance_sample term by term, in the same order.
+  glm::vec3 irradiance(0.0f);
+  for_each_light_sample(x, rng, [&](const LightSample& s) {
+    const float cos_receiver = glm::dot(x.shading_normal, s.direction);
+    if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
+    const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, cos_receiver * kInvPi) : 1.0f;
+    if (!(weight > 0.0f) || !unoccluded(x, s, rays)) return;
+    const glm::vec3 term = s.contribution * (cos_receiver * weight);
+    irradiance += term;
+    visit(s.direction, term);
+  });
+  const float u1 = rng.next_float(), u2 = rng.next_float();
+  const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
+  const glm::vec3 direction = Frame(x.shading_normal).to_world(local);
+  const float bsdf_pdf = local.z * kInvPi;
+  if (!(bsdf_pdf > 0.0f) || glm::dot(direction, x.geometric_normal) <= 0.0f) return irradiance;
+  const glm::vec3 origin = ray_origin(x);
+  ++rays;
+  const Hit hit = tracer_.intersect(Ray{origin, direction, 0.0f, 1e30f});
+  const glm::vec3 term = kPi * emission_along(x.position, direction, hit, bsdf_pdf);
+  if (max_component(term) > 0.0f) visit(direction, term);
+  return irradiance + term;
+}
+
 }  // namespace bakegi

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -59,6 +60,18 @@ class DirectLight {
 
   // One sample of the direct irradiance E at x: sample_lights plus one cosine-weighted ray.
   glm::vec3 irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const;
+
+  // Receives one term of an irradiance sample: the unit direction from x towards where the
+  // light comes from and the MIS-weighted irradiance (W/m², receiver cosine included) it adds.
+  using IrradianceTermVisitor =
+      std::function<void(const glm::vec3& direction, const glm::vec3& irradiance)>;
+  // irradiance_sample split by direction, for callers that need where E_direct comes from
+  // (glossy reflection of direct light): the same random numbers, rays and arithmetic, so the
+  // returned sum is bit-identical to irradiance_sample's; every non-zero term (each unoccluded
+  // lamp / emissive-triangle sample, then the cosine-weighted ray's pick-up of emission and
+  // the world) is also handed to `visit`.
+  glm::vec3 irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                                    const IrradianceTermVisitor& visit) const;
 
   const Scene& scene() const { return scene_; }
   const RayTracer& tracer() const { return tracer_; }

@@ -127,7 +127,10 @@ const std::vector<std::string>& known_setting_keys() {
       "method", "samples", "seed", "sample_offset", "threads", "max_bounces", "memory_budget_mb",
       // antiradiance
       "bins", "iterations", "tolerance", "scheme", "patch_size", "direct_samples", "oracle",
-      "oracle_factor", "glossy_fold_exponent"};
+      "oracle_factor", "glossy_fold_exponent", "near_field_rays", "near_field_distance",
+      // meshless
+      "levels", "coarse_spacing", "sender_levels", "epsilon", "gather_rays", "bounces",
+      "viewpoint"};
   return keys;
 }
 

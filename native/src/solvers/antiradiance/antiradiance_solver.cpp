@@ -63,6 +63,8 @@ struct AntiradianceSettings {
   double oracle_factor = 1.0;
   double glossy_fold_exponent = 16.0;
   int64_t seed = 0;
+  int64_t near_field_rays = 256;
+  double near_field_distance = 0.5;
   uint64_t memory_budget_bytes = uint64_t(4096) << 20;
 
   static AntiradianceSettings from(const Settings& settings) {
@@ -94,6 +96,8 @@ struct AntiradianceSettings {
     s.oracle_factor = settings.get_float("oracle_factor", 1.0, 0.05, 64.0);
     s.glossy_fold_exponent = settings.get_float("glossy_fold_exponent", 16.0, 0.0, 1e6);
     s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
+    s.near_field_rays = settings.get_int("near_field_rays", 256, 0, 65536);
+    s.near_field_distance = settings.get_float("near_field_distance", 0.5, 0.0, 100.0);
     s.memory_budget_bytes =
         uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
     return s;
@@ -198,6 +202,13 @@ std::string residual_history_json(const IterationResult& result) {
   return json + "]";
 }
 
+// sqrt(2 · mean patch area): the edge of a typical patch (as the splat measures it).
+float typical_patch_edge(const std::vector<SurfaceSample>& samples) {
+  double area = 0.0;
+  for (const SurfaceSample& s : samples) area += double(s.area);
+  return samples.empty() ? 0.0f : float(std::sqrt(2.0 * area / double(samples.size())));
+}
+
 }  // namespace
 
 void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
@@ -205,18 +216,25 @@ void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> 
   if (out.size() < points.size()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "antiradiance: output smaller than the points");
   }
-  constexpr size_t kBlock = 1024;
+  constexpr size_t kBlock = 256;
   std::atomic<size_t> done{0};
+  std::atomic<uint64_t> rays{0};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), kBlock),
                     [&](const tbb::blocked_range<size_t>& range) {
                       if (context.is_cancelled()) return;
+                      uint64_t local_rays = 0;
                       for (size_t i = range.begin(); i != range.end(); ++i) {
-                        out[i] = interpolation_.evaluate(points.positions[i], points.normals[i]);
+                        const glm::vec3 splat =
+                            interpolation_.evaluate(points.positions[i], points.normals[i]);
+                        out[i] = near_field_.evaluate(points.positions[i], points.normals[i], i,
+                                                      splat, local_rays);
                       }
+                      rays += local_rays;
                       const size_t finished = done.fetch_add(range.size()) + range.size();
                       context.set_stage_progress(double(finished) / double(points.size()));
                     });
   context.throw_if_cancelled();
+  if (rays.load() > 0) context.report().add_count("rays", rays.load());
 }
 
 // What relighting reuses: everything that depends on geometry, materials and settings only.
@@ -388,8 +406,8 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
 
   context.set_stage("antiradiance: direct light", 0.30, 0.40);
   stage_start = std::chrono::steady_clock::now();
-  const std::vector<glm::vec3> direct = direct_irradiance_at_patches(
-      hierarchy, inputs.direct, settings.direct_samples, uint64_t(settings.seed), context);
+  const DirectLightAtPatches direct = direct_light_at_patches(
+      hierarchy, bins, inputs.direct, settings.direct_samples, uint64_t(settings.seed), context);
   initialize_direct(hierarchy, bins, direct, tables);
   const double direct_seconds = seconds_since(stage_start);
   context.throw_if_cancelled();
@@ -400,7 +418,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   options.scheme = settings.scheme;
   options.max_iterations = int(settings.iterations);
   options.tolerance = settings.tolerance;
-  options.flux_bound = flux_bound(hierarchy, direct);
+  options.flux_bound = flux_bound(hierarchy, direct.irradiance);
   const IterationResult result =
       iterate(hierarchy, bins, system.spreading, system.transport, tables, options, &context);
   const double iterate_seconds = seconds_since(stage_start);
@@ -430,6 +448,21 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
     }
     s.value = glm::max(value, glm::vec3(0.0f));
   }
+  // The near-field gather reads E_indirect / π of the patch each ray hits.
+  NearFieldGather near_field;
+  if (settings.near_field_rays > 0) {
+    std::vector<glm::vec3> indirect_over_pi(samples.size());
+    for (size_t p = 0; p < samples.size(); ++p) indirect_over_pi[p] = samples[p].value;
+    NearFieldSettings near_settings;
+    near_settings.rays = uint32_t(settings.near_field_rays);
+    near_settings.far = float(settings.near_field_distance) *
+                        SurfaceInterpolation::kSupportInEdges * typical_patch_edge(samples);
+    near_settings.near = 0.5f * near_settings.far;
+    near_settings.ray_epsilon = inputs.direct.ray_epsilon();
+    near_settings.seed = uint64_t(settings.seed) ^ 0x6e656172ull;
+    near_field = NearFieldGather(inputs.direct, PatchLocator(inputs.scene, hierarchy),
+                                 std::move(indirect_over_pi), near_settings);
+  }
   SurfaceInterpolation interpolation(std::move(samples), &inputs.tracer);
   const double output_seconds = seconds_since(stage_start);
 
@@ -444,8 +477,8 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   report.add_count("antiradiance_hierarchy_bytes", hierarchy.memory_bytes());
   // The job's memory: what relighting keeps, the bin tables (the peak is during the
   // iteration), and the output field.
-  report.add_count("memory_bytes",
-                   system.memory_bytes() + tables.memory_bytes() + interpolation.memory_bytes());
+  report.add_count("memory_bytes", system.memory_bytes() + tables.memory_bytes() +
+                                       interpolation.memory_bytes() + near_field.memory_bytes());
   report.set_number("antiradiance_patch_size", double(hierarchy.max_edge()));
   report.set_number("antiradiance_support_radius", double(interpolation.support_radius()));
   report.set_text("antiradiance_scheme",
@@ -455,7 +488,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   report.add_seconds("antiradiance_direct", direct_seconds);
   report.add_seconds("antiradiance_iterate", iterate_seconds);
   report.add_seconds("antiradiance_output", output_seconds);
-  return std::make_unique<AntiradianceField>(std::move(interpolation));
+  return std::make_unique<AntiradianceField>(std::move(interpolation), std::move(near_field));
 }
 
 }  // namespace bakegi

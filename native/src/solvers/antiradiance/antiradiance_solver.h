@@ -21,6 +21,7 @@
 
 #include <memory>
 
+#include "solvers/antiradiance/near_field_gather.h"
 #include "solvers/antiradiance/surface_interpolation.h"
 #include "solvers/solver.h"
 
@@ -28,8 +29,9 @@ namespace bakegi {
 
 class AntiradianceField : public IndirectField {
  public:
-  explicit AntiradianceField(antiradiance::SurfaceInterpolation interpolation)
-      : interpolation_(std::move(interpolation)) {}
+  explicit AntiradianceField(antiradiance::SurfaceInterpolation interpolation,
+                             antiradiance::NearFieldGather near_field = {})
+      : interpolation_(std::move(interpolation)), near_field_(std::move(near_field)) {}
   // Parallel over points, cancellable.
   void evaluate(const BakePoints& points, std::span<glm::vec3> out,
                 JobContext& context) const override;
@@ -38,6 +40,7 @@ class AntiradianceField : public IndirectField {
 
  private:
   antiradiance::SurfaceInterpolation interpolation_;
+  antiradiance::NearFieldGather near_field_;
 };
 
 struct AntiradiancePrecomputation;

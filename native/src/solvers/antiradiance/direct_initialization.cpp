@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -22,14 +23,21 @@ constexpr size_t kPatchesPerTracingBlock = 16;
 
 }  // namespace
 
-void initialize_direct(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                       std::span<const glm::vec3> direct_irradiance, RadianceTables& tables) {
+namespace {
+
+void check_sizes(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                 size_t irradiance_count, const RadianceTables& tables) {
   if (tables.element_count() != hierarchy.element_count() ||
       tables.patch_count() != hierarchy.patch_count() || tables.bin_count() != bins.bin_count() ||
-      direct_irradiance.size() != hierarchy.patch_count()) {
+      irradiance_count != hierarchy.patch_count()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "direct initialization: sizes do not match the hierarchy");
   }
+}
+
+// The diffuse and emitted light of every patch into its I_ex row.
+void seed_diffuse(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                  std::span<const glm::vec3> direct_irradiance, RadianceTables& tables) {
   const std::vector<Patch>& patches = hierarchy.patches();
   const std::vector<Element>& elements = hierarchy.elements();
   const int m = bins.bin_count();
@@ -48,9 +56,165 @@ void initialize_direct(const ElementHierarchy& hierarchy, const DirectionalBins&
                         }
                       }
                     });
+}
+
+// Adds a ⟨n|ω_j⟩₊ ρ_g G(ω_j) to the rows of the patches with a lobe.
+void add_glossy(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                const DirectLightAtPatches& direct, RadianceTables& tables) {
+  const std::vector<Patch>& patches = hierarchy.patches();
+  const std::vector<Element>& elements = hierarchy.elements();
+  std::vector<std::shared_ptr<const GlossyLobeTable>> keep_alive;
+  const std::vector<const GlossyLobeTable*> glossy =
+      glossy_tables_for_patches(patches, bins, keep_alive);
+  const int m = bins.bin_count();
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, patches.size(), kPatchesPerBlock),
+      [&](const tbb::blocked_range<size_t>& block) {
+        std::vector<glm::vec3> reflected, scratch;
+        for (size_t p = block.begin(); p != block.end(); ++p) {
+          const uint64_t begin = direct.binned_offsets[p], end = direct.binned_offsets[p + 1];
+          if (glossy[p] == nullptr || begin == end) continue;
+          const Patch& patch = patches[p];
+          reflected.resize(size_t(m));
+          reflect_direct_glossy(patch.normal, bins, *glossy[p],
+                                std::span(direct.binned).subspan(begin, end - begin),
+                                direct.glossy_reflectable[p], reflected, scratch);
+          const float area = elements[patch.element].area;
+          const std::span<glm::vec3> exitant = tables.exitant(patch.element);
+          for (int j = 0; j < m; ++j) {
+            const float cosine = glm::dot(patch.normal, bins.direction(j));
+            if (cosine > 0.0f)
+              exitant[size_t(j)] += (area * cosine) * patch.glossy * reflected[size_t(j)];
+          }
+        }
+      });
+}
+
+void finish(const ElementHierarchy& hierarchy, RadianceTables& tables) {
   const std::span<glm::vec3> accumulated = tables.accumulated_irradiance();
   std::fill(accumulated.begin(), accumulated.end(), glm::vec3(0.0f));
   pull(hierarchy, tables);
+}
+
+bool is_finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+void initialize_direct(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                       std::span<const glm::vec3> direct_irradiance, RadianceTables& tables) {
+  check_sizes(hierarchy, bins, direct_irradiance.size(), tables);
+  seed_diffuse(hierarchy, bins, direct_irradiance, tables);
+  finish(hierarchy, tables);
+}
+
+void initialize_direct(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
+                       const DirectLightAtPatches& direct, RadianceTables& tables) {
+  check_sizes(hierarchy, bins, direct.irradiance.size(), tables);
+  if (direct.binned_offsets.size() != hierarchy.patch_count() + 1 ||
+      direct.glossy_reflectable.size() != hierarchy.patch_count() ||
+      direct.binned_offsets.back() != direct.binned.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "direct initialization: the binned direct light does not match the hierarchy");
+  }
+  for (size_t p = 0; p < hierarchy.patch_count(); ++p) {
+    if (direct.binned_offsets[p] > direct.binned_offsets[p + 1]) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "direct initialization: the binned light's offsets decrease");
+    }
+  }
+  for (const BinnedIrradiance& e : direct.binned) {
+    if (e.bin >= bins.bin_count()) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "direct initialization: bin out of range");
+    }
+  }
+  seed_diffuse(hierarchy, bins, direct.irradiance, tables);
+  add_glossy(hierarchy, bins, direct, tables);
+  finish(hierarchy, tables);
+}
+
+DirectLightAtPatches direct_light_at_patches(const ElementHierarchy& hierarchy,
+                                             const DirectionalBins& bins, const DirectLight& direct,
+                                             int64_t samples, uint64_t seed, JobContext& context) {
+  const std::vector<Patch>& patches = hierarchy.patches();
+  const std::vector<Element>& elements = hierarchy.elements();
+  std::vector<std::shared_ptr<const GlossyLobeTable>> keep_alive;
+  const std::vector<const GlossyLobeTable*> glossy =
+      glossy_tables_for_patches(patches, bins, keep_alive);
+  DirectLightAtPatches result;
+  result.irradiance.assign(patches.size(), glm::vec3(0.0f));
+  result.glossy_reflectable.assign(patches.size(), glm::vec3(0.0f));
+  std::vector<std::vector<BinnedIrradiance>> binned(patches.size());
+  const int m = bins.bin_count();
+  if (samples > 0) {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, patches.size(), kPatchesPerTracingBlock),
+        [&](const tbb::blocked_range<size_t>& block) {
+          uint64_t rays = 0;
+          std::vector<glm::dvec3> per_bin;
+          std::vector<std::pair<glm::vec3, glm::vec3>> terms;  // (direction, irradiance)
+          for (size_t p = block.begin(); p != block.end(); ++p) {
+            context.throw_if_cancelled();
+            const Patch& patch = patches[p];
+            const SurfacePoint x{elements[patch.element].center, patch.shading_normal,
+                                 patch.normal};
+            glm::dvec3 sum(0.0);
+            if (glossy[p] == nullptr) {
+              // The same loop as direct_irradiance_at_patches.
+              for (int64_t s = 0; s < samples; ++s) {
+                Pcg32 rng = sample_stream(seed, p, uint64_t(s));
+                const glm::vec3 value = direct.irradiance_sample(x, rng, rays);
+                if (is_finite(value)) sum += glm::dvec3(value);
+              }
+              result.irradiance[p] = glm::vec3(sum / double(samples));
+              continue;
+            }
+            const GlossyLobeTable& table = *glossy[p];
+            per_bin.assign(size_t(m), glm::dvec3(0.0));
+            glm::dvec3 reflectable(0.0);
+            for (int64_t s = 0; s < samples; ++s) {
+              Pcg32 rng = sample_stream(seed, p, uint64_t(s));
+              terms.clear();
+              const glm::vec3 value = direct.irradiance_sample_terms(
+                  x, rng, rays, [&](const glm::vec3& direction, const glm::vec3& irradiance) {
+                    terms.emplace_back(direction, irradiance);
+                  });
+              // A non-finite sample would poison the patch and everything it lights.
+              if (!is_finite(value)) continue;
+              sum += glm::dvec3(value);
+              for (const auto& [direction, irradiance] : terms) {
+                // The lobe lives on the face normal (as in the local pass): light from behind
+                // it (possible with a tilted shading normal) is not reflected.
+                const float mu = glm::dot(patch.normal, direction);
+                if (!(mu > 0.0f)) continue;
+                // Bins hold the direction light travels: away from the light.
+                per_bin[size_t(bins.bin_of(-direction))] += glm::dvec3(irradiance);
+                reflectable += double(table.directional_albedo(mu)) * glm::dvec3(irradiance);
+              }
+            }
+            result.irradiance[p] = glm::vec3(sum / double(samples));
+            result.glossy_reflectable[p] = glm::vec3(reflectable / double(samples));
+            for (int l = 0; l < m; ++l) {
+              const glm::dvec3& e = per_bin[size_t(l)];
+              if (e.x != 0.0 || e.y != 0.0 || e.z != 0.0) {
+                binned[p].push_back({uint16_t(l), glm::vec3(e / double(samples))});
+              }
+            }
+          }
+          context.report().add_count("rays", rays);
+        });
+  }
+  result.binned_offsets.assign(patches.size() + 1, 0);
+  for (size_t p = 0; p < patches.size(); ++p) {
+    result.binned_offsets[p + 1] = result.binned_offsets[p] + binned[p].size();
+  }
+  result.binned.reserve(result.binned_offsets.back());
+  for (std::vector<BinnedIrradiance>& entries : binned) {
+    result.binned.insert(result.binned.end(), entries.begin(), entries.end());
+    std::vector<BinnedIrradiance>().swap(entries);
+  }
+  return result;
 }
 
 std::vector<glm::vec3> direct_irradiance_at_patches(const ElementHierarchy& hierarchy,

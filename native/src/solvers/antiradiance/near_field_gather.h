@@ -1,0 +1,78 @@
+// Output near other surfaces: a final gather from the antiradiance solution.
+//
+// The weighted splat (surface_interpolation.h) reads a smooth function off patch centres; it
+// cannot follow irradiance that changes within one patch of a bake point. That happens where
+// another surface is near: along concave edges and contact lines the nearby surface fills
+// much of the hemisphere, and on the Cornell box the room's edges (10% of the face corners)
+// held 58% of the squared error at 192 bins, biased +13%. There the bake point gathers
+// instead, as radiosity renderers do:
+//
+//   E(x) / π = 1/π ∫ L_out(y) cos θ dω ≈ mean over cosine-distributed rays of L_out(y),
+//   L_out(y) = ρ(y) (E_direct(y) + E_indirect(y)) / π,
+//
+// with ρ the albedo at the hit, E_direct one sample of the direct-light module at the hit
+// (exact shadows: a patch that straddles a contact line has one value for both sides, and a
+// box's base gathers mostly from such floor patches) and E_indirect that of the patch the ray
+// lands on (patch_locator.h: piecewise constant, but never blurred across an edge; the back
+// of a solid's face has no patch and reflects nothing). Emission, lamps and the world are
+// direct light and stay out.
+//
+// A fixed pattern of kProbeSide² probe rays first looks for a surface closer than `far` (most
+// points have none and keep the splat); the gather's own rays then measure the distance d to
+// the nearest surface: at d ≥ `far` the splat is used, at d ≤ `near` the gather, in between a
+// smooth blend, so no seam appears where the method switches. A point whose rays mostly hit
+// the backs of faces (inside or behind geometry) keeps the splat.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "solvers/antiradiance/patch_locator.h"
+
+namespace bakegi {
+struct Scene;
+class RayTracer;
+class DirectLight;
+}  // namespace bakegi
+
+namespace bakegi::antiradiance {
+
+struct NearFieldSettings {
+  uint32_t rays = 0;  // per bake point; 0 disables the gather
+  float near = 0.0f;  // below this distance to another surface: the gather alone
+  float far = 0.0f;   // beyond it: the splat alone
+  float ray_epsilon = 1e-4f;
+  uint64_t seed = 0;
+};
+
+class NearFieldGather {
+ public:
+  static constexpr uint32_t kProbeSide = 4;
+
+  NearFieldGather() = default;
+  // `direct` (and its scene and tracer) must outlive every evaluate(). `indirect_over_pi`
+  // holds E_indirect / π per patch (ElementHierarchy::patches() order).
+  NearFieldGather(const DirectLight& direct, PatchLocator locator,
+                  std::vector<glm::vec3> indirect_over_pi, const NearFieldSettings& settings);
+
+  bool enabled() const { return direct_ != nullptr && settings_.rays > 0; }
+  // Blends the gathered value into `splat` (the splat's value at this point) by the distance
+  // to the nearest surface the rays found; `point` keys the random stream. Adds its rays
+  // (gather and shadow) to `rays`.
+  glm::vec3 evaluate(const glm::vec3& position, const glm::vec3& normal, uint64_t point,
+                     const glm::vec3& splat, uint64_t& rays) const;
+  const NearFieldSettings& settings() const { return settings_; }
+  size_t memory_bytes() const {
+    return locator_.memory_bytes() + indirect_over_pi_.capacity() * sizeof(glm::vec3);
+  }
+
+ private:
+  const DirectLight* direct_ = nullptr;
+  PatchLocator locator_;
+  std::vector<glm::vec3> indirect_over_pi_;
+  NearFieldSettings settings_;
+};
+
+}  // namespace bakegi::antiradiance
