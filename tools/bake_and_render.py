@@ -19,7 +19,7 @@ def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     parser = argparse.ArgumentParser()
     parser.add_argument("--samples", type=int, default=256)
-    parser.add_argument("--method", default="pathtrace")
+    parser.add_argument("--method", default="antiradiance")
     parser.add_argument("--blend", required=True)
     parser.add_argument("--png", required=True)
     parser.add_argument("--report", required=True)

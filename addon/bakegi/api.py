@@ -22,7 +22,7 @@ def _context(context):
     return context if context is not None else bpy.context
 
 
-def bake(method="pathtrace", samples=64, seed=0, target="CORNER", objects="SELECTED",
+def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SELECTED",
          threads=0, hook_materials=True, context=None, method_settings=None):
     """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes.
 
@@ -30,8 +30,10 @@ def bake(method="pathtrace", samples=64, seed=0, target="CORNER", objects="SELEC
     object takes part in the light transport; only the targets receive the attribute.
     Returns the report: seconds per stage (export, bake, writeback, total and the core's
     own), bake_points, method, settings, warnings, memory, rays, objects.
-    method_settings: further core settings of the method, e.g. {"bins": 192, "iterations":
+    method_settings: further core settings of the method, e.g. {"bins": 300, "iterations":
     32} for method="antiradiance" (see bakegi.h for the keys).
+    method: "antiradiance" (default) or "pathtrace" (the Monte Carlo reference; samples
+    applies to it only).
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
     scene is changed."""
     context = _context(context)

@@ -54,7 +54,7 @@ def validate_arguments(method, samples, seed, target, threads):
 
 
 class BakeSession:
-    def __init__(self, context, method="pathtrace", samples=64, seed=0, target="CORNER",
+    def __init__(self, context, method="antiradiance", samples=64, seed=0, target="CORNER",
                  objects="SELECTED", threads=0, hook_materials=True, method_settings=None):
         validate_arguments(method, samples, seed, target, threads)
         self.context = context

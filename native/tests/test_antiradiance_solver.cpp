@@ -112,10 +112,10 @@ TEST(AntiradianceSolver, ClosedSphereWithCentralLampMatchesClosedForm) {
   // point-to-point form factors over bins of 4π/m) and the hierarchy's cluster links, which
   // move energy with one center-to-center direction; the geometric series amplifies their
   // per-bounce error by 1/(1 − ρ) = 2. Measured mean error (deterministic: the lamp at the
-  // center makes every direct sample exact): −20.8% at 48 bins, −2.1% at 192 (the default,
-  // tested here), +1.3% at 768, so the error is the bins' and shrinks with them. 3% bounds the
-  // default; a lost bounce would be 50% off, antiradiance leaking through the wall or a
-  // missing spreading weight far more than 1%.
+  // center makes every direct sample exact): −20.8% at 48 bins, −2.1% at 192, +1.1% at 300
+  // (the default, tested here), +1.3% at 768, so the error is the bins' and shrinks with
+  // them. 3% bounds the default; a lost bounce would be 50% off, antiradiance leaking through
+  // the wall or a missing spreading weight far more than 1%.
   const float rho = 0.5f;
   const glm::vec3 intensity(4.0f, 2.0f, 1.0f);
   SceneDescription d;
@@ -168,7 +168,7 @@ TEST(AntiradianceSolver, CornellBoxAgreesWithPathTracer) {
   const auto expected = reference_baker.bake(points, reference);
 
   AntiradianceBaker baker(d);
-  Settings settings;  // defaults: 192 bins, patches of extent / 32 = 0.108 m
+  Settings settings;  // defaults: 300 bins, patches of extent / 16
   JobContext context;
   const auto values = baker.bake(points, settings, context);
   ASSERT_TRUE(all_finite(values));
@@ -181,12 +181,12 @@ TEST(AntiradianceSolver, CornellBoxAgreesWithPathTracer) {
       100.0 * *error, (unsigned long long)report.count("antiradiance_elements"),
       (unsigned long long)report.count("antiradiance_links"),
       (unsigned long long)report.count("antiradiance_iterations"));
-  // Measured 4.2% (printed). Part of it is the reference's own noise: two path-traced
-  // references with different seeds differ by 2.2%, so each holds about 1.5%; the rest is the
-  // method's bias (bins and patch size: 3.7% with 0.2 m patches, the bins dominate on the
-  // sphere). 7% leaves room for that noise and for legitimate changes of the passes, while a
-  // lost bounce (the second one alone adds 29% of the total here), light leaking through the
-  // cube or a broken interpolation give far more.
+  // Measured 2.9% at the defaults (printed; 4.2% at 192 bins with twice finer patches and no
+  // near-field gather). Part of it is the reference's own noise: two path-traced references
+  // with different seeds differ by 2.2%, so each holds about 1.5%; the rest is the method's
+  // bias (mostly the bins, as on the sphere). 7% leaves room for that noise and for legitimate
+  // changes of the passes, while a lost bounce (the second one alone adds 29% of the total here),
+  // light leaking through the cube or a broken interpolation give far more.
   EXPECT_LT(*error, 0.07);
   EXPECT_GT(report.count("antiradiance_links"), 0u);
   EXPECT_GT(report.count("antiradiance_iterations"), 0u);
@@ -196,8 +196,8 @@ TEST(AntiradianceSolver, SmallMemoryBudgetCoarsensOrRefusesWithMessage) {
   AntiradianceBaker baker(cornell_box());
   const BakePoints points = cornell_points(2);
   {
-    // Automatic patch size: the default (extent / 32, 45k elements here) needs far more than
-    // 8 MB at 192 bins, so it is coarsened, with a warning, and still gives finite values.
+    // Automatic patch size: the default (extent / 16) needs far more than 8 MB at 300 bins,
+    // so it is coarsened, with a warning, and still gives finite values.
     Settings settings;
     settings.set("memory_budget_mb", int64_t(8));
     JobContext context;

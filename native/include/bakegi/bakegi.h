@@ -210,12 +210,12 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *   "memory_budget_mb" int >= 1 (default 4096): a bake whose estimate exceeds it is refused;
  *                          antiradiance coarsens an automatic patch size to fit it (warning)
  * Antiradiance only ("seed" also picks its direct-light samples):
- *   "bins"         int     directional bins 12..3072 (default 192, rounded to 12*Nside^2)
+ *   "bins"         int     directional bins 12..3072 (default 300, rounded to 12*Nside^2)
  *   "iterations"   int     bounces at most, 1..100000 (default 32)
  *   "tolerance"    float   stop when a bounce adds less than this fraction, 0..1 (1e-4)
  *   "scheme"       string  "symmetric" (default) | "asymmetric" (provably convergent)
  *   "patch_size"   float   largest patch edge in metres, 0 = automatic (default 0:
- *                          scene extent / 32, coarsened to fit the memory budget)
+ *                          scene extent / 16, coarsened to fit the memory budget)
  *   "direct_samples" int   direct-light samples per patch, 1..65536 (default 64)
  *   "oracle"       string  how linking measures an element's solid angle: "sphere" (default,
  *                          its bounding sphere's disk) | "projected" (its projected area:

@@ -5,7 +5,7 @@
 // evaluation is cheap.
 //
 // Settings (read with ranges; a bad value fails before any work):
-//   bins            directional bins, 12..3072 (default 192; rounded to a HEALPix count)
+//   bins            directional bins, 12..3072 (default 300; rounded to a HEALPix count)
 //   iterations      bounces at most, 1..100000 (default 32)
 //   tolerance       stop when an iteration adds less than this fraction, 0..1 (default 1e-4)
 //   scheme          "symmetric" (default) or "asymmetric" (§2.2)
@@ -14,7 +14,7 @@
 //   seed            random stream of the direct-light samples (default 0)
 //   memory_budget_mb  the job's budget; hierarchy, bin tables and links must fit in what the
 //                   ray tracer leaves of it
-// Automatic patch size: the scene's default (extent / 32), coarsened by factors of 2 until
+// Automatic patch size: the scene's default (extent / 16), coarsened by factors of 2 until
 // the estimate fits the budget, with a warning whenever it coarsens. A requested patch size
 // that does not fit is refused, naming one that would.
 #pragma once

@@ -221,7 +221,11 @@ class TreeBuilder {
 }  // namespace
 
 float default_max_edge(const Scene& scene) {
-  return scene.extent() / 32.0f;
+  // Coarse: the output's near-field gather (near_field_gather.h) resolves what changes within
+  // a patch near other surfaces, so finer patches mostly add links. On the Cornell box,
+  // extent / 32 (split once) gave 4.5% in 1.8 s at 192 bins, extent / 16 (whole triangles)
+  // 5.1% in 0.6 s, and 4.3% in 1.0 s at 300 bins.
+  return scene.extent() / 16.0f;
 }
 
 int subdivision_level(float longest_edge, float max_edge) {
