@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 build_dir=${BAKEGI_BUILD_DIR:-build}
 
 packages=(cmake ninja-build g++ pkg-config
-          libembree-dev libglm-dev libtbb-dev libopenexr-dev libeigen3-dev
+          libembree-dev libglm-dev libtbb-dev libopenexr-dev libeigen3-dev libboost-dev
           googletest libgtest-dev libgmock-dev libbenchmark-dev
           blender python3 python3-numpy python3-matplotlib xvfb xauth)
 

@@ -35,8 +35,8 @@ TEST(AntiradiancePatchLocator, FindsThePatchThatContainsEveryPointOfATriangle) {
   SceneDescription d;
   const uint32_t grey = test::add_material(d, glm::vec3(0.5f));
   // A room (faces split 0-3 times by size) with a block whose faces are split differently.
-  d.meshes.push_back(test::make_cube(glm::vec3(-2, -1, 0), glm::vec3(2, 1, 1.5f),
-                                     test::Facing::kInward, grey));
+  d.meshes.push_back(
+      test::make_cube(glm::vec3(-2, -1, 0), glm::vec3(2, 1, 1.5f), test::Facing::kInward, grey));
   d.meshes.push_back(test::make_cube(glm::vec3(-0.2f, -0.2f, 0.0f), glm::vec3(0.2f, 0.2f, 0.3f),
                                      test::Facing::kOutward, grey));
   d.lights.push_back(test::point_light(glm::vec3(0, 0, 1), glm::vec3(1.0f)));
@@ -57,8 +57,8 @@ TEST(AntiradiancePatchLocator, FindsThePatchThatContainsEveryPointOfATriangle) {
         const Patch& patch = hierarchy.patches()[found];
         EXPECT_EQ(patch.triangle, t);
         EXPECT_FALSE(patch.back_side);
-        EXPECT_TRUE(contains(patch, p)) << "triangle " << t << " at (" << b1 << ", " << b2
-                                        << "), max edge " << max_edge;
+        EXPECT_TRUE(contains(patch, p))
+            << "triangle " << t << " at (" << b1 << ", " << b2 << "), max edge " << max_edge;
       }
       // Closed solids have no back-side patches: the inside reflects nothing.
       EXPECT_EQ(locator.find(t, 0.3f, 0.3f, true), PatchLocator::kNone);

@@ -254,7 +254,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   context_.set_stage("solving", 0.1, 0.6);
   stage_start = std::chrono::steady_clock::now();
   direct_ = std::make_unique<const DirectLight>(scene, *tracer_);
-  const SolveInputs inputs{scene, *tracer_, *direct_, settings_};
+  const SolveInputs inputs{scene, *tracer_, *direct_, settings_, &points_};
   std::unique_ptr<IndirectField> field = solver_->solve(inputs, context_);
   report.add_seconds("solve", seconds_since(stage_start));
 
@@ -296,7 +296,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
   tracer_ = previous_->tracer;
   const RayTracer& tracer = *tracer_;
   direct_ = std::make_unique<const DirectLight>(scene, tracer);
-  const SolveInputs inputs{scene, tracer, *direct_, settings_};
+  const SolveInputs inputs{scene, tracer, *direct_, settings_, &points_};
   std::unique_ptr<IndirectField> field = solver_->relight(inputs, *previous_->solver, context_);
   report.add_seconds("solve", seconds_since(stage_start));
   report.add_count("memory_bytes", tracer.memory_bytes() + description_bytes(description_) +

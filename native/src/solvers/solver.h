@@ -21,6 +21,10 @@ struct SolveInputs {
   const RayTracer& tracer;
   const DirectLight& direct;
   const Settings& settings;
+  // The job's bake points, for methods that place their own samples where the bake needs
+  // them (meshless); null when not known. The field is still evaluated at whatever points
+  // its evaluate() receives.
+  const BakePoints* points = nullptr;
 };
 
 // What a method computed from geometry, materials and settings alone, so that a later bake

@@ -1,0 +1,64 @@
+#include "solvers/meshless/gather_integral.h"
+
+#include <cmath>
+
+#include "direct/surface_point.h"
+#include "scene/ray_tracer.h"
+#include "scene/scene.h"
+#include "util/random.h"
+#include "util/sampling.h"
+
+namespace bakegi::meshless {
+
+namespace {
+
+// Uniform on the hemisphere around +z: z = u1 is uniform in solid angle.
+glm::vec3 uniform_hemisphere(float u1, float u2) {
+  const float z = u1;
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * kPi * u2;
+  return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+}  // namespace
+
+uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& senders,
+                      const glm::vec3& position, const glm::vec3& normal, uint64_t receiver,
+                      const GatherSettings& settings, SenderAccumulator& out,
+                      std::vector<BasisValue>& scratch) {
+  const uint32_t rays = std::max(1u, settings.rays);
+  const uint32_t side = static_cast<uint32_t>(std::sqrt(static_cast<double>(rays)));
+  const uint32_t stratified = side * side;
+  const float ray_weight = 2.0f * kPi / static_cast<float>(rays);
+  const Frame frame(normal);
+  Pcg32 rng = sample_stream(settings.seed, receiver, 0);
+  const glm::vec3 origin = position + normal * settings.ray_epsilon;
+
+  for (uint32_t r = 0; r < rays; ++r) {
+    float u1 = rng.next_float(), u2 = rng.next_float();
+    if (r < stratified) {  // jittered strata; the remainder (rays - side^2) is purely random
+      u1 = (static_cast<float>(r % side) + u1) / static_cast<float>(side);
+      u2 = (static_cast<float>(r / side) + u2) / static_cast<float>(side);
+    }
+    const glm::vec3 direction = frame.to_world(uniform_hemisphere(u1, u2));
+    const Hit hit = tracer.intersect(Ray{origin, direction});
+    if (!hit.hit) continue;
+    const Triangle& triangle = scene.triangles[hit.triangle];
+    const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
+    if (albedo.x <= 0.0f && albedo.y <= 0.0f && albedo.z <= 0.0f) continue;
+    const SurfacePoint y = surface_at_hit(scene, hit, direction);
+    // ω̄ points from the receiver towards the sender (where the light comes from).
+    const glm::vec3 reflected = albedo * (kInvPi * ray_weight);
+    for (uint32_t level = 0; level < senders.level_count(); ++level) {
+      scratch.clear();
+      senders.gather_basis(level, y.position, y.shading_normal, scratch);
+      for (const BasisValue& b : scratch) {
+        LinkValue& link = out.at(b.index);
+        for (int c = 0; c < 3; ++c) link[c] += (reflected[c] * b.value) * direction;
+      }
+    }
+  }
+  return rays;
+}
+
+}  // namespace bakegi::meshless

@@ -1,0 +1,71 @@
+// Eq. 16 of Lehtinen et al. 2008: the links from ALL senders to one receiver by a single
+// hemispherical gathering integral, so every sender shares the receiver's rays:
+//
+//   T'_ij = ∫_Ω(i) B_j(r(x_i, ω)) ρ(r(x_i, ω)) / π  ω̄ dω
+//
+// r(x, ω) is the first hit along the ray, ρ its diffuse albedo (texture applied) and ω̄ the
+// unit direction: vector irradiance at x_i per unit scalar irradiance of sender j. (The
+// paper writes ρ for the reflected radiance per unit irradiance, ρ/π for a Lambertian
+// surface.) Estimated with stratified uniform hemisphere directions (density 1/2π: the
+// tangential components of ω̄ stay bounded, unlike with cosine sampling).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "solvers/meshless/basis_hierarchy.h"
+#include "solvers/meshless/transfer_links.h"
+
+namespace bakegi {
+struct Scene;
+class RayTracer;
+}  // namespace bakegi
+
+namespace bakegi::meshless {
+
+// Dense accumulator over the senders with a list of the ones touched, reused across
+// receivers by one thread (clearing costs only what was touched).
+class SenderAccumulator {
+ public:
+  explicit SenderAccumulator(uint32_t sender_count)
+      : values_(sender_count, LinkValue(0.0f)), touched_flag_(sender_count, 0) {}
+  LinkValue& at(uint32_t sender) {
+    if (!touched_flag_[sender]) {
+      touched_flag_[sender] = 1;
+      touched_.push_back(sender);
+    }
+    return values_[sender];
+  }
+  // The value of a sender, zero if untouched.
+  const LinkValue& value(uint32_t sender) const { return values_[sender]; }
+  const std::vector<uint32_t>& touched() const { return touched_; }
+  void clear() {
+    for (uint32_t s : touched_) {
+      values_[s] = LinkValue(0.0f);
+      touched_flag_[s] = 0;
+    }
+    touched_.clear();
+  }
+
+ private:
+  std::vector<LinkValue> values_;
+  std::vector<uint8_t> touched_flag_;
+  std::vector<uint32_t> touched_;
+};
+
+struct GatherSettings {
+  uint32_t rays = 256;        // hemisphere rays per receiver (stratified, a square count is best)
+  uint64_t seed = 0;          // ray stream: sample_stream(seed, receiver, 0)
+  float ray_epsilon = 1e-4f;  // origin offset along the receiver's normal
+};
+
+// Adds T'_ij for every sender j of `senders` (the first sender levels of the basis, see
+// TransferOperator::sender_count) into `out`; returns the number of rays cast.
+uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& senders,
+                      const glm::vec3& position, const glm::vec3& normal, uint64_t receiver,
+                      const GatherSettings& settings, SenderAccumulator& out,
+                      std::vector<BasisValue>& scratch);
+
+}  // namespace bakegi::meshless
