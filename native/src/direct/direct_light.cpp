@@ -140,18 +140,26 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
   return radiance + world_radiance_;  // no light sampling for the world: weight 1
 }
 
-glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
-  glm::vec3 irradiance = sample_lights(x, rng, rays);
+glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                                             glm::vec3& direction) const {
   const float u1 = rng.next_float(), u2 = rng.next_float();
   const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
-  const glm::vec3 direction = Frame(x.shading_normal).to_world(local);
+  direction = Frame(x.shading_normal).to_world(local);
   const float bsdf_pdf = local.z * kInvPi;
-  if (!(bsdf_pdf > 0.0f) || glm::dot(direction, x.geometric_normal) <= 0.0f) return irradiance;
+  if (!(bsdf_pdf > 0.0f) || glm::dot(direction, x.geometric_normal) <= 0.0f) {
+    return glm::vec3(0.0f);
+  }
   const glm::vec3 origin = ray_origin(x);
   ++rays;
   const Hit hit = tracer_.intersect(Ray{origin, direction, 0.0f, 1e30f});
   // E = integral of L cos; with density cos / pi, one sample estimates pi * L.
-  return irradiance + kPi * emission_along(x.position, direction, hit, bsdf_pdf);
+  return kPi * emission_along(x.position, direction, hit, bsdf_pdf);
+}
+
+glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+  const glm::vec3 irradiance = sample_lights(x, rng, rays);
+  glm::vec3 direction;
+  return irradiance + cosine_ray_irradiance(x, rng, rays, direction);
 }
 
 glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
@@ -167,15 +175,8 @@ glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng
     irradiance += term;
     visit(s.direction, term);
   });
-  const float u1 = rng.next_float(), u2 = rng.next_float();
-  const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
-  const glm::vec3 direction = Frame(x.shading_normal).to_world(local);
-  const float bsdf_pdf = local.z * kInvPi;
-  if (!(bsdf_pdf > 0.0f) || glm::dot(direction, x.geometric_normal) <= 0.0f) return irradiance;
-  const glm::vec3 origin = ray_origin(x);
-  ++rays;
-  const Hit hit = tracer_.intersect(Ray{origin, direction, 0.0f, 1e30f});
-  const glm::vec3 term = kPi * emission_along(x.position, direction, hit, bsdf_pdf);
+  glm::vec3 direction;
+  const glm::vec3 term = cosine_ray_irradiance(x, rng, rays, direction);
   if (max_component(term) > 0.0f) visit(direction, term);
   return irradiance + term;
 }

@@ -80,6 +80,10 @@ class DirectLight {
   // Calls visit(sample) for one sample of every lamp and one of the emissive triangles.
   template <typename Visit>
   void for_each_light_sample(const SurfacePoint& x, Pcg32& rng, Visit&& visit) const;
+  // The BSDF-sampling half of irradiance_sample: one cosine-weighted ray (its direction into
+  // `direction`) and π times the MIS-weighted emission it picks up; 0 below the surface.
+  glm::vec3 cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                                  glm::vec3& direction) const;
   // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
   bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
 

@@ -1,29 +1,10 @@
 #include "solvers/antiradiance/glossy_direct_reflection.h"
 
 #include <algorithm>
-#include <map>
 
 #include "util/sampling.h"
 
 namespace bakegi::antiradiance {
-
-std::vector<const GlossyLobeTable*> glossy_tables_for_patches(
-    const std::vector<Patch>& patches, const DirectionalBins& bins,
-    std::vector<std::shared_ptr<const GlossyLobeTable>>& keep_alive) {
-  std::vector<const GlossyLobeTable*> per_patch(patches.size(), nullptr);
-  std::map<float, const GlossyLobeTable*> by_exponent;
-  for (size_t p = 0; p < patches.size(); ++p) {
-    const Patch& patch = patches[p];
-    if (!(max_component(patch.glossy) > 0.0f)) continue;
-    auto found = by_exponent.find(patch.glossy_exponent);
-    if (found == by_exponent.end()) {
-      keep_alive.push_back(GlossyLobeTable::table_for(bins, patch.glossy_exponent));
-      found = by_exponent.emplace(patch.glossy_exponent, keep_alive.back().get()).first;
-    }
-    per_patch[p] = found->second;
-  }
-  return per_patch;
-}
 
 void reflect_direct_glossy(const glm::vec3& normal, const DirectionalBins& bins,
                            const GlossyLobeTable& table, std::span<const BinnedIrradiance> incident,

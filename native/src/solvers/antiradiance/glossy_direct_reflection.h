@@ -36,12 +36,6 @@ struct BinnedIrradiance {
   glm::vec3 irradiance{0.0f};
 };
 
-// The lobe table of each patch's exponent (nullptr for patches without a lobe), each table
-// looked up once; `keep_alive` holds them.
-std::vector<const GlossyLobeTable*> glossy_tables_for_patches(
-    const std::vector<Patch>& patches, const DirectionalBins& bins,
-    std::vector<std::shared_ptr<const GlossyLobeTable>>& keep_alive);
-
 // G(ω_j) per unit ρ_g (W/(m² sr)) into `out` (m entries, 0 for bins behind the face normal)
 // from the binned direct light `incident` (bins in any order, each at most once) and
 // `reflectable` = Σ_s A(μ_s) E_s. `scratch` is resized to m.

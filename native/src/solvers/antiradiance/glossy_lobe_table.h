@@ -65,4 +65,13 @@ class GlossyLobeTable {
   std::vector<float> albedo_;  // A at μ = k / (size − 1)
 };
 
+struct Patch;
+
+// The lobe table of each patch's exponent (nullptr for patches without a lobe), each table
+// looked up once; `keep_alive` holds them. Used by the local pass and the direct
+// initialization.
+std::vector<const GlossyLobeTable*> glossy_tables_for_patches(
+    const std::vector<Patch>& patches, const DirectionalBins& bins,
+    std::vector<std::shared_ptr<const GlossyLobeTable>>& keep_alive);
+
 }  // namespace bakegi::antiradiance

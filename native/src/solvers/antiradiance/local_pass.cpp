@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <memory>
 #include <numbers>
 #include <span>
@@ -27,25 +26,6 @@ enum class Update {
   kRadianceOnly,      // K on the front, the back zeroed
   kAntiradianceOnly,  // J on the back, the front kept
 };
-
-// The glossy tables of the patches' exponents, looked up once per pass (nullptr: diffuse).
-std::vector<const GlossyLobeTable*> glossy_tables_per_patch(
-    const std::vector<Patch>& patches, const DirectionalBins& bins,
-    std::vector<std::shared_ptr<const GlossyLobeTable>>& keep_alive) {
-  std::vector<const GlossyLobeTable*> per_patch(patches.size(), nullptr);
-  std::map<float, const GlossyLobeTable*> by_exponent;
-  for (size_t p = 0; p < patches.size(); ++p) {
-    const Patch& patch = patches[p];
-    if (!(max_component(patch.glossy) > 0.0f)) continue;
-    auto found = by_exponent.find(patch.glossy_exponent);
-    if (found == by_exponent.end()) {
-      keep_alive.push_back(GlossyLobeTable::table_for(bins, patch.glossy_exponent));
-      found = by_exponent.emplace(patch.glossy_exponent, keep_alive.back().get()).first;
-    }
-    per_patch[p] = found->second;
-  }
-  return per_patch;
-}
 
 // Glossy radiance per unit ρ_g towards every front bin (0 elsewhere) into `out`: per outgoing
 // bin, the lobe around the mirror image of ω_j gathered from the front incident bins and
@@ -160,7 +140,7 @@ void reflect_all_patches(const ElementHierarchy& hierarchy, const DirectionalBin
   const std::vector<Element>& elements = hierarchy.elements();
   std::vector<std::shared_ptr<const GlossyLobeTable>> keep_alive;
   const std::vector<const GlossyLobeTable*> glossy =
-      glossy_tables_per_patch(patches, bins, keep_alive);
+      glossy_tables_for_patches(patches, bins, keep_alive);
   const std::span<glm::vec3> accumulated = tables.accumulated_irradiance();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, patches.size(), kPatchesPerBlock),
                     [&](const tbb::blocked_range<size_t>& block) {
