@@ -240,6 +240,8 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *   "direct_samples" int   direct-light samples per sender point (default 16)
  *   "viewpoint"    string  "x,y,z": importance particles start there; empty (default): they
  *                          leave the bake points
+ *   "visibility"   int     0 or 1 (default 1): at bake points, leave out basis functions
+ *                          whose point the bake point cannot see (occlusion rays)
  */
 typedef struct bakegi_settings bakegi_settings;
 

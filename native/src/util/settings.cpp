@@ -129,8 +129,8 @@ const std::vector<std::string>& known_setting_keys() {
       "bins", "iterations", "tolerance", "scheme", "patch_size", "direct_samples", "oracle",
       "oracle_factor", "glossy_fold_exponent", "near_field_rays", "near_field_distance",
       // meshless
-      "levels", "coarse_spacing", "sender_levels", "epsilon", "gather_rays", "bounces",
-      "viewpoint"};
+      "levels", "coarse_spacing", "sender_levels", "epsilon", "gather_rays", "bounces", "viewpoint",
+      "visibility"};
   return keys;
 }
 

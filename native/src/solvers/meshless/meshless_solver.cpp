@@ -23,6 +23,7 @@
 #include "solvers/meshless/multilevel_approximation.h"
 #include "solvers/meshless/point_placement.h"
 #include "solvers/meshless/transfer_refinement.h"
+#include "solvers/meshless/visible_evaluation.h"
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/random.h"
@@ -43,6 +44,7 @@ struct MeshlessSettings {
   int64_t gather_rays = 256;
   int64_t bounces = 16;
   int64_t direct_samples = 16;
+  bool visibility = true;
   bool has_viewpoint = false;
   glm::vec3 viewpoint{0.0f};
   int64_t seed = 0;
@@ -57,6 +59,7 @@ struct MeshlessSettings {
     s.gather_rays = settings.get_int("gather_rays", 256, 1, 65536);
     s.bounces = settings.get_int("bounces", 16, 1, 1000);
     s.direct_samples = settings.get_int("direct_samples", 16, 1, 65536);
+    s.visibility = settings.get_int("visibility", 1, 0, 1) != 0;
     s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
     s.memory_budget_bytes =
         uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
@@ -115,8 +118,22 @@ void MeshlessField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
   }
   if (points.size() == 0) return;
   std::vector<float> vectors(points.size() * 9);
-  evaluate_many(system_->all, irradiance_, 9, points.positions, points.normals, vectors, &context);
+  const auto start = std::chrono::steady_clock::now();
+  if (visibility_ != nullptr) {
+    const VisibleEvaluationStats stats =
+        evaluate_visible_many(system_->all, irradiance_, 9, *visibility_, points.positions,
+                              points.normals, vectors, &context);
+    context.report().add_count("rays", stats.rays);
+    context.report().add_count("meshless_visibility_rays", stats.rays);
+    context.report().add_count("meshless_visibility_blocked", stats.blocked);
+    context.report().add_count("meshless_visibility_skipped_levels", stats.levels_skipped);
+    context.report().add_count("meshless_visibility_unblocked_points", stats.points_unblocked);
+  } else {
+    evaluate_many(system_->all, irradiance_, 9, points.positions, points.normals, vectors,
+                  &context);
+  }
   context.throw_if_cancelled();
+  context.report().add_seconds("meshless_evaluation", seconds_since(start));
   for (size_t p = 0; p < points.size(); ++p) {
     const glm::vec3& n = points.normals[p];
     for (int c = 0; c < 3; ++c) {
@@ -306,7 +323,8 @@ std::unique_ptr<IndirectField> MeshlessSolver::light(
   report.add_seconds("meshless_direct", direct_seconds);
   report.add_seconds("meshless_apply", apply_seconds);
   report.add_count("memory_bytes", system->memory_bytes() + indirect.size() * sizeof(float));
-  return std::make_unique<MeshlessField>(std::move(system), std::move(indirect));
+  return std::make_unique<MeshlessField>(std::move(system), std::move(indirect),
+                                         settings.visibility ? &inputs.tracer : nullptr);
 }
 
 }  // namespace bakegi

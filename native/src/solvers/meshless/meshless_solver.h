@@ -16,6 +16,8 @@
 //   direct_samples  direct-light samples per sender point (default 16)
 //   viewpoint       "x,y,z": importance particles start there (§2.3); empty (default): they
 //                   leave the bake points, which define the surfaces that matter for a bake
+//   visibility      1 (default): at bake points, leave out basis functions whose point the
+//                   bake point cannot see (visible_evaluation.h); 0: plain Eq. 6
 //   seed, memory_budget_mb
 #pragma once
 
@@ -32,15 +34,20 @@ struct MeshlessPrecomputation;
 class MeshlessField : public IndirectField {
  public:
   // `receiver_irradiance`: 9 floats per basis point (RGB channel-major vector irradiance).
+  // `visibility` (optional) enables the visibility-aware evaluation; it must outlive every
+  // evaluate() (the bake job's tracer does, as for antiradiance).
   MeshlessField(std::shared_ptr<const MeshlessPrecomputation> system,
-                std::vector<float> receiver_irradiance)
-      : system_(std::move(system)), irradiance_(std::move(receiver_irradiance)) {}
+                std::vector<float> receiver_irradiance, const RayTracer* visibility = nullptr)
+      : system_(std::move(system)),
+        irradiance_(std::move(receiver_irradiance)),
+        visibility_(visibility) {}
   void evaluate(const BakePoints& points, std::span<glm::vec3> out,
                 JobContext& context) const override;
 
  private:
   std::shared_ptr<const MeshlessPrecomputation> system_;
   std::vector<float> irradiance_;
+  const RayTracer* visibility_ = nullptr;
 };
 
 class MeshlessSolver : public Solver {
@@ -48,7 +55,9 @@ class MeshlessSolver : public Solver {
   std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
 
   bool can_relight() const override { return true; }
-  std::vector<std::string> relight_settings() const override { return {"direct_samples"}; }
+  std::vector<std::string> relight_settings() const override {
+    return {"direct_samples", "visibility"};
+  }
   std::shared_ptr<const Precomputation> precomputation() const override { return precomputation_; }
   std::unique_ptr<IndirectField> relight(const SolveInputs& inputs, const Precomputation& reuse,
                                          JobContext& context) override;

@@ -44,7 +44,12 @@ uint64_t refine_receiver(const Scene& scene, const RayTracer& tracer, const Basi
   std::vector<TransferLink> kept;
   for (uint32_t sender : acc.touched()) {
     const LinkValue& value = acc.value(sender);
-    if (!(link_magnitude(value) > threshold)) continue;
+    // Coarsest-to-coarsest links are always kept: they carry the mean transport (all
+    // positive), so dropping the small ones loses energy instead of noise (measured on the
+    // Cornell box: -6.6% on the second bounce, -16% on the later ones, which use only these
+    // links), and there are only coarsest receivers x coarsest senders of them.
+    const bool coarsest_pair = receiver < all.level_end(0) && sender < coarsest_senders;
+    if (!coarsest_pair && !(link_magnitude(value) > threshold)) continue;
     if (sender >= coarsest_senders) {
       float variation = 0.0f;
       for (uint32_t neighbour : all.neighbors(sender)) {

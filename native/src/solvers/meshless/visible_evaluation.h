@@ -1,0 +1,61 @@
+// Evaluation of the expansion F_L = Σ_j α_j B_j (Eq. 6) at bake points with the basis
+// functions a point cannot see left out (the leak of §5.2, handled as the antiradiance splat
+// does in surface_interpolation.h).
+//
+// Why: a basis function's support is an ellipsoid (Eq. 10) that ignores occluders, so the
+// functions of a lit floor reach under a box standing on it (the Cornell box's floor corners
+// under the boxes held 35% of the squared error) and dark ones reach out. For each bake point
+// and each level, every point j with w_j(x, n) > 0 is tested with one occlusion ray between
+// x and x_j, both lifted off their surfaces along their normals by
+// kLiftOfRadius · r_j + kLiftPerDistance · |x − x_j| (the distance part keeps the segment
+// off gently curved surfaces, as in surface_interpolation.h; any occluder taller than the
+// lift between the two still blocks). The visible weights are renormalized within the level,
+// so each level stays a partition of unity (Shepard). A level none of whose candidates the
+// point sees adds nothing: the point cannot receive what that level carries (on the Cornell
+// box these are the floor corners under the boxes: every coarse function there sits on the
+// lit floor outside, and using their unblocked value instead, as the antiradiance splat does
+// for its single level, left those corners at 55% of the floor's mean; measured 13.5% against
+// 12.4% error at levels=4). Only a point that sees no candidate of any level (a gap narrower
+// than the finest spacing) gets the unblocked value of every level.
+//
+// The coefficients α were computed (Eq. 7, Eq. 17) with unblocked basis functions; leaving
+// functions out at evaluation changes only how a level's coefficients are interpolated, not
+// what they are.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "solvers/meshless/basis_hierarchy.h"
+
+namespace bakegi {
+class JobContext;
+class RayTracer;
+}  // namespace bakegi
+
+namespace bakegi::meshless {
+
+inline constexpr float kLiftOfRadius = 0.01f;     // of the basis function's radius r_j
+inline constexpr float kLiftPerDistance = 0.15f;  // of the point-to-center distance
+
+struct VisibleEvaluationStats {
+  uint64_t rays = 0;
+  uint64_t blocked = 0;           // candidates left out
+  uint64_t levels_skipped = 0;    // (point, level) pairs left out: every candidate blocked
+  uint64_t points_unblocked = 0;  // points that see no candidate at all: unblocked values
+  size_t uncovered = 0;           // queries no level covers (their values are 0)
+};
+
+// Like evaluate_many (multilevel_approximation.h), with the visibility test. Parallel (TBB)
+// and deterministic (each query depends only on itself); `job` (optional) is checked for
+// cancel between blocks of queries and gets stage progress.
+VisibleEvaluationStats evaluate_visible_many(const BasisHierarchy& basis,
+                                             std::span<const float> coefficients, uint32_t channels,
+                                             const RayTracer& tracer,
+                                             std::span<const glm::vec3> positions,
+                                             std::span<const glm::vec3> normals,
+                                             std::span<float> out, JobContext* job = nullptr);
+
+}  // namespace bakegi::meshless
