@@ -36,9 +36,9 @@ commands:
   relight scene.bgs --out values.npy [--move x,y,z] [--scale k] [--repeat R] [--check]
           [settings]
       Bakes once, moves every light by (x,y,z) metres and scales its power by k, then
-      relights from the first bake's precomputation (antiradiance), keeping the fastest of
-      R relights; --check also bakes the changed scene from scratch and compares. Prints
-      JSON with the seconds of the full bake and of the relight.
+      relights from the first bake's precomputation (antiradiance, meshless), keeping the
+      fastest of R relights; --check also bakes the changed scene from scratch and compares.
+      Prints JSON with the seconds of the full bake and of the relight.
   converge scene.bgs --method antiradiance --iterations K [--reference-iterations R]
            --out convergence.json [settings]
       Antiradiance Fig. 5: error after 1..K iterations of the symmetric and asymmetric

@@ -100,7 +100,8 @@ int run_relight_command(const std::vector<std::string>& words) {
   const uint64_t count = bakegi_points_count(file.points.get());
   const BakeRun full = run_bake(file.scene.get(), file.points.get(), settings, "full bake");
   if (!bakegi_job_can_relight(full.job.get())) {
-    throw UsageError("method '" + settings.method() + "' cannot relight (antiradiance can)");
+    throw UsageError("method '" + settings.method() +
+                     "' cannot relight (antiradiance and meshless can)");
   }
 
   change_lights(file.scene.get(), offset, float(scale));
