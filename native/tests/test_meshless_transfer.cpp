@@ -121,8 +121,11 @@ TEST(MeshlessSolver, RelightEqualsAFullSolveWithTheMovedLight) {
   MeshlessSolver solver;
   JobContext context;
   const DirectLight direct_first(first, tracer);
-  ASSERT_NO_THROW(
-      solver.solve(SolveInputs{first, tracer, direct_first, settings, &points}, context));
+  const auto first_field =
+      solver.solve(SolveInputs{first, tracer, direct_first, settings, &points}, context);
+  std::vector<glm::vec3> first_values(points.size());
+  first_field->evaluate(points, first_values, context);  // as a bake job does
+  EXPECT_EQ(context.report().count("meshless_evaluation_weights_reused"), 0u);
   const auto precomputation = solver.precomputation();
   ASSERT_NE(precomputation, nullptr);
   EXPECT_GT(precomputation->memory_bytes(), 0u);
@@ -134,6 +137,10 @@ TEST(MeshlessSolver, RelightEqualsAFullSolveWithTheMovedLight) {
                                        *precomputation, relight_context);
   std::vector<glm::vec3> relit_values(points.size());
   relit->evaluate(points, relit_values, relight_context);
+  // The same bake points: the relight reuses the first bake's evaluation weights (one sparse
+  // product, no R-tree queries or visibility rays).
+  EXPECT_EQ(relight_context.report().count("meshless_evaluation_weights_reused"), 1u);
+  EXPECT_EQ(relight_context.report().count("meshless_visibility_rays"), 0u);
 
   MeshlessSolver full;
   JobContext full_context;

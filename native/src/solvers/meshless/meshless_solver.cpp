@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -106,10 +108,48 @@ struct MeshlessPrecomputation : Precomputation,
   BasisHierarchy all;      // every receiver level
   BasisHierarchy senders;  // the first sender levels of the same points (same indices)
   DirectToIndirect transfer;
-  size_t memory_bytes() const override {
-    return all.memory_bytes() + senders.memory_bytes() + transfer.memory_bytes();
+
+  // The evaluation weights of the last bake points evaluated, so that relighting the same
+  // points is one sparse product (no R-tree queries, no visibility rays). Keyed by a hash of
+  // the points and the visibility flag.
+  std::shared_ptr<const EvaluationWeights> weights_for(uint64_t key) const {
+    std::lock_guard<std::mutex> lock(weights_mutex_);
+    return key == weights_key_ ? weights_ : nullptr;
   }
+  void keep_weights(uint64_t key, std::shared_ptr<const EvaluationWeights> weights) const {
+    std::lock_guard<std::mutex> lock(weights_mutex_);
+    weights_key_ = key;
+    weights_ = std::move(weights);
+  }
+
+  size_t memory_bytes() const override {
+    std::lock_guard<std::mutex> lock(weights_mutex_);
+    return all.memory_bytes() + senders.memory_bytes() + transfer.memory_bytes() +
+           (weights_ ? weights_->memory_bytes() : 0);
+  }
+
+ private:
+  mutable std::mutex weights_mutex_;
+  mutable std::shared_ptr<const EvaluationWeights> weights_;
+  mutable uint64_t weights_key_ = 0;
 };
+
+namespace {
+
+// Identifies a set of bake points (positions and normals, bit for bit) and the rule.
+uint64_t points_key(const BakePoints& points, bool visibility) {
+  uint64_t key = mix64(points.size() * 2 + (visibility ? 1 : 0));
+  auto add = [&key](const glm::vec3& v) {
+    for (int a = 0; a < 3; ++a) key = mix64(key ^ std::bit_cast<uint32_t>(v[a]));
+  };
+  for (size_t i = 0; i < points.size(); ++i) {
+    add(points.positions[i]);
+    add(points.normals[i]);
+  }
+  return key;
+}
+
+}  // namespace
 
 void MeshlessField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
                              JobContext& context) const {
@@ -119,19 +159,22 @@ void MeshlessField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
   if (points.size() == 0) return;
   std::vector<float> vectors(points.size() * 9);
   const auto start = std::chrono::steady_clock::now();
-  if (visibility_ != nullptr) {
-    const VisibleEvaluationStats stats =
-        evaluate_visible_many(system_->all, irradiance_, 9, *visibility_, points.positions,
-                              points.normals, vectors, &context);
+  const uint64_t key = points_key(points, visibility_ != nullptr);
+  std::shared_ptr<const EvaluationWeights> weights = system_->weights_for(key);
+  context.report().add_count("meshless_evaluation_weights_reused", weights ? 1 : 0);
+  if (!weights) {
+    auto computed = std::make_shared<EvaluationWeights>();
+    const VisibleEvaluationStats stats = visible_weights(
+        system_->all, visibility_, points.positions, points.normals, *computed, &context);
     context.report().add_count("rays", stats.rays);
     context.report().add_count("meshless_visibility_rays", stats.rays);
     context.report().add_count("meshless_visibility_blocked", stats.blocked);
     context.report().add_count("meshless_visibility_skipped_levels", stats.levels_skipped);
     context.report().add_count("meshless_visibility_unblocked_points", stats.points_unblocked);
-  } else {
-    evaluate_many(system_->all, irradiance_, 9, points.positions, points.normals, vectors,
-                  &context);
+    system_->keep_weights(key, computed);
+    weights = std::move(computed);
   }
+  weights->apply(irradiance_, 9, vectors);
   context.throw_if_cancelled();
   context.report().add_seconds("meshless_evaluation", seconds_since(start));
   for (size_t p = 0; p < points.size(); ++p) {

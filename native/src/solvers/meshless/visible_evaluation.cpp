@@ -34,6 +34,139 @@ bool sees(const RayTracer& tracer, const glm::vec3& x, const glm::vec3& n, const
 
 }  // namespace
 
+void EvaluationWeights::apply(std::span<const float> coefficients, uint32_t channels,
+                              std::span<float> out) const {
+  const size_t points = point_count();
+  if (out.size() != points * channels) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "meshless evaluation weights: output size");
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, points, 256), [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<double> sum(channels);
+        for (size_t q = range.begin(); q < range.end(); ++q) {
+          std::fill(sum.begin(), sum.end(), 0.0);
+          for (uint64_t e = offsets[q]; e < offsets[q + 1]; ++e) {
+            const float* a = coefficients.data() + size_t(entries[e].index) * channels;
+            for (uint32_t c = 0; c < channels; ++c) {
+              sum[c] += double(entries[e].value) * a[c];
+            }
+          }
+          for (uint32_t c = 0; c < channels; ++c) out[q * channels + c] = float(sum[c]);
+        }
+      });
+}
+
+VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTracer* tracer,
+                                       std::span<const glm::vec3> positions,
+                                       std::span<const glm::vec3> normals,
+                                       EvaluationWeights& weights, JobContext* job) {
+  if (normals.size() != positions.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "meshless visible evaluation: positions and normals sizes disagree");
+  }
+  constexpr size_t kBlock = 64;
+  const size_t blocks = (positions.size() + kBlock - 1) / kBlock;
+  // Each block's rows, joined in block order afterwards: the result does not depend on the
+  // thread count.
+  std::vector<std::vector<BasisValue>> block_entries(blocks);
+  std::vector<uint64_t> row_sizes(positions.size(), 0);
+  std::atomic<uint64_t> rays{0}, blocked{0}, skipped{0}, unblocked{0}, uncovered{0};
+  std::atomic<size_t> done{0};
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& block_range) {
+        for (size_t block = block_range.begin(); block < block_range.end(); ++block) {
+          if (job != nullptr && job->is_cancelled()) return;
+          std::vector<BasisValue>& rows = block_entries[block];
+          std::vector<BasisValue> candidates, seen_row, all_row;
+          std::vector<char> visible;
+          uint64_t local_rays = 0, local_blocked = 0, local_skipped = 0, local_unblocked = 0,
+                   local_uncovered = 0;
+          const size_t end = std::min(positions.size(), (block + 1) * kBlock);
+          for (size_t q = block * kBlock; q < end; ++q) {
+            const glm::vec3& x = positions[q];
+            const glm::vec3& n = normals[q];
+            seen_row.clear();
+            all_row.clear();
+            bool covered = false, sees_any = false;
+            uint64_t blind_levels = 0;
+            for (uint32_t level = 0; level < basis.level_count(); ++level) {
+              candidates.clear();
+              basis.gather_weights(level, x, n, candidates);
+              double all_weight = 0.0, visible_weight = 0.0;
+              visible.assign(candidates.size(), 0);
+              for (size_t k = 0; k < candidates.size(); ++k) {
+                const BasisValue& c = candidates[k];
+                if (!(c.value > 0.0f)) continue;
+                all_weight += c.value;
+                if (tracer == nullptr) {
+                  visible[k] = 1;
+                  visible_weight += c.value;
+                  continue;
+                }
+                ++local_rays;
+                if (sees(*tracer, x, n, basis.point(c.index))) {
+                  visible[k] = 1;
+                  visible_weight += c.value;
+                } else {
+                  ++local_blocked;
+                }
+              }
+              if (!(all_weight > 0.0)) continue;
+              covered = true;
+              if (visible_weight > 0.0) {
+                sees_any = true;
+              } else {
+                ++blind_levels;
+              }
+              for (size_t k = 0; k < candidates.size(); ++k) {
+                const BasisValue& c = candidates[k];
+                if (!(c.value > 0.0f)) continue;
+                all_row.push_back({c.index, float(double(c.value) / all_weight)});
+                if (visible[k])
+                  seen_row.push_back({c.index, float(double(c.value) / visible_weight)});
+              }
+            }
+            if (!covered) ++local_uncovered;
+            // A level none of whose functions the point sees adds nothing (its light does not reach
+            // the point); a point that sees no function of any level gets the unblocked weights (no
+            // better information).
+            const std::vector<BasisValue>& row = sees_any ? seen_row : all_row;
+            if (sees_any) {
+              local_skipped += blind_levels;
+            } else if (covered) {
+              ++local_unblocked;
+            }
+            rows.insert(rows.end(), row.begin(), row.end());
+            row_sizes[q] = row.size();
+          }
+          rays += local_rays;
+          blocked += local_blocked;
+          skipped += local_skipped;
+          unblocked += local_unblocked;
+          uncovered += local_uncovered;
+          const size_t finished = done.fetch_add(end - block * kBlock) + (end - block * kBlock);
+          if (job != nullptr) job->set_stage_progress(double(finished) / double(positions.size()));
+        }
+      });
+  if (job != nullptr) job->throw_if_cancelled();
+  weights.offsets.assign(positions.size() + 1, 0);
+  for (size_t q = 0; q < positions.size(); ++q) {
+    weights.offsets[q + 1] = weights.offsets[q] + row_sizes[q];
+  }
+  weights.entries.clear();
+  weights.entries.reserve(weights.offsets.back());
+  for (const auto& rows : block_entries) {
+    weights.entries.insert(weights.entries.end(), rows.begin(), rows.end());
+  }
+  VisibleEvaluationStats stats;
+  stats.rays = rays.load();
+  stats.blocked = blocked.load();
+  stats.levels_skipped = skipped.load();
+  stats.points_unblocked = unblocked.load();
+  stats.uncovered = size_t(uncovered.load());
+  return stats;
+}
+
 VisibleEvaluationStats evaluate_visible_many(const BasisHierarchy& basis,
                                              std::span<const float> coefficients, uint32_t channels,
                                              const RayTracer& tracer,
@@ -49,90 +182,10 @@ VisibleEvaluationStats evaluate_visible_many(const BasisHierarchy& basis,
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "meshless visible evaluation: positions, normals and out sizes disagree");
   }
-  std::atomic<uint64_t> rays{0}, blocked{0}, skipped{0}, unblocked{0}, uncovered{0};
-  std::atomic<size_t> done{0};
-  // Fixed grain; each query's result depends only on the query (deterministic).
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, positions.size(), 64),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      if (job != nullptr && job->is_cancelled()) return;
-                      std::vector<BasisValue> candidates;
-                      std::vector<char> visible;
-                      std::vector<double> seen(channels), all(channels);
-                      uint64_t local_rays = 0, local_blocked = 0, local_skipped = 0,
-                               local_unblocked = 0, local_uncovered = 0;
-                      for (size_t q = range.begin(); q < range.end(); ++q) {
-                        const glm::vec3& x = positions[q];
-                        const glm::vec3& n = normals[q];
-                        std::fill(seen.begin(), seen.end(), 0.0);
-                        std::fill(all.begin(), all.end(), 0.0);
-                        bool covered = false, sees_any = false;
-                        uint64_t blind_levels = 0;
-                        for (uint32_t level = 0; level < basis.level_count(); ++level) {
-                          candidates.clear();
-                          basis.gather_weights(level, x, n, candidates);
-                          double all_weight = 0.0, visible_weight = 0.0;
-                          visible.assign(candidates.size(), 0);
-                          for (size_t k = 0; k < candidates.size(); ++k) {
-                            const BasisValue& c = candidates[k];
-                            if (!(c.value > 0.0f)) continue;
-                            all_weight += c.value;
-                            ++local_rays;
-                            if (sees(tracer, x, n, basis.point(c.index))) {
-                              visible[k] = 1;
-                              visible_weight += c.value;
-                            } else {
-                              ++local_blocked;
-                            }
-                          }
-                          if (!(all_weight > 0.0)) continue;
-                          covered = true;
-                          if (visible_weight > 0.0) {
-                            sees_any = true;
-                          } else {
-                            ++blind_levels;
-                          }
-                          for (size_t k = 0; k < candidates.size(); ++k) {
-                            const BasisValue& c = candidates[k];
-                            if (!(c.value > 0.0f)) continue;
-                            const float* a = coefficients.data() + size_t(c.index) * channels;
-                            const double b_all = double(c.value) / all_weight;
-                            const double b_seen =
-                                visible[k] ? double(c.value) / visible_weight : 0.0;
-                            for (uint32_t ch = 0; ch < channels; ++ch) {
-                              all[ch] += b_all * a[ch];
-                              seen[ch] += b_seen * a[ch];
-                            }
-                          }
-                        }
-                        if (!covered) ++local_uncovered;
-                        // A level none of whose functions the point sees adds nothing (its light
-                        // does not reach the point); a point that sees no function of any level
-                        // gets the unblocked value (no better information).
-                        const std::vector<double>& value = sees_any ? seen : all;
-                        if (sees_any) {
-                          local_skipped += blind_levels;
-                        } else if (covered) {
-                          ++local_unblocked;
-                        }
-                        float* result = out.data() + q * channels;
-                        for (uint32_t ch = 0; ch < channels; ++ch) result[ch] = float(value[ch]);
-                      }
-                      rays += local_rays;
-                      blocked += local_blocked;
-                      skipped += local_skipped;
-                      unblocked += local_unblocked;
-                      uncovered += local_uncovered;
-                      const size_t finished = done.fetch_add(range.size()) + range.size();
-                      if (job != nullptr)
-                        job->set_stage_progress(double(finished) / double(positions.size()));
-                    });
-  if (job != nullptr) job->throw_if_cancelled();
-  VisibleEvaluationStats stats;
-  stats.rays = rays.load();
-  stats.blocked = blocked.load();
-  stats.levels_skipped = skipped.load();
-  stats.points_unblocked = unblocked.load();
-  stats.uncovered = size_t(uncovered.load());
+  EvaluationWeights weights;
+  const VisibleEvaluationStats stats =
+      visible_weights(basis, &tracer, positions, normals, weights, job);
+  weights.apply(coefficients, channels, out);
   return stats;
 }
 

@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -47,6 +48,29 @@ struct VisibleEvaluationStats {
   uint64_t points_unblocked = 0;  // points that see no candidate at all: unblocked values
   size_t uncovered = 0;           // queries no level covers (their values are 0)
 };
+
+// The expansion at a fixed set of points is linear in the coefficients: row q holds
+// (j, weight of α_j at point q), so evaluating it again (a relight) is one sparse product
+// instead of R-tree queries and visibility rays.
+struct EvaluationWeights {
+  std::vector<uint64_t> offsets;    // points + 1: row q is entries[offsets[q], offsets[q + 1])
+  std::vector<BasisValue> entries;  // (basis point, weight)
+
+  size_t point_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  size_t memory_bytes() const {
+    return offsets.capacity() * sizeof(uint64_t) + entries.capacity() * sizeof(BasisValue);
+  }
+  // out[q * channels + c] = Σ weight · coefficients[j * channels + c]. Parallel, deterministic.
+  void apply(std::span<const float> coefficients, uint32_t channels, std::span<float> out) const;
+};
+
+// The weights of the points under the rule above: with `tracer`, the visibility test; without,
+// plain per-level Shepard weights (as evaluate_many). Parallel (TBB) and deterministic;
+// `job` (optional) is checked for cancel and gets stage progress.
+VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTracer* tracer,
+                                       std::span<const glm::vec3> positions,
+                                       std::span<const glm::vec3> normals,
+                                       EvaluationWeights& weights, JobContext* job = nullptr);
 
 // Like evaluate_many (multilevel_approximation.h), with the visibility test. Parallel (TBB)
 // and deterministic (each query depends only on itself); `job` (optional) is checked for
