@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "scene/lifted_visibility.h"
 #include "scene/ray_tracer.h"
 
 namespace bakegi::antiradiance {
@@ -136,17 +137,8 @@ glm::vec3 SurfaceInterpolation::evaluate(const glm::vec3& position, const glm::v
 
 bool SurfaceInterpolation::sees(const glm::vec3& position, const glm::vec3& normal,
                                 const SurfaceSample& s) const {
-  const float distance = glm::length(position - s.center);
-  if (!(distance > 0.0f)) return true;
-  const float lift = kLiftAbsolute * support_ + kLiftPerDistance * distance;
-  const glm::vec3 from = position + lift * normal;
-  const glm::vec3 to = s.center + lift * s.normal;
-  Ray ray;
-  ray.origin = from;
-  ray.direction = to - from;  // t in (0, 1) spans the segment
-  ray.tnear = 0.0f;
-  ray.tfar = 1.0f;
-  return !visibility_->occluded(ray);
+  return lifted_points_see_each_other(*visibility_, position, normal, s.center, s.normal,
+                                      kLiftAbsolute * support_, kLiftPerDistance);
 }
 
 glm::vec3 SurfaceInterpolation::nearest_fallback(const glm::vec3& position,

@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "scene/lifted_visibility.h"
 #include "scene/ray_tracer.h"
 #include "util/error.h"
 #include "util/job_context.h"
@@ -19,17 +20,8 @@ namespace bakegi::meshless {
 namespace {
 
 bool sees(const RayTracer& tracer, const glm::vec3& x, const glm::vec3& n, const BasisPoint& p) {
-  const float distance = glm::length(x - p.position);
-  if (!(distance > 0.0f)) return true;
-  const float lift = kLiftOfRadius * p.radius + kLiftPerDistance * distance;
-  const glm::vec3 from = x + lift * n;
-  const glm::vec3 to = p.position + lift * p.normal;
-  Ray ray;
-  ray.origin = from;
-  ray.direction = to - from;  // t in (0, 1) spans the segment
-  ray.tnear = 0.0f;
-  ray.tfar = 1.0f;
-  return !tracer.occluded(ray);
+  return lifted_points_see_each_other(tracer, x, n, p.position, p.normal, kLiftOfRadius * p.radius,
+                                      kLiftPerDistance);
 }
 
 }  // namespace
