@@ -80,16 +80,24 @@ bool DirectLight::unoccluded(const SurfacePoint& x, const LightSample& s, uint64
   return !tracer_.occluded(shadow);
 }
 
-glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+template <typename Visit>
+glm::vec3 DirectLight::light_sample_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                                               Visit&& visit) const {
   glm::vec3 irradiance(0.0f);
   for_each_light_sample(x, rng, [&](const LightSample& s) {
     const float cos_receiver = glm::dot(x.shading_normal, s.direction);
     if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
     const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, cos_receiver * kInvPi) : 1.0f;
     if (!(weight > 0.0f) || !unoccluded(x, s, rays)) return;
-    irradiance += s.contribution * (cos_receiver * weight);
+    const glm::vec3 term = s.contribution * (cos_receiver * weight);
+    irradiance += term;
+    visit(s.direction, term);
   });
   return irradiance;
+}
+
+glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+  return light_sample_irradiance(x, rng, rays, [](const glm::vec3&, const glm::vec3&) {});
 }
 
 glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf, Pcg32& rng,
@@ -164,17 +172,8 @@ glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint
 
 glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
                                                const IrradianceTermVisitor& visit) const {
-  // Mirrors sample_lights(x, rng, rays) + irradiance_sample term by term, in the same order.
-  glm::vec3 irradiance(0.0f);
-  for_each_light_sample(x, rng, [&](const LightSample& s) {
-    const float cos_receiver = glm::dot(x.shading_normal, s.direction);
-    if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
-    const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, cos_receiver * kInvPi) : 1.0f;
-    if (!(weight > 0.0f) || !unoccluded(x, s, rays)) return;
-    const glm::vec3 term = s.contribution * (cos_receiver * weight);
-    irradiance += term;
-    visit(s.direction, term);
-  });
+  // irradiance_sample term by term, in the same order.
+  const glm::vec3 irradiance = light_sample_irradiance(x, rng, rays, visit);
   glm::vec3 direction;
   const glm::vec3 term = cosine_ray_irradiance(x, rng, rays, direction);
   if (max_component(term) > 0.0f) visit(direction, term);

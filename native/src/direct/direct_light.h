@@ -84,6 +84,11 @@ class DirectLight {
   // `direction`) and π times the MIS-weighted emission it picks up; 0 below the surface.
   glm::vec3 cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
                                   glm::vec3& direction) const;
+  // The light-sampling half of the irradiance: Σ MIS-weighted unoccluded samples, each
+  // term also handed to visit(direction, term).
+  template <typename Visit>
+  glm::vec3 light_sample_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                                    Visit&& visit) const;
   // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
   bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
 
