@@ -376,17 +376,17 @@ TEST(MeshlessPlacement, PointCapRefusesOrDropsLevels) {
 }
 
 TEST(MeshlessPlacement, AutomaticDefaultsFollowTheSceneSize) {
-  // The Cornell box's reachable area (24.4 m², measured): a level-0 estimate of 8 A^(1/3) =
-  // 23 points at R = sqrt(0.70 A / 23) = 0.856 m; six levels down to 2.7 cm.
+  // The Cornell box's reachable area (24.4 m², measured): a level-0 estimate of 32 A^(1/3) =
+  // 93 points at R = sqrt(0.6965 A / 93) = 0.428 m; four levels down to 5.3 cm.
   const float cornell = meshless::automatic_coarse_spacing(24.4f);
-  EXPECT_NEAR(cornell, 0.856f, 1e-3f);
-  EXPECT_NEAR(meshless::estimated_point_count(24.4, cornell), 8.0 * std::cbrt(24.4), 1e-3);
-  EXPECT_EQ(meshless::automatic_level_count(cornell), 6u);
-  // Crytek Sponza's reachable area (13,272 m², measured): R = 6.99 m, six levels down to
-  // 22 cm.
+  EXPECT_NEAR(cornell, 0.428f, 1e-3f);
+  EXPECT_NEAR(meshless::estimated_point_count(24.4, cornell), 32.0 * std::cbrt(24.4), 1e-3);
+  EXPECT_EQ(meshless::automatic_level_count(cornell), 4u);
+  // Crytek Sponza's reachable area (13,272 m², measured): R = 3.49 m, four levels down to
+  // 44 cm.
   const float sponza = meshless::automatic_coarse_spacing(13272.0f);
-  EXPECT_NEAR(sponza, 6.99f, 0.01f);
-  EXPECT_EQ(meshless::automatic_level_count(sponza), 6u);
+  EXPECT_NEAR(sponza, 3.49f, 0.01f);
+  EXPECT_EQ(meshless::automatic_level_count(sponza), 4u);
   // Small objects: fewer levels, none finer than 2 cm.
   EXPECT_EQ(meshless::automatic_level_count(0.3f), 4u);  // 0.3 / 8 = 3.75 cm; / 16 < 2 cm
   EXPECT_EQ(meshless::automatic_level_count(0.03f), 1u);

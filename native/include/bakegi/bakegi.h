@@ -231,10 +231,10 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *   "near_field_distance" float  0..100 (default 0.5): "near" in units of the interpolation's
  *                          support radius (about two patch edges); blended over its last half
  * Meshless only (Lehtinen et al. 2008; in progress, see docs/methods/meshless.md):
- *   "levels"       int     receiver levels of the basis 0..12 (default 0 = automatic, 6)
+ *   "levels"       int     receiver levels of the basis 0..12 (default 0 = automatic, 4)
  *   "coarse_spacing" float Poisson-disk spacing of level 0 in metres (default 0 = automatic)
  *   "sender_levels" int    levels that send light, 0..12 (default 0 = half the levels)
- *   "epsilon"      float   link threshold, the paper's units (default 0.025)
+ *   "epsilon"      float   link threshold, the paper's units (default 0.01; the paper used 0.025)
  *   "gather_rays"  int     hemisphere rays per receiver basis function (default 256)
  *   "bounces"      int     bounces at most, the first included (default 16)
  *   "direct_samples" int   direct-light samples per sender point (default 16)

@@ -42,7 +42,7 @@ struct MeshlessSettings {
   int64_t levels = 0;
   double coarse_spacing = 0.0;
   int64_t sender_levels = 0;
-  double epsilon = 0.025;
+  double epsilon = 0.01;
   int64_t gather_rays = 256;
   int64_t bounces = 16;
   int64_t direct_samples = 16;
@@ -57,7 +57,7 @@ struct MeshlessSettings {
     s.levels = settings.get_int("levels", 0, 0, 12);
     s.coarse_spacing = settings.get_float("coarse_spacing", 0.0, 0.0, 1e9);
     s.sender_levels = settings.get_int("sender_levels", 0, 0, 12);
-    s.epsilon = settings.get_float("epsilon", 0.025, 0.0, 10.0);
+    s.epsilon = settings.get_float("epsilon", 0.01, 0.0, 10.0);
     s.gather_rays = settings.get_int("gather_rays", 256, 1, 65536);
     s.bounces = settings.get_int("bounces", 16, 1, 1000);
     s.direct_samples = settings.get_int("direct_samples", 16, 1, 65536);

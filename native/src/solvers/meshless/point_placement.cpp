@@ -27,9 +27,9 @@ constexpr float kHarmonicThreshold = 1.0f / 6.0f;
 // Random sequential adsorption of disks in the plane jams at this coverage (Feder 1980).
 constexpr double kJammingCoverage = 0.547;
 constexpr uint32_t kMaxLevels = 16;
-// Automatic defaults (see the header): level-0 estimate 8 A^(1/3), six levels, finest >= 2 cm.
-constexpr double kCoarseCountPerCubeRootArea = 8.0;
-constexpr uint32_t kAutomaticLevels = 6;
+// Automatic defaults (see the header): level-0 estimate 32 A^(1/3), four levels, finest >= 2 cm.
+constexpr double kCoarseCountPerCubeRootArea = 32.0;
+constexpr uint32_t kAutomaticLevels = 4;
 constexpr float kFinestAutomaticSpacing = 0.02f;
 
 constexpr uint64_t kPilotSalt = 0x5EED'0001'0000'0000ull;

@@ -69,17 +69,17 @@ struct PlacementStatistics {
 };
 
 // R_coarse when the settings leave it at 0, from the reachable area A (m², scene units are
-// meters): the spacing whose flat-surface estimate gives level 0 8 (A / 1 m²)^(1/3) points,
-// i.e. R_coarse = 0.295 m^(1/3) A^(1/3). A scale-free rule (R ~ extent) gives every room the
-// same coarse count; the cube root lets large scenes have more coarse functions, each still
-// room-sized. Real scenes hold 1.5-2x the flat estimate on level 0 (creases and curved or
-// two-sided detail, where D lets points crowd); the factor 8 was calibrated so that Crytek
-// Sponza (13,272 m² reachable, R = 7.0 m) gets the paper's ~340 (Table 1: 176-339) and a
-// 2 m Cornell box (24.4 m², R = 0.86 m) a few tens.
+// meters): the spacing whose flat-surface estimate gives level 0 32 (A / 1 m²)^(1/3) points,
+// i.e. R_coarse = 0.1475 m^(1/3) A^(1/3). A scale-free rule (R ~ extent) gives every room the
+// same coarse count; the cube root lets large scenes have more coarse functions. The factor
+// was first 8 (R = 0.295 A^(1/3), calibrated to the paper's ~340 level-0 functions on Crytek
+// Sponza), but the coarsest level carries every bounce after the first and the local means:
+// on the Cornell box (24.4 m²) R = 0.86 m gave 10.8% error, R = 0.43 m with four levels 6.3%
+// in 3 s; on the office 34% -> 24% (docs/methods/meshless.md, the spacing study).
 float automatic_coarse_spacing(float reachable_area);
-// Levels when the settings leave them at 0: six (L = 5, the paper's receiver hierarchy),
-// fewer when the finest spacing would fall below 2 cm (indirect light varies little below
-// that, and small scenes would get many points for nothing).
+// Levels when the settings leave them at 0: four (the spacing study: at equal point counts a
+// finer coarsest level with four levels beats five or six levels), fewer when the finest
+// spacing would fall below 2 cm (indirect light varies little below that).
 uint32_t automatic_level_count(float coarse_spacing);
 // Expected Poisson-disk points on a flat area: random sequential adsorption of disks of
 // diameter R jams at 54.7% coverage, so N = 0.547 A / (pi R^2 / 4) = 0.70 A / R^2.
