@@ -286,8 +286,9 @@ TEST(AntiradianceGlossy, NearMirrorCorridorWithDeepOcclusionStaysFiniteAndBounde
 
 // A closed room lit by a narrow spot on its diffuse floor; walls and ceiling glossy (ρd 0.2,
 // ρg 0.5, n 50) and not directly lit, so the glossy reflections are all indirect light, which
-// the antiradiance iteration carries (its direct initialization reflects direct light
-// diffusely). Compared with the path tracer at points on the floor and the walls.
+// the antiradiance iteration carries (the direct initialization's lobe term has nothing to do
+// here; DirectlyLitGlossyRoom below tests it). Compared with the path tracer at points on the
+// floor and the walls.
 TEST(AntiradianceGlossy, GlossyRoomAgreesWithThePathTracer) {
   SceneDescription d;
   const uint32_t glossy = test::add_material(d, glm::vec3(0.2f));
