@@ -65,8 +65,9 @@ def main():
         json.dump(report, f, indent=2)
 
     seconds = report.get("seconds", {})
-    print("bakegi bake: method %s, %d samples, %d bake points, %d triangles"
-          % (report.get("method"), args.samples, report.get("bake_points", 0),
+    samples = " %d samples," % args.samples if report.get("method") == "pathtrace" else ""
+    print("bakegi bake: method %s,%s %d bake points, %d triangles"
+          % (report.get("method"), samples, report.get("bake_points", 0),
              report.get("triangles", 0)))
     for stage in sorted(seconds):
         print("  %-22s %8.3f s" % (stage, seconds[stage]))
