@@ -284,12 +284,9 @@ TEST(AntiradianceGlossy, NearMirrorCorridorWithDeepOcclusionStaysFiniteAndBounde
   }
 }
 
-// A closed room lit by a narrow spot on its diffuse floor; walls and ceiling glossy (ρd 0.2,
-// ρg 0.5, n 50) and not directly lit, so the glossy reflections are all indirect light, which
-// the antiradiance iteration carries (the direct initialization's lobe term has nothing to do
-// here; DirectlyLitGlossyRoom below tests it). Compared with the path tracer at points on the
-// floor and the walls.
-TEST(AntiradianceGlossy, GlossyRoomAgreesWithThePathTracer) {
+// The unit room of the glossy-room tests, without lights: walls and ceiling glossy (ρd 0.2,
+// ρg 0.5, n 50), the floor diffuse (0.7).
+SceneDescription glossy_room() {
   SceneDescription d;
   const uint32_t glossy = test::add_material(d, glm::vec3(0.2f));
   d.materials[glossy].glossy = glm::vec3(0.5f);
@@ -299,12 +296,11 @@ TEST(AntiradianceGlossy, GlossyRoomAgreesWithThePathTracer) {
   room.triangle_materials.assign(room.indices.size() / 3, glossy);
   room.triangle_materials[0] = room.triangle_materials[1] = floor;  // face 0: z = 0
   d.meshes.push_back(room);
-  Light spot = test::point_light({0.5f, 0.5f, 0.95f}, glm::vec3(3.0f));
-  spot.type = BAKEGI_LIGHT_SPOT;
-  spot.direction = {0, 0, -1};
-  spot.spot_size = 0.6f;  // a 0.29 m disc on the floor: no direct light on the walls
-  d.lights.push_back(spot);
+  return d;
+}
 
+// 16 points each on the floor, one wall and the ceiling of glossy_room().
+BakePoints glossy_room_points() {
   std::vector<glm::vec3> positions, normals;
   for (int i = 0; i < 4; ++i) {
     for (int k = 0; k < 4; ++k) {
@@ -314,7 +310,23 @@ TEST(AntiradianceGlossy, GlossyRoomAgreesWithThePathTracer) {
       positions.push_back({a, b, 1.0f}), normals.push_back({0, 0, -1});  // ceiling
     }
   }
-  const BakePoints points = test::make_points(positions, normals);
+  return test::make_points(positions, normals);
+}
+
+// A closed room lit by a narrow spot on its diffuse floor; walls and ceiling glossy (ρd 0.2,
+// ρg 0.5, n 50) and not directly lit, so the glossy reflections are all indirect light, which
+// the antiradiance iteration carries (the direct initialization's lobe term has nothing to do
+// here; DirectlyLitGlossyRoom below tests it). Compared with the path tracer at points on the
+// floor and the walls.
+TEST(AntiradianceGlossy, GlossyRoomAgreesWithThePathTracer) {
+  SceneDescription d = glossy_room();
+  Light spot = test::point_light({0.5f, 0.5f, 0.95f}, glm::vec3(3.0f));
+  spot.type = BAKEGI_LIGHT_SPOT;
+  spot.direction = {0, 0, -1};
+  spot.spot_size = 0.6f;  // a 0.29 m disc on the floor: no direct light on the walls
+  d.lights.push_back(spot);
+
+  const BakePoints points = glossy_room_points();
   test::Baker reference_baker(d);
   test::BakeOptions reference;
   reference.samples = 2048;
@@ -559,27 +571,10 @@ TEST(AntiradianceGlossyDirect, MismatchedBinnedLightIsRefused) {
 // direct light reflected diffusely only (the initialization before the lobe) 59.6% and −59%
 // (against 1024 paths).
 TEST(AntiradianceGlossyDirect, DirectlyLitGlossyRoomAgreesWithThePathTracer) {
-  SceneDescription d;
-  const uint32_t glossy = test::add_material(d, glm::vec3(0.2f));
-  d.materials[glossy].glossy = glm::vec3(0.5f);
-  d.materials[glossy].glossy_exponent = 50.0f;
-  const uint32_t floor = test::add_material(d, glm::vec3(0.7f));
-  Mesh room = test::make_cube({0, 0, 0}, {1, 1, 1}, test::Facing::kInward, glossy);
-  room.triangle_materials.assign(room.indices.size() / 3, glossy);
-  room.triangle_materials[0] = room.triangle_materials[1] = floor;  // face 0: z = 0
-  d.meshes.push_back(room);
+  SceneDescription d = glossy_room();
   d.lights.push_back(test::point_light({0.3f, 0.6f, 0.75f}, glm::vec3(1.0f)));
 
-  std::vector<glm::vec3> positions, normals;
-  for (int i = 0; i < 4; ++i) {
-    for (int k = 0; k < 4; ++k) {
-      const float a = 0.2f + 0.2f * i, b = 0.2f + 0.2f * k;
-      positions.push_back({a, b, 0.0f}), normals.push_back({0, 0, 1});   // floor
-      positions.push_back({0.0f, a, b}), normals.push_back({1, 0, 0});   // a wall
-      positions.push_back({a, b, 1.0f}), normals.push_back({0, 0, -1});  // ceiling
-    }
-  }
-  const BakePoints points = test::make_points(positions, normals);
+  const BakePoints points = glossy_room_points();
   test::Baker baker(d);
   test::BakeOptions reference;
   reference.samples = 4096;
