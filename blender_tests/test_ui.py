@@ -250,7 +250,63 @@ class UiTest:
         print(f"ui: Esc stopped the bake in {cancel_seconds:.2f} s")
         self.record("test_ui.escape_cancels_and_changes_nothing", started, failures)
         self.screenshot("ui_after_cancel.png")
+
+        yield from self.live_indirect(scene, objects)
         os.remove(os.path.join(self.output, "_probe.png"))
+
+    def live_indirect(self, scene, objects):
+        """Live indirect from the window: a meshless bake with the toggle on, then a light
+        moved as a user would (a property change); the timer must relight and write the
+        attribute within seconds, and the panel must show the update time."""
+        started = time.perf_counter()
+        failures = []
+        live = sys.modules["bakegi.live"]
+        from bakegi import operators
+
+        settings = scene.bakegi
+        settings.method = "meshless"
+        settings.meshless_levels = 3  # a quicker precompute: this checks the plumbing
+        settings.use_cache = False
+        settings.live_indirect = True
+        with self.override():
+            result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
+        if result != {"RUNNING_MODAL"}:
+            failures.append(f"operator returned {result}")
+        bake_started = time.perf_counter()
+        while operators.runtime["running"] and time.perf_counter() - bake_started < BAKE_WAIT_SECONDS:
+            yield 0.2
+        state = live.state()
+        if state is None:
+            failures.append("no live state after the meshless bake with Live Indirect on")
+            self.record("test_ui.live_indirect_follows_a_moved_light", started, failures)
+            return
+        yield 0.5  # the bake's own writes reach the depsgraph handler
+        before = common.read_color_attribute(["Floor", "BackWall"])
+        light = bpy.data.objects["CeilingLight"]
+        light.location.x += 0.4
+        light.data.energy *= 2.0
+        moved_at = time.perf_counter()
+        while state.updates == 0 and not state.paused and time.perf_counter() - moved_at < 10.0:
+            yield 0.02
+        update_seconds = time.perf_counter() - moved_at
+        after = common.read_color_attribute(["Floor", "BackWall"])
+        if state.paused:
+            failures.append("live indirect paused: " + state.paused)
+        elif state.updates == 0:
+            failures.append("no live update 10 s after the light moved")
+        elif abs(after.sum() / before.sum() - 1.0) < 0.2:
+            failures.append("the attribute did not follow the light (2x power)")
+        text = live.status_text()
+        if "updated in" not in text:
+            failures.append(f"the panel's live line reads {text!r}")
+        print(f"ui: live update written {update_seconds * 1000:.0f} ms after the light moved "
+              f"(debounce {live.DEBOUNCE_SECONDS * 1000:.0f} ms, timer polls); {text}")
+        yield from self.wait_for_viewport()
+        self.screenshot("ui_live_after_move.png")
+        settings.live_indirect = False
+        if live.state() is not None:
+            failures.append("turning Live Indirect off kept the precomputation")
+        self.record("test_ui.live_indirect_follows_a_moved_light", started, failures)
 
 
 test = UiTest()

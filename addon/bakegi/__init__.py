@@ -6,7 +6,7 @@ In Blender (the add-on enabled, e.g. `blender -b file.blend --addons bakegi`):
     import bakegi
     report = bakegi.bake(method="pathtrace", samples=64, target="CORNER")
 
-Public API: bake, export_scene_file, remove_bake, BakeGIError; operators
+Public API: bake, export_scene_file, remove_bake, live_update, live_stop, BakeGIError; operators
 bpy.ops.bakegi.bake_indirect and bpy.ops.bakegi.remove_bake; settings scene.bakegi.
 
 Without Blender (plain Python) only the bpy-free modules are importable:
@@ -34,11 +34,11 @@ except ImportError:  # plain Python: tests of the bpy-free modules
 
 __all__ = ["BakeGIError"]
 if bpy is not None:
-    from .api import bake, export_scene_file, remove_bake  # noqa: E402
+    from .api import bake, export_scene_file, live_stop, live_update, remove_bake  # noqa: E402
 
-    __all__ += ["bake", "export_scene_file", "remove_bake"]
+    __all__ += ["bake", "export_scene_file", "live_stop", "live_update", "remove_bake"]
 
-_MODULES = ("properties", "operators", "panels")
+_MODULES = ("properties", "operators", "panels", "live")
 
 
 def register():

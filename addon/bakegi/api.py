@@ -14,7 +14,7 @@ import time
 
 import bpy
 
-from . import export, operators, session, writeback
+from . import export, live, operators, session, writeback
 from .native import BakeGIError
 
 
@@ -23,7 +23,7 @@ def _context(context):
 
 
 def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SELECTED",
-         threads=0, hook_materials=True, context=None, method_settings=None):
+         threads=0, hook_materials=True, context=None, method_settings=None, live=False):
     """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes.
 
     objects: 'SELECTED', 'VISIBLE', or a list of objects (or their names). Every visible
@@ -32,19 +32,35 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     own), bake_points, method, settings, warnings, memory, rays, objects.
     method_settings: further core settings of the method, e.g. {"bins": 300, "iterations":
     32} for method="antiradiance" (see bakegi.h for the keys).
-    method: "antiradiance" (default) or "pathtrace" (the Monte Carlo reference; samples
-    applies to it only).
+    method: "antiradiance" (default), "pathtrace" (the Monte Carlo reference; samples
+    applies to it only) or "meshless" (precomputed transfer; relights in milliseconds;
+    method_settings e.g. {"levels": 0, "epsilon": 0.01, "cache_dir": "/path"}).
+    live: meshless only: keep the precomputation so that live_update() (or, in the UI, any
+    change of a light) relights the bake.
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
     scene is changed."""
     context = _context(context)
     report = session.BakeSession(context, method=method, samples=samples, seed=seed,
                                  target=target, objects=objects, threads=threads,
                                  hook_materials=hook_materials,
-                                 method_settings=method_settings).run()
+                                 method_settings=method_settings, live=live).run()
     scene = context.scene
     if hasattr(scene, "bakegi"):
         operators.store_report(scene, report)
     return report
+
+
+def live_update(context=None):
+    """Relights the live bake of the scene with its current lights and world, now, and
+    waits. Returns seconds: {"export", "core", "write", "total"} and "bake_points".
+    Raises BakeGIError if no live bake is kept for the scene, or if meshes or materials
+    changed since (then bake again)."""
+    return live.update(_context(context))
+
+
+def live_stop():
+    """Releases the precomputation kept for live indirect."""
+    live.stop()
 
 
 def export_scene_file(path, target="CORNER", objects="SELECTED", context=None):

@@ -188,10 +188,10 @@ class _LocalMesh:
 class SceneExporter:
     """Builds the core Scene from a depsgraph."""
 
-    def __init__(self, depsgraph, warnings):
+    def __init__(self, depsgraph, warnings, scene=None):
         self.depsgraph = depsgraph
         self.warnings = warnings
-        self.scene = native.Scene()
+        self.scene = scene if scene is not None else native.Scene()
         self.material_ids = {}  # original material name_full (or None) -> core id
         self.material_infos = {}  # original material name_full -> MaterialInfo
         self.texture_ids = {}  # (image name_full) -> core texture id
@@ -530,6 +530,21 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None):
     return ExportedScene(exporter.scene, points, bake_targets, exporter.material_infos,
                          _unique(warnings), skipped, counts, time.perf_counter() - start,
                          exporter.object_names)
+
+
+def export_lights(context, scene, depsgraph=None):
+    """Replaces the lights and the world of the core `scene` with the current ones (a live
+    relight: the meshes and materials stay as exported). Returns (lights, warnings)."""
+    if depsgraph is None:
+        depsgraph = context.evaluated_depsgraph_get()
+    warnings = []
+    exporter = SceneExporter(depsgraph, warnings, scene=scene)
+    scene.clear_lights()
+    for instance in depsgraph.object_instances:
+        if instance.object.type == "LIGHT":
+            exporter.add_light(instance.object, instance.matrix_world)
+    exporter.set_world(context.scene.world)
+    return exporter.lights, _unique(warnings)
 
 
 def _unique(items):

@@ -26,7 +26,45 @@ def summary(report):
         rays = report["counts"].get("rays")
     rays_text = f", {rays:,} rays" if isinstance(rays, (int, float)) else ""
     return (f"{report.get('method', '')}: {report.get('bake_points', 0):,} points in "
-            f"{seconds:.2f} s{rays_text}")
+            f"{seconds:.2f} s{rays_text}{_meshless_summary(report)}")
+
+
+def _meshless_summary(report):
+    """The precomputation's figures (issue 4): basis size, links kept, cache."""
+    points = report.get("meshless_points")
+    if not isinstance(points, int):
+        return ""
+    text = f", {points:,} basis functions"
+    kept = report.get("meshless_links_kept_percent")
+    if isinstance(kept, (int, float)):
+        text += f", {kept:.3g}% of links kept"
+    cache = report.get("meshless_cache")
+    if isinstance(cache, str) and cache not in ("off", ""):
+        text += f", cache {cache}"
+    return text
+
+
+def meshless_details(report):
+    """Lines for the panel: the statistics of a meshless bake's report."""
+    if not isinstance(report.get("meshless_points"), int):
+        return []
+    seconds = report.get("seconds") or {}
+    lines = [f"Basis: {report['meshless_points']:,} functions, levels "
+             f"{report.get('meshless_points_per_level', [])}"]
+    if "meshless_links" in report:
+        lines.append(f"Links: {report['meshless_links']:,} of "
+                     f"{report.get('meshless_potential_links', 0):,} "
+                     f"({report.get('meshless_links_kept_percent', 0):.3g}%)")
+    stages = [("placement", "meshless_placement"), ("refinement", "meshless_refinement"),
+              ("bounces", "meshless_bounces"), ("lighting", "meshless_direct")]
+    timed = [f"{label} {seconds[key]:.2f} s" for label, key in stages if key in seconds]
+    if timed:
+        lines.append("Time: " + ", ".join(timed))
+    memory = report.get("meshless_precomputation_bytes")
+    if isinstance(memory, (int, float)):
+        lines.append(f"Memory: {memory / 2**20:.0f} MB precomputed, "
+                     f"{report.get('meshless_refinement_rays', 0):,} rays")
+    return lines
 
 
 def store_report(scene, report):
@@ -48,7 +86,7 @@ def _session_from_scene(context):
     return session.BakeSession(context, method=s.resolved_method(), samples=s.samples,
                                seed=s.seed, target=s.target, objects=s.objects,
                                threads=s.threads, hook_materials=s.hook_materials,
-                               method_settings=s.method_settings())
+                               method_settings=s.method_settings(), live=s.live_requested())
 
 
 def _report_warnings(operator, report):

@@ -3,7 +3,9 @@
 
 import bpy
 
-from . import native, operators
+import json
+
+from . import live, native, operators
 
 
 class RENDER_PT_bakegi(bpy.types.Panel):
@@ -20,10 +22,20 @@ class RENDER_PT_bakegi(bpy.types.Panel):
 
         col = layout.column()
         col.prop(settings, "method")
-        if settings.resolved_method() == "antiradiance":
+        method = settings.resolved_method()
+        if method == "antiradiance":
             col.prop(settings, "bins")
             col.prop(settings, "iterations")
             col.prop(settings, "seed")
+        elif method == "meshless":
+            col.prop(settings, "meshless_levels")
+            col.prop(settings, "meshless_epsilon")
+            col.prop(settings, "seed")
+            col.prop(settings, "use_cache")
+            sub = col.column()
+            sub.active = settings.use_cache
+            sub.prop(settings, "cache_folder")
+            col.prop(settings, "live_indirect")
         else:
             col.prop(settings, "samples")
             col.prop(settings, "seed")
@@ -42,8 +54,16 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             box.label(text=operators.runtime["text"], icon="TIME")
         elif settings.last_result:
             box.label(text="Last: " + settings.last_result, icon="CHECKMARK")
+            for line in _report_details(settings):
+                box.label(text=line)
         else:
             box.label(text="Not baked yet", icon="INFO")
+        if method == "meshless" and settings.live_indirect:
+            if live.is_active_for(context.scene.name):
+                text = live.status_text()
+                box.label(text=text, icon="ERROR" if "paused" in text else "LIGHT")
+            else:
+                box.label(text="Live: Bake Indirect once to start", icon="LIGHT")
         if not native.library_loaded():
             try:
                 native.load_library()
@@ -55,9 +75,48 @@ class RENDER_PT_bakegi(bpy.types.Panel):
         sub.prop(settings, "show_debug")
 
 
+class VIEW3D_PT_bakegi_live(bpy.types.Panel):
+    """Live indirect where the lights are moved: the 3D viewport's sidebar (N)."""
+
+    bl_label = "Live Indirect"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "BakeGI"
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.bakegi
+        layout.prop(settings, "method", text="")
+        if settings.resolved_method() != "meshless":
+            layout.label(text="Live needs the Meshless method", icon="INFO")
+            return
+        layout.prop(settings, "live_indirect")
+        layout.operator(operators.BAKEGI_OT_bake_indirect.bl_idname, icon="RENDER_STILL")
+        if operators.runtime["running"]:
+            layout.label(text=operators.runtime["text"], icon="TIME")
+        elif live.is_active_for(context.scene.name):
+            text = live.status_text()
+            layout.label(text=text, icon="ERROR" if "paused" in text else "LIGHT")
+        elif settings.live_indirect:
+            layout.label(text="Bake once to start", icon="INFO")
+
+
+def _report_details(settings):
+    try:
+        report = json.loads(settings.last_report) if settings.last_report else {}
+    except ValueError:
+        return []
+    return operators.meshless_details(report) if isinstance(report, dict) else []
+
+
+classes = (RENDER_PT_bakegi, VIEW3D_PT_bakegi_live)
+
+
 def register():
-    bpy.utils.register_class(RENDER_PT_bakegi)
+    for cls in classes:
+        bpy.utils.register_class(cls)
 
 
 def unregister():
-    bpy.utils.unregister_class(RENDER_PT_bakegi)
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

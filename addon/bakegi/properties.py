@@ -2,7 +2,10 @@
 """The bake settings stored on the scene: bpy.types.Scene.bakegi."""
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, IntProperty, StringProperty
+import os
+import tempfile
+
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 # The first item is the default: antiradiance reaches every error level of the Cornell chart
 # 2-5x sooner than the path tracer (docs/methods/antiradiance.md).
@@ -12,6 +15,9 @@ METHOD_ITEMS = [
      "visibility rays; fast and smooth, biased by patch size and bin count"),
     ("pathtrace", "Path Tracing", "Monte Carlo reference: converges to the exact indirect "
      "light; noise falls as samples grow"),
+    ("meshless", "Meshless (Live)", "Lehtinen et al. 2008: precomputes how direct light "
+     "becomes indirect light once, then relights in milliseconds; with Live Indirect the "
+     "bake follows the lights as they move"),
 ]
 # Debug only: bakes the DIRECT light (to check light units against Cycles), not indirect.
 DEBUG_METHOD_ITEMS = METHOD_ITEMS + [
@@ -34,6 +40,12 @@ def _method_items(self, context):
     return DEBUG_METHOD_ITEMS if self.show_debug else METHOD_ITEMS
 
 
+def _live_toggled(self, context):
+    if not self.live_indirect:
+        from . import live
+        live.stop()
+
+
 class BakeGISettings(bpy.types.PropertyGroup):
     show_debug: BoolProperty(
         name="Debug Methods", default=False,
@@ -48,6 +60,27 @@ class BakeGISettings(bpy.types.PropertyGroup):
     iterations: IntProperty(name="Iterations", default=32, min=1, soft_max=256,
                             description="Antiradiance: light bounces at most (stops early "
                             "once converged)")
+    meshless_levels: IntProperty(
+        name="Levels", default=0, min=0, max=8,
+        description="Meshless: levels of the hierarchical basis; more resolve finer indirect "
+        "detail and cost time and memory (0 = automatic, 4)")
+    meshless_epsilon: FloatProperty(
+        name="Link Threshold", default=0.01, min=0.0, soft_max=0.1, precision=3, step=0.1,
+        description="Meshless: links that carry less than this are dropped; lower is more "
+        "accurate and uses more memory (the paper used 0.025)")
+    live_indirect: BoolProperty(
+        name="Live Indirect", default=False, update=_live_toggled,
+        description="Meshless: after a bake, relight BakeGI_Indirect whenever a light or the "
+        "world changes (meshes and materials must stay as baked)")
+    use_cache: BoolProperty(
+        name="Cache Precomputation", default=True,
+        description="Meshless: save the precomputed basis and transfer, so that baking the "
+        "same geometry, materials and settings again (after reopening the file, too) skips "
+        "the precompute; a changed scene is detected and computed again")
+    cache_folder: StringProperty(
+        name="Cache Folder", default="//bakegi_cache", subtype="DIR_PATH",
+        description="Where the meshless cache is kept (// = next to the .blend; an unsaved "
+        "file uses the system's temporary folder)")
     seed: IntProperty(name="Seed", default=0, min=0,
                       description="Random seed; a bake is repeatable for a seed")
     target: EnumProperty(name="Target", items=TARGET_ITEMS, default="CORNER",
@@ -74,9 +107,25 @@ class BakeGISettings(bpy.types.PropertyGroup):
 
     def method_settings(self):
         """Core settings that only the resolved method reads."""
-        if self.resolved_method() == "antiradiance":
+        method = self.resolved_method()
+        if method == "antiradiance":
             return {"bins": self.bins, "iterations": self.iterations}
+        if method == "meshless":
+            settings = {"levels": self.meshless_levels, "epsilon": self.meshless_epsilon}
+            if self.use_cache:
+                settings["cache_dir"] = self.cache_directory()
+            return settings
         return {}
+
+    def cache_directory(self):
+        """The cache folder as an absolute path."""
+        folder = self.cache_folder or "//bakegi_cache"
+        if folder.startswith("//") and not bpy.data.filepath:
+            return os.path.join(tempfile.gettempdir(), "bakegi_cache")
+        return os.path.abspath(bpy.path.abspath(folder))
+
+    def live_requested(self):
+        return self.live_indirect and self.resolved_method() == "meshless"
 
 
 def register():

@@ -15,10 +15,12 @@ import threading
 import time
 from dataclasses import dataclass
 
-from . import export, native, writeback
+from . import export, live, native, writeback
 from .native import BakeGIError
 
-METHODS = ("pathtrace", "direct", "antiradiance")
+METHODS = ("pathtrace", "direct", "antiradiance", "meshless")
+# Methods whose finished bake can be kept for live indirect (relit when lights change).
+LIVE_METHODS = ("meshless",)
 
 
 @dataclass
@@ -40,10 +42,14 @@ def _duration(seconds):
     return f"{max(seconds, 0):.0f} s"
 
 
-def validate_arguments(method, samples, seed, target, threads):
+def validate_arguments(method, samples, seed, target, threads, live=False):
     if method not in METHODS:
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                           f"method must be one of {METHODS}, not {method!r}")
+    if live and method not in LIVE_METHODS:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"live indirect needs a method that relights ({', '.join(LIVE_METHODS)})"
+                          f", not {method!r}")
     for name, value, low in (("samples", samples, 1), ("seed", seed, 0), ("threads", threads, 0)):
         if isinstance(value, bool) or not isinstance(value, int) or value < low:
             raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
@@ -55,8 +61,9 @@ def validate_arguments(method, samples, seed, target, threads):
 
 class BakeSession:
     def __init__(self, context, method="antiradiance", samples=64, seed=0, target="CORNER",
-                 objects="SELECTED", threads=0, hook_materials=True, method_settings=None):
-        validate_arguments(method, samples, seed, target, threads)
+                 objects="SELECTED", threads=0, hook_materials=True, method_settings=None,
+                 live=False):
+        validate_arguments(method, samples, seed, target, threads, live)
         self.context = context
         self.method = method
         self.samples = samples
@@ -65,6 +72,9 @@ class BakeSession:
         self.objects = objects
         self.threads = threads
         self.hook_materials = hook_materials
+        # Keep the finished job for live indirect (live.py) instead of releasing it.
+        self.live = bool(live)
+        self.scene_name = context.scene.name
         # Further core settings of the method (e.g. antiradiance "bins"); the core checks them.
         self.method_settings = dict(method_settings or {})
         self.exported = None
@@ -122,6 +132,7 @@ class BakeSession:
         """Waits for the job, writes the result into `data` (bpy.data; default: the
         context's) and hooks materials; returns the report. On failure raises BakeGIError
         and leaves Blender untouched."""
+        adopted = False
         try:
             try:
                 self.job.wait()
@@ -137,12 +148,23 @@ class BakeSession:
                                                self.exported.targets)
                       if self.hook_materials else [])
             self.seconds["writeback"] = time.perf_counter() - t0
+            if self.live:
+                # The job and the exported meshes now belong to live indirect.
+                job, self.job = self.job, None
+                self.exported.points.close()
+                adopted = True
+                live.adopt(self.scene_name, job, self.exported.scene, self.exported.targets,
+                           hooked)
+            elif live.is_active_for(self.scene_name):
+                # This bake replaced what live indirect would overwrite.
+                live.stop()
         finally:
             if self.job is not None:
                 self.job.close()
                 self.job = None
             targets = self.exported.targets if self.exported else []
-            self._release_export()
+            if not adopted:
+                self._release_export()
         self.seconds["total"] = time.perf_counter() - self._created_at
         return self._report(core_report, targets, hooked)
 
