@@ -6,6 +6,7 @@
 
 #include "scene/scene.h"
 #include "scene/scene_validation.h"
+#include "util/error.h"
 
 namespace bakegi::test {
 namespace {
@@ -102,6 +103,42 @@ TEST(SceneBuild, NormalsLightsAndBounds) {
   expect_vec_near(scene.bounds_min, {0, 0, 1});
   expect_vec_near(scene.bounds_max, {2, 2, 1});
   EXPECT_TRUE(scene.emissive_triangles.empty());
+}
+
+TEST(SceneBuild, RelitSceneTakesNewLightsAndKeepsTheFlattenedGeometry) {
+  const Scene previous = build_scene(textured_triangle({0.5f, 0.5f, 0.5f}));
+  SceneDescription changed = textured_triangle({0.5f, 0.5f, 0.5f});
+  Light spot;
+  spot.type = BAKEGI_LIGHT_SPOT;
+  spot.position = {0.2f, 0.2f, 2.0f};
+  spot.direction = {0, 0, -3};  // made unit, as build_scene does
+  spot.spot_size = 1.0f;
+  spot.color = {2.0f, 1.0f, 0.5f};
+  changed.lights = {spot};
+  changed.world_radiance = {0.1f, 0.1f, 0.1f};
+
+  const Scene relit = build_relit_scene(previous, changed);
+  ASSERT_EQ(relit.description.lights.size(), 1u);
+  EXPECT_EQ(relit.description.lights[0].type, BAKEGI_LIGHT_SPOT);
+  expect_vec_near(relit.description.lights[0].direction, {0, 0, -1});
+  expect_vec_near(relit.description.world_radiance, {0.1f, 0.1f, 0.1f});
+  // What a full build of the changed description gives.
+  const Scene rebuilt = build_scene(changed);
+  EXPECT_EQ(relit.description.lights[0].direction, rebuilt.description.lights[0].direction);
+  ASSERT_EQ(relit.triangles.size(), rebuilt.triangles.size());
+  EXPECT_EQ(relit.triangles[0].p[1], rebuilt.triangles[0].p[1]);
+  EXPECT_EQ(relit.triangles[0].area, rebuilt.triangles[0].area);
+  EXPECT_EQ(relit.bounds_max, rebuilt.bounds_max);
+  EXPECT_EQ(relit.description.textures, rebuilt.description.textures);
+
+  // Lights are still checked: a bad one, or none at all, is refused as in build_scene.
+  SceneDescription bad = changed;
+  bad.lights[0].color.x = std::nanf("");
+  EXPECT_THROW(build_relit_scene(previous, bad), Error);
+  SceneDescription dark = changed;
+  dark.lights.clear();
+  dark.world_radiance = glm::vec3(0.0f);
+  EXPECT_THROW(build_relit_scene(previous, dark), Error);
 }
 
 }  // namespace

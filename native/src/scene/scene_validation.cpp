@@ -417,7 +417,31 @@ Scene build_scene(const SceneDescription& description) {
     invalid("the scene is empty: it has no triangles");
   }
 
-  bool has_light = is_positive(description.world_radiance) || !scene.emissive_triangles.empty();
+  normalize_lights_and_require_one(scene);
+
+  scene.bounds_min = scene.bounds_max = scene.triangles[0].p[0];
+  for (const Triangle& tri : scene.triangles) {
+    for (const glm::vec3& p : tri.p) {
+      scene.bounds_min = glm::min(scene.bounds_min, p);
+      scene.bounds_max = glm::max(scene.bounds_max, p);
+    }
+  }
+  return scene;
+}
+
+Scene build_relit_scene(const Scene& previous, const SceneDescription& description) {
+  for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
+  check_world(description.world_radiance);
+  Scene scene = previous;
+  scene.description.lights = description.lights;
+  scene.description.world_radiance = description.world_radiance;
+  normalize_lights_and_require_one(scene);
+  return scene;
+}
+
+void normalize_lights_and_require_one(Scene& scene) {
+  bool has_light =
+      is_positive(scene.description.world_radiance) || !scene.emissive_triangles.empty();
   for (Light& light : scene.description.lights) {
     has_light = has_light || is_positive(light.color);
     if (light.type != BAKEGI_LIGHT_POINT) {
@@ -435,15 +459,6 @@ Scene build_scene(const SceneDescription& description) {
   if (!has_light) {
     invalid("no light: the scene has no lights, no emissive material and a black world");
   }
-
-  scene.bounds_min = scene.bounds_max = scene.triangles[0].p[0];
-  for (const Triangle& tri : scene.triangles) {
-    for (const glm::vec3& p : tri.p) {
-      scene.bounds_min = glm::min(scene.bounds_min, p);
-      scene.bounds_max = glm::max(scene.bounds_max, p);
-    }
-  }
-  return scene;
 }
 
 }  // namespace bakegi

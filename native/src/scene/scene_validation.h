@@ -34,6 +34,15 @@ bakegi_area_shape area_shape_from(uint32_t raw, size_t index);
 //    emissive triangle, black world), is refused with INVALID_SCENE.
 Scene build_scene(const SceneDescription& description);
 
+// Relighting: a scene with the lights and world of `description` and everything else
+// (triangles, topology, textures) of `previous`, whose meshes, materials and textures the
+// caller found equal to description's. Only lights and world are checked and normalized as
+// in build_scene, so a relight of a large scene skips re-flattening it.
+Scene build_relit_scene(const Scene& previous, const SceneDescription& description);
+
+// Normalizes light directions and axes (see build_scene) and refuses a scene without light.
+void normalize_lights_and_require_one(Scene& scene);
+
 // Bytes the flattened scene will take (triangles and emissive list), before building it.
 size_t estimate_scene_bytes(const SceneDescription& description);
 
