@@ -1,4 +1,5 @@
-"""Builds one of the scenes in scenes/ and exports it, with its face corners as bake points,
+"""Builds one of the scenes in scenes/ and exports it, with its face corners (or vertices,
+--target POINT) as bake points,
 to a .bgs scene file for the CLI (benchmarks, convergence studies, leakage tables).
 
     /usr/bin/python3 tools/export_scene.py --scene office --out /tmp/office.bgs [--build build]
@@ -28,6 +29,8 @@ def main():
     parser.add_argument("--scene", required=True, help="a script name in scenes/ (without .py)")
     parser.add_argument("--out", required=True, help="the .bgs file to write")
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build directory with libbakegi.so")
+    parser.add_argument("--target", default="CORNER", choices=("CORNER", "POINT"),
+                        help="bake points: face corners (default) or vertices")
     args = parser.parse_args(argv)
 
     out = os.path.abspath(args.out)
@@ -43,9 +46,9 @@ def main():
     info = stem + "_objects.json"
     expression = (
         "import bpy, bakegi, json; from bakegi import export; "
-        f"r = bakegi.export_scene_file({out!r}, target='CORNER', objects='VISIBLE'); "
+        f"r = bakegi.export_scene_file({out!r}, target={args.target!r}, objects='VISIBLE'); "
         "objs = export.resolve_targets(bpy.context, 'VISIBLE')[0]; "
-        "info = [{'name': o.name, 'corners': len(o.data.loops)} for o in objs]; "
+        f"info = [{{'name': o.name, 'corners': len(o.data.loops), 'vertices': len(o.data.vertices)}} for o in objs]; "
         f"json.dump({{'objects': info, 'export': r}}, open({info!r}, 'w'), default=str)"
     )
     run(["blender", "-b", blend, "--addons", "bakegi", "--python-exit-code", "1", "--python-expr", expression],

@@ -6,7 +6,8 @@ per method.
 
 Input: the JSON written by tools/sweep_cornell.py: {"title": ..., "methods": {name: [run,
 ...]}, "reference_noise": e or null, ...}, each run with "seconds", "error" and "settings"
-(the sample count, or the antiradiance bin count, is written next to each point). A horizontal line marks the reference's
+(the sample count, the antiradiance bin count or the meshless settings are written next to each
+point; meshless has two curves, the full bake and the relight alone). A horizontal line marks the reference's
 own noise: errors near it are not resolved; a dotted one marks how far Cycles' converged
 bake lies from the reference beyond both noises (agreement.bias_estimate), where Cycles'
 curve must flatten.
@@ -24,6 +25,9 @@ STYLES = {
     "pathtrace": {"color": "tab:blue", "marker": "o", "label": "bakegi pathtrace"},
     "cycles": {"color": "tab:orange", "marker": "s", "label": "Cycles (Diffuse bake, D+I − D)"},
     "antiradiance": {"color": "tab:green", "marker": "^", "label": "bakegi antiradiance (bins)"},
+    "meshless": {"color": "tab:purple", "marker": "D", "label": "bakegi meshless: precompute + first solve"},
+    "meshless_relight": {"color": "tab:purple", "marker": "d", "linestyle": "--",
+                         "label": "bakegi meshless: relight alone"},
 }
 
 
@@ -33,14 +37,16 @@ def plot(sweep, out_path):
         runs = [r for r in runs if r.get("error") is not None and r.get("seconds")]
         if not runs:
             continue
-        runs.sort(key=lambda r: (r.get("settings", {}).get("samples", 0), r.get("settings", {}).get("bins", 0)))
-        style = STYLES.get(method, {"marker": "^", "label": method})
+        runs.sort(key=lambda r: (r.get("settings", {}).get("samples", 0), r.get("settings", {}).get("bins", 0),
+                                 r["seconds"]))
+        style = dict(STYLES.get(method, {"marker": "^", "label": method}))
+        linestyle = style.pop("linestyle", "-")
         xs = [r["seconds"] for r in runs]
         ys = [r["error"] for r in runs]
-        axes.plot(xs, ys, linestyle="-", linewidth=1.5, markersize=5, **style)
+        axes.plot(xs, ys, linestyle=linestyle, linewidth=1.5, markersize=5, **style)
         for r in runs:
             settings = r.get("settings", {})
-            label = settings.get("samples", settings.get("bins"))
+            label = settings.get("samples", settings.get("bins", r.get("label")))
             if label is not None:
                 axes.annotate(str(label), (r["seconds"], r["error"]), textcoords="offset points",
                               xytext=(4, 4), fontsize=7, color=style.get("color", "black"))

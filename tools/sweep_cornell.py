@@ -212,6 +212,43 @@ def antiradiance_sweep(cli, bgs, reference, work, bins_list, threads, repeat):
     return runs
 
 
+def parse_setting_list(text):
+    """"levels=3;levels=4,epsilon=0.005" -> [{"levels": "3"}, {"levels": "4", "epsilon": "0.005"}]."""
+    configurations = []
+    for entry in text.split(";"):
+        entry = entry.strip()
+        if not entry:
+            continue
+        configurations.append(dict(item.split("=", 1) for item in entry.split(",")))
+    return configurations
+
+
+def meshless_sweep(cli, bgs, reference, work, configurations, threads, repeat):
+    """Meshless at each configuration, two curves (issue 4): the full bake (precompute and
+    first solve) and the relight alone (same lights: `bakegi relight --move 0,0,0`, whose
+    result equals the full bake's, so both curves share the error)."""
+    runs = []
+    for index, configuration in enumerate(configurations):
+        values = os.path.join(work, f"meshless_{index}.npy")
+        settings = []
+        for key, value in configuration.items():
+            settings += ["--set", f"{key}={value}"]
+        output = run([cli, "relight", bgs, "--method", "meshless", "--move", "0,0,0", "--scale", "1",
+                      "--repeat", str(max(repeat, 3)), "--threads", str(threads), "--out", values] + settings,
+                     quiet=True)
+        timing = json.loads(output[output.index("{"):])
+        label = ", ".join(f"{k}={v}" for k, v in configuration.items()) or "defaults"
+        entry = {"method": "meshless", "settings": dict(configuration), "label": label,
+                 "seconds": timing["full_seconds"], "relight_seconds": timing["relight_seconds"],
+                 "relight_solve_seconds": timing["relight_solve_seconds"],
+                 "error": compare(cli, values, reference), "bake_points": timing["points"]}
+        log(f"meshless {label}: full {entry['seconds']:.2f} s, relight {entry['relight_seconds'] * 1000:.1f} ms, "
+            f"error {entry['error']:.4f}")
+        runs.append(entry)
+    relit = [dict(r, method="meshless_relight", seconds=r["relight_seconds"]) for r in runs]
+    return runs, relit
+
+
 def cycles_sweep(work, build, blend, samples, objects, cli, reference, positions, repeat):
     out_dir = os.path.join(work, "cycles")
     command = ["blender", "-b", blend, "--python-exit-code", "1", "--python", os.path.join(ROOT, "tools", "sweep_cycles.py"),
@@ -338,7 +375,23 @@ def markdown_table(sweep):
     table = "\n".join(lines)
     if sweep["methods"].get("antiradiance"):
         table += "\n\n" + antiradiance_table(sweep)
+    if sweep["methods"].get("meshless"):
+        table += "\n\n" + meshless_table(sweep)
     return table
+
+
+def meshless_table(sweep):
+    """Meshless runs: full bake and relight, with the time pathtrace needs for the same error."""
+    lines = ["| meshless settings | full bake (s) | relight (ms) | error | pathtrace time at equal error / full bake "
+             "| pathtrace time at equal error / relight |",
+             "|---|---:|---:|---:|---:|---:|"]
+    for r in sweep["methods"]["meshless"]:
+        t = interpolate_time_at_error(sweep["methods"]["pathtrace"], r["error"])
+        full = f"{t / r['seconds']:.2f}x" if t else "outside its range"
+        relit = f"{t / r['relight_seconds']:.0f}x" if t else "outside its range"
+        lines.append(f"| {r['label']} | {r['seconds']:.2f} | {r['relight_seconds'] * 1000:.1f} | {r['error']:.4f} "
+                     f"| {full} | {relit} |")
+    return "\n".join(lines)
 
 
 def update_benchmarks_page(table, sweep):
@@ -389,6 +442,11 @@ def main():
     parser.add_argument("--only-antiradiance", action="store_true",
                         help="keep the pathtrace and Cycles runs of the existing sweep JSON (docs/ with --docs, else "
                              "--work) and run only the antiradiance curve; implies --reuse")
+    parser.add_argument("--meshless-settings", default="levels=3;levels=4;levels=5",
+                        help="meshless configurations, ';' between runs, ',' between key=value settings "
+                             "(empty: no meshless curves)")
+    parser.add_argument("--only-meshless", action="store_true",
+                        help="like --only-antiradiance, for the two meshless curves")
     parser.add_argument("--threads", type=int, default=0, help="path tracer threads (0 = all cores, as Cycles)")
     parser.add_argument("--repeat", type=int, default=2, help="time each setting R times (both methods), keep the fastest")
     parser.add_argument("--reuse", action="store_true", help="reuse scene, export and reference already in --work")
@@ -409,7 +467,7 @@ def main():
     reference = os.path.join(work, "reference.npy")
     reference_info_path = os.path.join(work, "reference.json")
     export_path = os.path.join(work, "export_objects.json")
-    if arguments.only_antiradiance:
+    if arguments.only_antiradiance or arguments.only_meshless:
         arguments.reuse = True
     if arguments.reuse and all(os.path.exists(p) for p in (blend, bgs, reference, reference_info_path, export_path)):
         log("reusing scene, export and reference")
@@ -431,6 +489,18 @@ def main():
 
     sweep_json = os.path.join(DOCS if arguments.docs else work, "cornell_sweep.json")
     bins_list = [int(b) for b in arguments.antiradiance_bins.split(",") if b.strip()]
+    meshless_configurations = parse_setting_list(arguments.meshless_settings)
+    if arguments.only_meshless:
+        with open(sweep_json) as f:
+            sweep = json.load(f)
+        load_before = os.getloadavg()
+        sweep["methods"]["meshless"], sweep["methods"]["meshless_relight"] = meshless_sweep(
+            cli, bgs, reference, work, meshless_configurations, arguments.threads, arguments.repeat)
+        sweep["meshless_date"] = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+        sweep["meshless_load_average"] = [load_before, os.getloadavg()]
+        sweep["meshless_command"] = "/usr/bin/python3 tools/sweep_cornell.py " + " ".join(sys.argv[1:])
+        write_results(sweep, sweep_json, work, arguments.docs, started)
+        return
     if arguments.only_antiradiance:
         with open(sweep_json) as f:
             sweep = json.load(f)
@@ -447,6 +517,8 @@ def main():
     pathtrace_runs = pathtrace_sweep(cli, bgs, reference, work, [int(s) for s in arguments.pathtrace_samples.split(",")],
                                      arguments.threads, arguments.repeat)
     antiradiance_runs = antiradiance_sweep(cli, bgs, reference, work, bins_list, arguments.threads, arguments.repeat)
+    meshless_runs, meshless_relit = meshless_sweep(cli, bgs, reference, work, meshless_configurations,
+                                                   arguments.threads, arguments.repeat)
     cycles_runs, cycles_extra, cycles_result = cycles_sweep(
         work, build, blend, [int(s) for s in arguments.cycles_samples.split(",")], objects, cli, reference, positions, arguments.repeat)
     load_after = os.getloadavg()
@@ -483,7 +555,8 @@ def main():
         "cycles_bounces": cycles_result.get("bounces"),
         "methods": {"pathtrace": pathtrace_runs,
                     "cycles": [{k: v for k, v in r.items() if k != "file"} for r in cycles_runs],
-                    "antiradiance": antiradiance_runs},
+                    "antiradiance": antiradiance_runs, "meshless": meshless_runs,
+                    "meshless_relight": meshless_relit},
         "agreement": agreement,
         "command": "/usr/bin/python3 tools/sweep_cornell.py " + " ".join(sys.argv[1:]),
     }
