@@ -108,6 +108,38 @@ class Meshless(common.SmallCornellCase):
         bpy.context.view_layer.update()
         self.assertIn(material.name, live.state().paused)
 
+    def test_cache_from_the_panel_settings_hits_and_detects_a_changed_material(self):
+        import json
+        import tempfile
+
+        settings = bpy.context.scene.bakegi
+        settings.method = "meshless"
+        settings.meshless_levels = 3
+        settings.objects = "VISIBLE"
+        settings.use_cache = True
+        with tempfile.TemporaryDirectory() as folder:
+            settings.cache_folder = folder
+            results = []
+            for _ in range(2):
+                self.assertEqual(bpy.ops.bakegi.bake_indirect(), {"FINISHED"})
+                results.append((json.loads(settings.last_report),
+                                common.read_color_attribute(NAMES, domain="CORNER")))
+            (first, first_values), (second, second_values) = results
+            self.assertEqual(first["meshless_cache"], "miss")
+            self.assertEqual(second["meshless_cache"], "hit")
+            self.assertEqual(second["meshless_refinement_rays"], 0)
+            self.assertEqual(second["meshless_links"], first["meshless_links"])
+            numpy.testing.assert_array_equal(first_values, second_values)
+            self.assertIn("cache hit", settings.last_result)
+            # Another albedo is another precomputation: a new key, never the old file.
+            material = self.objects["LeftWall"].active_material
+            bsdf = next(n for n in material.node_tree.nodes if n.type == "BSDF_DIFFUSE")
+            bsdf.inputs["Color"].default_value = (0.1, 0.9, 0.1, 1.0)
+            self.assertEqual(bpy.ops.bakegi.bake_indirect(), {"FINISHED"})
+            third = json.loads(settings.last_report)
+            self.assertEqual(third["meshless_cache"], "miss")
+            self.assertEqual(len(os.listdir(folder)), 2)
+
     def test_live_needs_a_method_that_relights(self):
         before = common.scene_snapshot()
         with self.assertRaises(self.bakegi.BakeGIError) as raised:

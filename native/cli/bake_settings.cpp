@@ -88,7 +88,7 @@ std::string BakeSettings::to_json() const {
 }
 
 std::vector<OptionSpec> bake_setting_options() {
-  std::vector<OptionSpec> specs = {{"method"}, {"set", true, true}};
+  std::vector<OptionSpec> specs = {{"method"}, {"cache-dir"}, {"set", true, true}};
   for (const auto& o : kIntegerOptions) specs.push_back({o.option});
   return specs;
 }
@@ -103,6 +103,8 @@ BakeSettings bake_settings_from(const Arguments& args, const std::vector<std::st
       settings.set(o.key, parse_int(*text, std::string("--") + o.option, INT64_MIN, INT64_MAX));
     }
   }
+  // A folder name stays text even when it reads as a number.
+  if (const auto folder = args.value("cache-dir")) settings.set("cache_dir", *folder);
   for (const auto& assignment : args.values("set")) {
     const size_t eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) {

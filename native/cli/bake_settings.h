@@ -1,6 +1,6 @@
 // The settings of one bake as the CLI collects them: named options (--method, --samples,
-// --seed, --sample-offset, --threads, --max-bounces) and any `--set key=value`, passed to
-// the core unchanged so that it validates them (and new solvers' keys work at once).
+// --seed, --sample-offset, --threads, --max-bounces, --cache-dir) and any `--set key=value`,
+// passed to the core unchanged so that it validates them (and new solvers' keys work at once).
 #pragma once
 
 #include <cstdint>

@@ -45,12 +45,14 @@ commands:
       schemes against an R-iteration solution (default 300), by relighting one bake.
 
 settings (passed to the core, which checks them):
-  --method M          pathtrace (default) | direct | antiradiance
+  --method M          pathtrace (default) | direct | antiradiance | meshless
   --samples N         samples per bake point
   --seed S            random seed (results are deterministic for a seed and thread count)
   --sample-offset K   first sample index, to make a long bake in chunks
   --threads T         0 = all cores
   --max-bounces B     path length cap
+  --cache-dir D       meshless: save the precomputation in folder D and reuse it when the
+                      scene and settings are the same (setting cache_dir)
   --set key=value     any other setting of the core
 
 error = relative RMSE over bake points, luminance-weighted (Rec. 709):

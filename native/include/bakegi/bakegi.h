@@ -242,6 +242,15 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *                          leave the bake points
  *   "visibility"   int     0 or 1 (default 1): at bake points, leave out basis functions
  *                          whose point the bake point cannot see (occlusion rays)
+ *   "cache_dir"    string  a folder (UTF-8; created if missing): the precomputation is saved
+ *                          there as meshless-<key>.bgcache and a later bake of the same
+ *                          geometry, materials, settings (and bake points, without a
+ *                          viewpoint) loads it instead of precomputing; lights and world may
+ *                          differ. A stale or corrupt file is rebuilt with a warning; a
+ *                          folder that cannot be written is a warning. Empty (default): no
+ *                          cache. Report: "meshless_cache" ("hit" | "miss" | "stale" |
+ *                          "off"), "meshless_cache_path", "meshless_cache_bytes", seconds
+ *                          "meshless_cache_load" / "meshless_cache_save"
  */
 typedef struct bakegi_settings bakegi_settings;
 

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "scene/scene_validation.h"
+#include "util/byte_stream.h"
 #include "util/error.h"
 
 namespace bakegi {
@@ -16,102 +17,15 @@ constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'S'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8;
 constexpr size_t kTrailerBytes = 8;
 
-constexpr uint32_t tag(const char (&name)[5]) {
-  return uint32_t(uint8_t(name[0])) | uint32_t(uint8_t(name[1])) << 8 |
-         uint32_t(uint8_t(name[2])) << 16 | uint32_t(uint8_t(name[3])) << 24;
-}
-constexpr uint32_t kTextures = tag("TEXR"), kMaterials = tag("MATL"), kMeshes = tag("MESH"),
-                   kLights = tag("LGHT"), kWorld = tag("WRLD"), kPoints = tag("PNTS");
+constexpr uint32_t kTextures = section_tag("TEXR"), kMaterials = section_tag("MATL"),
+                   kMeshes = section_tag("MESH"), kLights = section_tag("LGHT"),
+                   kWorld = section_tag("WRLD"), kPoints = section_tag("PNTS");
 
 constexpr uint32_t kHasNormals = 1, kHasUvs = 2, kHasTriangleMaterials = 4;
 
-uint64_t fnv1a64(std::span<const uint8_t> bytes) {
-  uint64_t hash = 0xcbf29ce484222325ull;
-  for (uint8_t b : bytes) {
-    hash ^= b;
-    hash *= 0x100000001b3ull;
-  }
-  return hash;
-}
-
-// Little-endian writer, independent of the host's byte order.
-class Writer {
- public:
-  std::vector<uint8_t> bytes;
-  void u32(uint32_t v) {
-    for (int i = 0; i < 4; ++i) bytes.push_back(uint8_t(v >> (8 * i)));
-  }
-  void u64(uint64_t v) {
-    for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(v >> (8 * i)));
-  }
-  void f32(float v) { u32(std::bit_cast<uint32_t>(v)); }
-  void vec2(const glm::vec2& v) { f32(v.x), f32(v.y); }
-  void vec3(const glm::vec3& v) { f32(v.x), f32(v.y), f32(v.z); }
-  void patch_u64(size_t at, uint64_t v) {
-    for (int i = 0; i < 8; ++i) bytes[at + i] = uint8_t(v >> (8 * i));
-  }
-  // Starts a section; returns where its size goes.
-  size_t begin_section(uint32_t section_tag) {
-    u32(section_tag);
-    u32(0);
-    const size_t at = bytes.size();
-    u64(0);
-    return at;
-  }
-  void end_section(size_t at) { patch_u64(at, bytes.size() - (at + 8)); }
-};
-
-// Bounds-checked little-endian reader: every count is checked against the bytes left
-// before anything is allocated for it.
-class Reader {
- public:
-  Reader(std::span<const uint8_t> bytes, const std::string& name) : bytes_(bytes), name_(name) {}
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error(BAKEGI_ERROR_BAD_FILE, name_ + ": " + what);
-  }
-  size_t left() const { return bytes_.size() - at_; }
-  size_t position() const { return at_; }
-  void need(uint64_t count, uint64_t element_bytes, const char* what) const {
-    if (element_bytes != 0 && count > left() / element_bytes) {
-      fail(std::string("truncated or corrupt: ") + what + " needs " + std::to_string(count) +
-           " x " + std::to_string(element_bytes) + " bytes, " + std::to_string(left()) + " left");
-    }
-  }
-  uint32_t u32() {
-    need(1, 4, "a 32-bit value");
-    uint32_t v = 0;
-    for (int i = 0; i < 4; ++i) v |= uint32_t(bytes_[at_++]) << (8 * i);
-    return v;
-  }
-  uint64_t u64() {
-    need(1, 8, "a 64-bit value");
-    uint64_t v = 0;
-    for (int i = 0; i < 8; ++i) v |= uint64_t(bytes_[at_++]) << (8 * i);
-    return v;
-  }
-  float f32() { return std::bit_cast<float>(u32()); }
-  glm::vec2 vec2() {
-    const float x = f32();
-    return {x, f32()};
-  }
-  glm::vec3 vec3() {
-    const float x = f32(), y = f32();
-    return {x, y, f32()};
-  }
-  template <typename T, typename ReadOne>
-  void array(std::vector<T>& out, uint64_t count, uint64_t element_bytes, const char* what,
-             ReadOne read_one) {
-    need(count, element_bytes, what);
-    out.resize(count);
-    for (T& element : out) element = read_one();
-  }
-
- private:
-  std::span<const uint8_t> bytes_;
-  size_t at_ = 0;
-  std::string name_;
-};
+// The shared little-endian writer and bounds-checked reader (util/byte_stream.h).
+using Writer = ByteWriter;
+using Reader = ByteReader;
 
 void write_scene(Writer& w, const SceneDescription& scene) {
   size_t at = w.begin_section(kTextures);

@@ -5,6 +5,7 @@
 #include "direct/surface_point.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
+#include "solvers/meshless/visible_basis.h"
 #include "util/random.h"
 #include "util/sampling.h"
 
@@ -25,7 +26,7 @@ glm::vec3 uniform_hemisphere(float u1, float u2) {
 uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& senders,
                       const glm::vec3& position, const glm::vec3& normal, uint64_t receiver,
                       const GatherSettings& settings, SenderAccumulator& out,
-                      std::vector<BasisValue>& scratch) {
+                      std::vector<BasisValue>& scratch, uint64_t* visibility_rays) {
   const uint32_t rays = std::max(1u, settings.rays);
   const uint32_t side = static_cast<uint32_t>(std::sqrt(static_cast<double>(rays)));
   const uint32_t stratified = side * side;
@@ -33,6 +34,9 @@ uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHi
   const Frame frame(normal);
   Pcg32 rng = sample_stream(settings.seed, receiver, 0);
   const glm::vec3 origin = position + normal * settings.ray_epsilon;
+  const RayTracer* visibility = settings.visibility ? &tracer : nullptr;
+  std::vector<BasisValue> candidates;
+  uint64_t occlusion_rays = 0;
 
   for (uint32_t r = 0; r < rays; ++r) {
     float u1 = rng.next_float(), u2 = rng.next_float();
@@ -51,13 +55,15 @@ uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHi
     const glm::vec3 reflected = albedo * (kInvPi * ray_weight);
     for (uint32_t level = 0; level < senders.level_count(); ++level) {
       scratch.clear();
-      senders.gather_basis(level, y.position, y.shading_normal, scratch);
+      gather_visible_basis(senders, visibility, level, y.position, y.shading_normal, scratch,
+                           candidates, occlusion_rays);
       for (const BasisValue& b : scratch) {
         LinkValue& link = out.at(b.index);
         for (int c = 0; c < 3; ++c) link[c] += (reflected[c] * b.value) * direction;
       }
     }
   }
+  if (visibility_rays != nullptr) *visibility_rays += occlusion_rays;
   return rays;
 }
 

@@ -59,13 +59,18 @@ struct GatherSettings {
   uint32_t rays = 256;        // hemisphere rays per receiver (stratified, a square count is best)
   uint64_t seed = 0;          // ray stream: sample_stream(seed, receiver, 0)
   float ray_epsilon = 1e-4f;  // origin offset along the receiver's normal
+  // A ray's hit point evaluates only the sender functions whose point it sees, renormalized
+  // per level (visible_basis.h): a coarse sender centred behind a wall does not hand its
+  // coefficient to surfaces on this side of it. One occlusion ray per candidate function.
+  bool visibility = true;
 };
 
 // Adds T'_ij for every sender j of `senders` (the first sender levels of the basis, see
-// TransferOperator::sender_count) into `out`; returns the number of rays cast.
+// TransferOperator::sender_count) into `out`; returns the number of hemisphere rays cast
+// (`visibility_rays`, if given, gets the occlusion rays of the visibility test added).
 uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& senders,
                       const glm::vec3& position, const glm::vec3& normal, uint64_t receiver,
                       const GatherSettings& settings, SenderAccumulator& out,
-                      std::vector<BasisValue>& scratch);
+                      std::vector<BasisValue>& scratch, uint64_t* visibility_rays = nullptr);
 
 }  // namespace bakegi::meshless

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -21,12 +22,16 @@
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "solvers/meshless/basis_hierarchy.h"
+#include "solvers/meshless/meshless_precomputation.h"
 #include "solvers/meshless/multi_bounce.h"
 #include "solvers/meshless/multilevel_approximation.h"
 #include "solvers/meshless/point_placement.h"
+#include "solvers/meshless/precomputation_cache.h"
 #include "solvers/meshless/transfer_refinement.h"
+#include "solvers/meshless/visible_basis.h"
 #include "solvers/meshless/visible_evaluation.h"
 #include "util/error.h"
+#include "util/file_bytes.h"
 #include "util/job_context.h"
 #include "util/random.h"
 #include "util/report.h"
@@ -51,6 +56,7 @@ struct MeshlessSettings {
   glm::vec3 viewpoint{0.0f};
   int64_t seed = 0;
   uint64_t memory_budget_bytes = uint64_t(4096) << 20;
+  std::string cache_dir;  // empty: no precomputation cache
 
   static MeshlessSettings from(const Settings& settings) {
     MeshlessSettings s;
@@ -65,6 +71,7 @@ struct MeshlessSettings {
     s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
     s.memory_budget_bytes =
         uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
+    s.cache_dir = settings.get_string("cache_dir", "");
     const std::string viewpoint = settings.get_string("viewpoint", "");
     if (!viewpoint.empty()) {
       std::istringstream in(viewpoint);
@@ -98,41 +105,39 @@ std::string json_array(const std::vector<T>& values) {
   return json + "]";
 }
 
+// What a bake reports about the precomputation, the same whether it was just made or loaded
+// from the cache (issue 4, item 7). Rays and stage times are the caller's: a load casts none.
+void report_statistics(const MeshlessPrecomputation& system, Report& report) {
+  const MeshlessStatistics& s = system.statistics;
+  if (s.refinement_stopped_at_level >= 0) {
+    report.warn("meshless: the memory budget stopped link refinement before receiver level " +
+                std::to_string(s.refinement_stopped_at_level) +
+                " (coarser indirect light there); raise memory_budget_mb or epsilon");
+  }
+  std::vector<uint64_t> per_level;
+  for (uint32_t l = 0; l < system.all.level_count(); ++l) {
+    per_level.push_back(system.all.level_end(l) - system.all.level_begin(l));
+  }
+  report.set_json("meshless_points_per_level", json_array(per_level));
+  report.add_count("meshless_points", system.all.size());
+  report.add_count("meshless_sender_points", system.senders.size());
+  report.add_count("meshless_sender_levels", s.sender_levels);
+  report.set_json("meshless_receivers_per_level", json_array(s.receivers_per_level));
+  report.set_json("meshless_links_per_level", json_array(s.links_per_level));
+  report.add_count("meshless_links", s.links);
+  report.add_count("meshless_potential_links", s.potential_links);
+  report.set_number(
+      "meshless_links_kept_percent",
+      s.potential_links > 0 ? 100.0 * double(s.links) / double(s.potential_links) : 0.0);
+  report.add_count("meshless_operator_entries", system.transfer.nonzeros());
+  report.add_count("meshless_bounces", s.bounces);
+  report.set_json("meshless_bounce_fractions", json_array(s.bounce_fractions));
+  report.set_number("meshless_coarse_spacing", s.coarse_spacing);
+  report.add_count("meshless_link_bytes", s.link_bytes);
+  report.add_count("meshless_precomputation_bytes", system.memory_bytes());
+}
+
 }  // namespace
-
-// What relighting reuses: the basis, the sender basis and S (geometry, materials, settings).
-struct MeshlessPrecomputation : Precomputation,
-                                std::enable_shared_from_this<MeshlessPrecomputation> {
-  explicit MeshlessPrecomputation(BasisHierarchy all_in, BasisHierarchy senders_in)
-      : all(std::move(all_in)), senders(std::move(senders_in)) {}
-  BasisHierarchy all;      // every receiver level
-  BasisHierarchy senders;  // the first sender levels of the same points (same indices)
-  DirectToIndirect transfer;
-
-  // The evaluation weights of the last bake points evaluated, so that relighting the same
-  // points is one sparse product (no R-tree queries, no visibility rays). Keyed by a hash of
-  // the points and the visibility flag.
-  std::shared_ptr<const EvaluationWeights> weights_for(uint64_t key) const {
-    std::lock_guard<std::mutex> lock(weights_mutex_);
-    return key == weights_key_ ? weights_ : nullptr;
-  }
-  void keep_weights(uint64_t key, std::shared_ptr<const EvaluationWeights> weights) const {
-    std::lock_guard<std::mutex> lock(weights_mutex_);
-    weights_key_ = key;
-    weights_ = std::move(weights);
-  }
-
-  size_t memory_bytes() const override {
-    std::lock_guard<std::mutex> lock(weights_mutex_);
-    return all.memory_bytes() + senders.memory_bytes() + transfer.memory_bytes() +
-           (weights_ ? weights_->memory_bytes() : 0);
-  }
-
- private:
-  mutable std::mutex weights_mutex_;
-  mutable std::shared_ptr<const EvaluationWeights> weights_;
-  mutable uint64_t weights_key_ = 0;
-};
 
 namespace {
 
@@ -192,11 +197,88 @@ void MeshlessField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
 std::unique_ptr<IndirectField> MeshlessSolver::solve(const SolveInputs& inputs,
                                                      JobContext& context) {
   precomputation_.reset();
-  (void)MeshlessSettings::from(inputs.settings);  // bad settings fail before any work
-  std::shared_ptr<const MeshlessPrecomputation> system = precompute(inputs, context);
+  // Bad settings fail before any work.
+  const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
+  std::shared_ptr<const MeshlessPrecomputation> system;
+  if (settings.cache_dir.empty()) {
+    context.report().set_text("meshless_cache", "off");
+    system = precompute(inputs, context);
+  } else {
+    system = load_or_precompute(inputs, settings.cache_dir, context);
+  }
   std::unique_ptr<IndirectField> field = light(inputs, system, context);
   precomputation_ = std::move(system);
   return field;
+}
+
+std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::load_or_precompute(
+    const SolveInputs& inputs, const std::string& cache_dir, JobContext& context) const {
+  namespace fs = std::filesystem;
+  const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
+  Report& report = context.report();
+  auto start = std::chrono::steady_clock::now();
+  // Everything that shapes the precomputation: all settings read so far (MeshlessSettings
+  // read every meshless key, with fallbacks) except those that only light or evaluate.
+  std::vector<std::string> ignored = relight_settings();
+  ignored.insert(ignored.end(), {"threads", "cache_dir", "samples"});
+  const CacheKey key =
+      precomputation_key(inputs.scene.description, inputs.settings.used_values(), ignored,
+                         settings.has_viewpoint ? nullptr : inputs.points);
+  const fs::path folder = utf8_path(cache_dir);
+  const fs::path path = folder / key.file_name();
+  const std::string path_text = utf8_text(path);
+  report.add_seconds("meshless_cache_key", seconds_since(start));
+  report.set_text("meshless_cache_path", path_text);
+
+  std::string state = "miss";
+  std::error_code exists_error;
+  if (fs::exists(path, exists_error)) {
+    start = std::chrono::steady_clock::now();
+    context.set_stage("meshless: loading the cached precomputation", 0.02, 0.95);
+    try {
+      // The file cannot hold more than the precomputation it replaces may take.
+      const std::vector<uint8_t> bytes = read_file_bytes(path, settings.memory_budget_bytes);
+      std::shared_ptr<MeshlessPrecomputation> loaded =
+          decode_precomputation(bytes, key, utf8_text(path.filename()), &context);
+      report.set_text("meshless_cache", "hit");
+      report.add_seconds("meshless_cache_load", seconds_since(start));
+      report.add_count("meshless_cache_bytes", bytes.size());
+      report.set_number("meshless_cache_precompute_seconds", loaded->statistics.precompute_seconds);
+      report.add_count("meshless_refinement_rays", 0);
+      report_statistics(*loaded, report);
+      return loaded;
+    } catch (const Error& e) {
+      if (e.status() == BAKEGI_ERROR_CANCELLED) throw;
+      state = "stale";
+      report.warn("meshless cache " + path_text + " was stale/corrupt (" + e.what() + "): rebuilt");
+    } catch (const std::bad_alloc&) {
+      state = "stale";
+      report.warn("meshless cache " + path_text +
+                  " was stale/corrupt (too large to load): rebuilt");
+    }
+  }
+
+  std::shared_ptr<const MeshlessPrecomputation> system = precompute(inputs, context);
+  report.set_text("meshless_cache", state);
+  // Saving is a convenience: whatever goes wrong is a warning, never a failed bake.
+  start = std::chrono::steady_clock::now();
+  try {
+    std::error_code error;
+    fs::create_directories(folder, error);
+    if (error) {
+      throw Error(BAKEGI_ERROR_IO,
+                  "cannot create the folder " + utf8_text(folder) + ": " + error.message());
+    }
+    const std::vector<uint8_t> bytes = encode_precomputation(*system, key);
+    write_file_atomically(path, bytes);
+    report.add_seconds("meshless_cache_save", seconds_since(start));
+    report.add_count("meshless_cache_bytes", bytes.size());
+  } catch (const Error& e) {
+    report.warn(std::string("meshless cache: the precomputation was not saved: ") + e.what());
+  } catch (const std::exception& e) {
+    report.warn(std::string("meshless cache: the precomputation was not saved: ") + e.what());
+  }
+  return system;
 }
 
 std::unique_ptr<IndirectField> MeshlessSolver::relight(const SolveInputs& inputs,
@@ -218,6 +300,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
   Report& report = context.report();
   const Scene& scene = inputs.scene;
+  const auto precompute_start = std::chrono::steady_clock::now();
 
   // §2.3: points.
   context.set_stage("meshless: placing points", 0.02, 0.15);
@@ -251,7 +334,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   const uint32_t levels = all.level_count();
   const uint32_t sender_levels = settings.sender_levels > 0
                                      ? std::min<uint32_t>(uint32_t(settings.sender_levels), levels)
-                                     : (levels + 1) / 2;
+                                     : std::max<uint32_t>(1, levels - 1);
   std::vector<BasisPoint> sender_points;
   for (uint32_t i = 0; i < all.level_end(sender_levels - 1); ++i) {
     sender_points.push_back(all.point(i));
@@ -269,6 +352,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   refinement.gather.rays = uint32_t(settings.gather_rays);
   refinement.gather.seed = uint64_t(settings.seed) ^ 0x7472616e73666572ull;
   refinement.gather.ray_epsilon = inputs.direct.ray_epsilon();
+  refinement.gather.visibility = settings.visibility;
   const size_t used = system->memory_bytes() + inputs.tracer.memory_bytes();
   refinement.link_budget_bytes =
       settings.memory_budget_bytes > used ? (settings.memory_budget_bytes - used) / 2 : 1;
@@ -277,11 +361,6 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
       scene, inputs.tracer, system->all, system->senders, refinement, context, refinement_stats);
   const double refine_seconds = seconds_since(start);
   report.add_seconds("meshless_refinement", refine_seconds);
-  if (refinement_stats.stopped_at_level >= 0) {
-    report.warn("meshless: the memory budget stopped link refinement before receiver level " +
-                std::to_string(refinement_stats.stopped_at_level) +
-                " (coarser indirect light there); raise memory_budget_mb or epsilon");
-  }
 
   // §3.1: S = T + T² + … on the coarsest receivers.
   context.set_stage("meshless: bounces", 0.85, 0.95);
@@ -293,34 +372,25 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   system->transfer = solve_bounces(system->all, single, bounces, context, bounce_stats);
   report.add_seconds("meshless_bounces", seconds_since(start));
 
-  // Statistics (issue 4, item 7).
-  std::vector<uint64_t> per_level;
-  for (uint32_t l = 0; l < levels; ++l) {
-    per_level.push_back(system->all.level_end(l) - system->all.level_begin(l));
-  }
-  report.set_json("meshless_points_per_level", json_array(per_level));
-  report.add_count("meshless_points", system->all.size());
-  report.add_count("meshless_sender_points", system->senders.size());
-  report.add_count("meshless_sender_levels", sender_levels);
-  report.set_json("meshless_receivers_per_level", json_array(refinement_stats.receivers_per_level));
-  report.set_json("meshless_links_per_level", json_array(refinement_stats.links_per_level));
-  report.add_count("meshless_links", refinement_stats.links);
-  report.add_count("meshless_potential_links", refinement_stats.potential_links);
-  report.set_number(
-      "meshless_links_kept_percent",
-      refinement_stats.potential_links > 0
-          ? 100.0 * double(refinement_stats.links) / double(refinement_stats.potential_links)
-          : 0.0);
-  report.add_count("meshless_operator_entries", bounce_stats.nonzeros);
-  report.add_count("meshless_bounces", bounce_stats.bounces);
-  report.set_json("meshless_bounce_fractions", json_array(bounce_stats.bounce_fraction));
-  report.add_count("rays", refinement_stats.rays + placement_stats.particle_rays +
-                               placement_stats.harmonic_mean_rays);
-  report.add_count("meshless_refinement_rays", refinement_stats.rays);
-  report.set_number("meshless_coarse_spacing",
-                    placement_stats.levels.empty() ? 0.0 : placement_stats.levels[0].spacing);
-  report.add_count("meshless_link_bytes", single.memory_bytes());
-  report.add_count("meshless_precomputation_bytes", system->memory_bytes());
+  // Statistics (issue 4, item 7), kept with the precomputation for cache hits.
+  MeshlessStatistics& statistics = system->statistics;
+  statistics.sender_levels = sender_levels;
+  statistics.receivers_per_level = refinement_stats.receivers_per_level;
+  statistics.links_per_level = refinement_stats.links_per_level;
+  statistics.links = refinement_stats.links;
+  statistics.potential_links = refinement_stats.potential_links;
+  statistics.refinement_stopped_at_level = refinement_stats.stopped_at_level;
+  statistics.bounces = bounce_stats.bounces;
+  statistics.bounce_fractions = bounce_stats.bounce_fraction;
+  statistics.coarse_spacing =
+      placement_stats.levels.empty() ? 0.0 : placement_stats.levels[0].spacing;
+  statistics.link_bytes = single.memory_bytes();
+  statistics.placement_rays = placement_stats.particle_rays + placement_stats.harmonic_mean_rays;
+  statistics.refinement_rays = refinement_stats.rays;
+  statistics.precompute_seconds = seconds_since(precompute_start);
+  report.add_count("rays", statistics.placement_rays + statistics.refinement_rays);
+  report.add_count("meshless_refinement_rays", statistics.refinement_rays);
+  report_statistics(*system, report);
   return system;
 }
 
@@ -354,12 +424,15 @@ std::unique_ptr<IndirectField> MeshlessSolver::light(
                       rays += local_rays;
                     });
   context.throw_if_cancelled();
-  const std::vector<float> e = pull_push_project(senders, direct, 3, &context);
+  const std::vector<float> e = visible_pull_push_project(
+      senders, visible_relations(senders, settings.visibility ? &inputs.tracer : nullptr, &context),
+      direct, 3, &context);
   const double direct_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   std::vector<float> indirect;
-  apply_operator(system->transfer, e, 0.0f, indirect);
+  apply_operator(system->transfer, system->all, uint32_t(settings.bounces),
+                 BounceSettings{}.tolerance, e, 0.0f, indirect);
   const double apply_seconds = seconds_since(start);
 
   report.add_count("rays", rays.load());

@@ -1,5 +1,6 @@
 #include "solvers/meshless/multi_bounce.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "util/error.h"
@@ -8,14 +9,6 @@
 namespace bakegi::meshless {
 
 namespace {
-
-double absolute_sum(const SparseOperator& m) {
-  double sum = 0.0;
-  for (int k = 0; k < m.outerSize(); ++k) {
-    for (SparseOperator::InnerIterator it(m, k); it; ++it) sum += std::abs(it.value());
-  }
-  return sum;
-}
 
 SparseOperator single_bounce(const TransferOperator& op, int channel) {
   std::vector<Eigen::Triplet<float, int32_t>> triplets;
@@ -51,6 +44,38 @@ size_t DirectToIndirect::nonzeros() const {
   return n;
 }
 
+namespace {
+
+// v (3 per coarsest receiver, one channel) -> s_k = n_k · v_k.
+void to_scalar(const BasisHierarchy& basis, int32_t coarsest, const std::vector<double>& v,
+               std::vector<double>& s) {
+  s.assign(static_cast<size_t>(coarsest), 0.0);
+  for (int32_t k = 0; k < coarsest; ++k) {
+    const glm::vec3 n = basis.point(static_cast<uint32_t>(k)).normal;
+    s[k] = n.x * v[3 * k] + n.y * v[3 * k + 1] + n.z * v[3 * k + 2];
+  }
+}
+
+// v = T_00 s: the coarsest receivers' vector irradiance from the coarsest senders' scalars.
+void coarsest_hop(const SparseOperator& t, int32_t coarsest, const std::vector<double>& s,
+                  std::vector<double>& v) {
+  v.assign(3 * static_cast<size_t>(coarsest), 0.0);
+  for (int32_t k = 0; k < coarsest; ++k) {
+    if (s[k] == 0.0) continue;
+    for (SparseOperator::InnerIterator it(t, k); it && it.row() < 3 * coarsest; ++it) {
+      v[it.row()] += double(it.value()) * s[k];
+    }
+  }
+}
+
+double absolute_sum(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (double x : v) sum += std::abs(x);
+  return sum;
+}
+
+}  // namespace
+
 DirectToIndirect solve_bounces(const BasisHierarchy& all, const TransferOperator& op,
                                const BounceSettings& settings, JobContext& context,
                                BounceStats& stats) {
@@ -62,54 +87,50 @@ DirectToIndirect solve_bounces(const BasisHierarchy& all, const TransferOperator
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "meshless bounces: the coarsest level must be among the senders");
   }
-  // D: scalar irradiance n_k · E_k of coarsest sender k from coarsest receiver k's vector.
-  std::vector<Eigen::Triplet<float, int32_t>> dot_triplets;
-  for (int32_t k = 0; k < coarsest; ++k) {
-    const glm::vec3 n = all.point(static_cast<uint32_t>(k)).normal;
-    for (int a = 0; a < 3; ++a) dot_triplets.emplace_back(k, 3 * k + a, n[a]);
-  }
-  SparseOperator to_scalar(coarsest, 3 * coarsest);
-  to_scalar.setFromTriplets(dot_triplets.begin(), dot_triplets.end());
-
   DirectToIndirect s;
   stats = BounceStats{};
   for (int c = 0; c < 3; ++c) {
     context.throw_if_cancelled();
-    SparseOperator t = single_bounce(op, c);
-    const SparseOperator t0 = t.topRows(3 * coarsest);
-    const SparseOperator t00 = t0.leftCols(coarsest);
-    const SparseOperator m = t00 * to_scalar;
-    const double first = std::max(absolute_sum(t0), 1e-30);
-    SparseOperator extra(3 * coarsest, t.cols());
-    SparseOperator bounce = t0;
-    uint32_t bounces = 1;
-    std::vector<double> fractions;
-    while (bounces < settings.max_bounces) {
-      context.throw_if_cancelled();
-      bounce = (m * bounce).pruned(settings.truncation, 1.0f);
-      ++bounces;
-      const double fraction = absolute_sum(bounce) / first;
-      fractions.push_back(fraction);
-      extra += bounce;
-      if (fraction < settings.tolerance) break;
-    }
-    extra.conservativeResize(t.rows(), t.cols());
-    s.channel[c] = t + extra;
+    s.channel[c] = single_bounce(op, c);
     s.channel[c].makeCompressed();
-    stats.bounces = std::max(stats.bounces, bounces);
-    if (c == 1) stats.bounce_fraction = fractions;  // green: the eye's channel, for the report
     context.set_stage_progress((c + 1) / 3.0);
+  }
+  // Statistics: the series for unit emission at every sender (green).
+  const SparseOperator& t = s.channel[1];
+  std::vector<double> v(3 * static_cast<size_t>(coarsest), 0.0), scalar;
+  for (int32_t j = 0; j < t.outerSize(); ++j) {
+    for (SparseOperator::InnerIterator it(t, j); it && it.row() < 3 * coarsest; ++it) {
+      v[it.row()] += it.value();
+    }
+  }
+  to_scalar(all, coarsest, v, scalar);
+  const double first = std::max(absolute_sum(scalar), 1e-30);
+  while (stats.bounces < settings.max_bounces) {
+    coarsest_hop(t, coarsest, scalar, v);
+    to_scalar(all, coarsest, v, scalar);
+    ++stats.bounces;
+    const double fraction = absolute_sum(scalar) / first;
+    stats.bounce_fraction.push_back(fraction);
+    if (fraction < settings.tolerance) break;
   }
   stats.nonzeros = s.nonzeros();
   return s;
 }
 
-void apply_operator(const DirectToIndirect& s, const std::vector<float>& e, float skip,
+void apply_operator(const DirectToIndirect& s, const BasisHierarchy& basis, uint32_t max_bounces,
+                    float tolerance, const std::vector<float>& e, float skip,
                     std::vector<float>& i) {
   const int32_t rows = s.channel[0].rows();
+  if (static_cast<size_t>(rows) != 3 * basis.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "meshless apply: operator and basis disagree");
+  }
   i.assign(static_cast<size_t>(rows) * 3, 0.0f);  // rows = 3 receivers -> 9 floats each
+  const int32_t coarsest =
+      std::min<int32_t>(static_cast<int32_t>(basis.level_end(0)), s.channel[0].cols());
+  std::vector<double> v, scalar, total;
   for (int c = 0; c < 3; ++c) {
     const SparseOperator& m = s.channel[c];
+    // First bounce, T e.
     for (int32_t j = 0; j < m.outerSize(); ++j) {
       const float ej = e[3 * static_cast<size_t>(j) + c];
       if (!(std::abs(ej) > skip)) continue;
@@ -117,6 +138,31 @@ void apply_operator(const DirectToIndirect& s, const std::vector<float>& e, floa
         const int32_t row = it.row();
         const int32_t receiver = row / 3, axis = row % 3;
         i[9 * static_cast<size_t>(receiver) + 3 * c + axis] += it.value() * ej;
+      }
+    }
+    if (max_bounces < 2 || coarsest == 0) continue;
+    // s = Σ_{k=0}^{B-2} N^k D T_0 e on the coarsest block.
+    v.assign(3 * static_cast<size_t>(coarsest), 0.0);
+    for (int32_t k = 0; k < coarsest; ++k) {
+      for (int a = 0; a < 3; ++a) v[3 * k + a] = i[9 * static_cast<size_t>(k) + 3 * c + a];
+    }
+    to_scalar(basis, coarsest, v, scalar);
+    total = scalar;
+    const double first = absolute_sum(scalar);
+    for (uint32_t bounce = 3; bounce <= max_bounces && first > 0.0; ++bounce) {
+      coarsest_hop(m, coarsest, scalar, v);
+      to_scalar(basis, coarsest, v, scalar);
+      for (int32_t k = 0; k < coarsest; ++k) total[k] += scalar[k];
+      if (absolute_sum(scalar) < double(tolerance) * first) break;
+    }
+    // The last hop to every receiver: i += T_{·0} s.
+    for (int32_t k = 0; k < coarsest; ++k) {
+      const double sk = total[k];
+      if (!(std::abs(sk) > skip)) continue;
+      for (SparseOperator::InnerIterator it(m, k); it; ++it) {
+        const int32_t row = it.row();
+        const int32_t receiver = row / 3, axis = row % 3;
+        i[9 * static_cast<size_t>(receiver) + 3 * c + axis] += float(double(it.value()) * sk);
       }
     }
   }

@@ -8,6 +8,7 @@
 
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
+#include "solvers/meshless/visible_basis.h"
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/sampling.h"
@@ -20,19 +21,23 @@ struct ThreadScratch {
   explicit ThreadScratch(uint32_t senders) : accumulator(senders) {}
   SenderAccumulator accumulator;
   std::vector<BasisValue> basis;
+  uint64_t visibility_rays = 0;
 };
 
 // Computes receiver i's links (Eqs. 16, 17) and keeps the significant ones (Fig. 5).
 uint64_t refine_receiver(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& all,
-                         const BasisHierarchy& senders, const RefinementSettings& settings,
-                         uint32_t receiver, TransferOperator& op, ThreadScratch& scratch) {
+                         const BasisHierarchy& senders, const VisibleRelations& relations,
+                         const RefinementSettings& settings, uint32_t receiver,
+                         TransferOperator& op, ThreadScratch& scratch) {
   SenderAccumulator& acc = scratch.accumulator;
   acc.clear();
   const BasisPoint& x = all.point(receiver);
   const uint64_t rays = gather_links(scene, tracer, senders, x.position, x.normal, receiver,
-                                     settings.gather, acc, scratch.basis);
+                                     settings.gather, acc, scratch.basis, &scratch.visibility_rays);
   // Eq. 17: what coarser receivers already deliver at x_i is not this receiver's to carry.
-  for (const BasisValue& parent : all.coarser_basis(receiver)) {
+  // With visibility, "coarser receivers" are those x_i sees (visible_basis.h), the same ones
+  // the evaluation at bake points uses, so F_L(x_i) reproduces T'_i there.
+  for (const BasisValue& parent : relations.coarser_of(receiver)) {
     for (const TransferLink& link : op.receivers[parent.index]) {
       acc.at(link.sender) -= parent.value * link.value;
     }
@@ -82,6 +87,11 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
   stats = RefinementStats{};
   stats.potential_links = static_cast<uint64_t>(all.size()) * senders.size();
 
+  // The receivers' coarser relations for Eq. 17 (the pull part is unused here).
+  const VisibleRelations relations =
+      visible_relations(all, settings.gather.visibility ? &tracer : nullptr, &context);
+  stats.visibility_rays = relations.rays;
+
   std::vector<uint32_t> current;
   for (uint32_t i = all.level_begin(0); i < all.level_end(0); ++i) current.push_back(i);
 
@@ -110,8 +120,8 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
                         ThreadScratch& local = scratch.local();
                         uint64_t local_rays = 0;
                         for (size_t r = range.begin(); r != range.end(); ++r) {
-                          local_rays += refine_receiver(scene, tracer, all, senders, settings,
-                                                        current[r], op, local);
+                          local_rays += refine_receiver(scene, tracer, all, senders, relations,
+                                                        settings, current[r], op, local);
                         }
                         rays += local_rays;
                         const size_t finished = done += range.size();
@@ -135,6 +145,7 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
     bytes = op.memory_bytes();
     current = std::move(next);
   }
+  for (const ThreadScratch& local : scratch) stats.visibility_rays += local.visibility_rays;
   return op;
 }
 

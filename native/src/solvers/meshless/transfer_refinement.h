@@ -42,7 +42,8 @@ struct RefinementSettings {
 struct RefinementStats {
   std::vector<uint64_t> receivers_per_level;  // receivers whose links were computed
   std::vector<uint64_t> links_per_level;      // links kept, by receiver level
-  uint64_t rays = 0;
+  uint64_t rays = 0;                          // hemisphere rays of Eq. 16
+  uint64_t visibility_rays = 0;  // occlusion rays of the visibility-aware basis (visible_basis.h)
   uint64_t links = 0;
   uint64_t potential_links = 0;  // all receivers x all senders (Table 1's denominator)
   int stopped_at_level = -1;     // >= 0 when the budget stopped refinement before this level

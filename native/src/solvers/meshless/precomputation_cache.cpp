@@ -1,0 +1,358 @@
+#include "solvers/meshless/precomputation_cache.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+#include "scene/scene_file.h"
+#include "util/byte_stream.h"
+#include "util/error.h"
+#include "util/random.h"
+
+namespace bakegi::meshless {
+
+namespace {
+
+constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'M'};
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
+constexpr size_t kTrailerBytes = 8;
+constexpr uint32_t kStatistics = section_tag("STAT"), kPoints = section_tag("PNTS"),
+                   kTransfer = section_tag("XFER");
+constexpr size_t kPointBytes = 3 * 4 + 3 * 4 + 4 + 4;
+
+// The serializers below write every member; a member added to these types must be added
+// here too (and kPrecomputationCacheVersion bumped), or the cache would drop it silently.
+static_assert(sizeof(BasisPoint) == kPointBytes,
+              "BasisPoint changed: update precomputation_cache.cpp and bump the cache version");
+static_assert(sizeof(DirectToIndirect) == sizeof(std::array<SparseOperator, 3>),
+              "DirectToIndirect changed: update precomputation_cache.cpp and bump the version");
+
+// A second 64-bit hash next to FNV-1a for the 128-bit key: SplitMix64's bijective mix
+// chained over 8-byte words, so that the two hashes share no structure.
+uint64_t word_hash(std::span<const uint8_t> bytes) {
+  uint64_t hash = mix64(bytes.size());
+  size_t at = 0;
+  for (; at + 8 <= bytes.size(); at += 8) {
+    uint64_t word = 0;
+    for (int i = 0; i < 8; ++i) word |= uint64_t(bytes[at + i]) << (8 * i);
+    hash = mix64(hash ^ word);
+  }
+  uint64_t tail = 0;
+  for (int i = 0; at < bytes.size(); ++at, ++i) tail |= uint64_t(bytes[at]) << (8 * i);
+  return mix64(hash ^ tail);
+}
+
+void add_hash(ByteWriter& w, std::span<const uint8_t> bytes) {
+  w.u64(bytes.size());
+  w.u64(fnv1a64(bytes));
+  w.u64(word_hash(bytes));
+}
+
+// The textures, materials and meshes sections of the scene's .bgs encoding (scene_file.h:
+// a 24-byte header, then TEXR, MATL, MESH, LGHT, WRLD), leaving out lights and world.
+std::span<const uint8_t> geometry_and_materials(std::span<const uint8_t> encoded) {
+  constexpr size_t kSceneHeaderBytes = 24, kSectionHeaderBytes = 16;
+  size_t at = kSceneHeaderBytes;
+  for (uint32_t tag : {section_tag("TEXR"), section_tag("MATL"), section_tag("MESH")}) {
+    ByteReader r(encoded.subspan(std::min(at, encoded.size())), "scene encoding");
+    if (r.u32() != tag) {
+      throw Error(BAKEGI_ERROR_INTERNAL, "meshless cache: the scene file layout changed");
+    }
+    r.u32();
+    const uint64_t size = r.u64();
+    r.need(size, 1, "section");
+    at += kSectionHeaderBytes + size;
+  }
+  return encoded.subspan(kSceneHeaderBytes, at - kSceneHeaderBytes);
+}
+
+void write_u64s(ByteWriter& w, const std::vector<uint64_t>& values) {
+  w.u64(values.size());
+  for (uint64_t v : values) w.u64(v);
+}
+
+void write_statistics(ByteWriter& w, const MeshlessStatistics& s) {
+  const size_t at = w.begin_section(kStatistics);
+  w.u32(s.sender_levels);
+  write_u64s(w, s.receivers_per_level);
+  write_u64s(w, s.links_per_level);
+  w.u64(s.links);
+  w.u64(s.potential_links);
+  w.u32(uint32_t(s.refinement_stopped_at_level));
+  w.u32(s.bounces);
+  w.u64(s.bounce_fractions.size());
+  for (double f : s.bounce_fractions) w.f64(f);
+  w.f64(s.coarse_spacing);
+  w.u64(s.link_bytes);
+  w.u64(s.placement_rays);
+  w.u64(s.refinement_rays);
+  w.f64(s.precompute_seconds);
+  w.end_section(at);
+}
+
+void write_points(ByteWriter& w, const BasisHierarchy& all) {
+  const size_t at = w.begin_section(kPoints);
+  w.u64(all.size());
+  for (const BasisPoint& p : all.points()) {
+    w.vec3(p.position);
+    w.vec3(p.normal);
+    w.f32(p.radius);
+    w.u32(p.level);
+  }
+  w.end_section(at);
+}
+
+void write_transfer(ByteWriter& w, const DirectToIndirect& transfer) {
+  const size_t at = w.begin_section(kTransfer);
+  for (const SparseOperator& channel : transfer.channel) {
+    SparseOperator compressed;
+    const SparseOperator* m = &channel;
+    if (!channel.isCompressed()) {
+      compressed = channel;
+      compressed.makeCompressed();
+      m = &compressed;
+    }
+    const int32_t columns = m->cols();
+    const int64_t nonzeros = m->nonZeros();
+    w.u32(uint32_t(m->rows()));
+    w.u32(uint32_t(columns));
+    w.u64(uint64_t(nonzeros));
+    for (int32_t j = 0; j <= columns; ++j) w.u32(uint32_t(m->outerIndexPtr()[j]));
+    for (int64_t k = 0; k < nonzeros; ++k) w.u32(uint32_t(m->innerIndexPtr()[k]));
+    for (int64_t k = 0; k < nonzeros; ++k) w.f32(m->valuePtr()[k]);
+  }
+  w.end_section(at);
+}
+
+std::vector<uint64_t> read_u64s(ByteReader& r, const char* what) {
+  std::vector<uint64_t> values;
+  r.array(values, r.u64(), 8, what, [&] { return r.u64(); });
+  return values;
+}
+
+MeshlessStatistics read_statistics(ByteReader& r) {
+  MeshlessStatistics s;
+  s.sender_levels = r.u32();
+  s.receivers_per_level = read_u64s(r, "receivers per level");
+  s.links_per_level = read_u64s(r, "links per level");
+  s.links = r.u64();
+  s.potential_links = r.u64();
+  s.refinement_stopped_at_level = int32_t(r.u32());
+  s.bounces = r.u32();
+  r.array(s.bounce_fractions, r.u64(), 8, "bounce fractions", [&] { return r.f64(); });
+  s.coarse_spacing = r.f64();
+  s.link_bytes = r.u64();
+  s.placement_rays = r.u64();
+  s.refinement_rays = r.u64();
+  s.precompute_seconds = r.f64();
+  return s;
+}
+
+std::vector<BasisPoint> read_points(ByteReader& r) {
+  std::vector<BasisPoint> points;
+  r.array(points, r.u64(), kPointBytes, "basis points", [&] {
+    BasisPoint p;
+    p.position = r.vec3();
+    p.normal = r.vec3();
+    p.radius = r.f32();
+    p.level = r.u32();
+    return p;
+  });
+  // BasisHierarchy sorts by level; the file holds them sorted, so indices (which S uses)
+  // survive only if that sort is the identity.
+  for (size_t i = 1; i < points.size(); ++i) {
+    if (points[i].level < points[i - 1].level) r.fail("corrupt: basis points not sorted by level");
+  }
+  return points;
+}
+
+// Reads into `m` in place (Eigen 3.4's SparseMatrix has no move assignment: a returned
+// matrix would be copied).
+void read_operator(ByteReader& r, uint32_t expected_rows, uint32_t expected_columns,
+                   SparseOperator& m) {
+  const uint32_t rows = r.u32(), columns = r.u32();
+  const uint64_t nonzeros = r.u64();
+  if (rows != expected_rows || columns != expected_columns) {
+    r.fail("corrupt: S is " + std::to_string(rows) + " x " + std::to_string(columns) +
+           ", the basis needs " + std::to_string(expected_rows) + " x " +
+           std::to_string(expected_columns));
+  }
+  if (nonzeros > uint64_t(INT32_MAX)) r.fail("corrupt: too many entries in S");
+  r.need(uint64_t(columns) + 1, 4, "S column offsets");
+  r.need(nonzeros, 8, "S entries");  // a row index and a value each
+  // Read straight into the matrix' compressed arrays: for a large S the copies, not the
+  // parsing, are what loading costs.
+  m.resize(int32_t(rows), int32_t(columns));
+  m.resizeNonZeros(int64_t(nonzeros));
+  int32_t* outer = m.outerIndexPtr();
+  int32_t* inner = m.innerIndexPtr();
+  float* values = m.valuePtr();
+  for (uint64_t j = 0; j <= columns; ++j) outer[j] = int32_t(r.u32());
+  for (uint64_t k = 0; k < nonzeros; ++k) inner[k] = int32_t(r.u32());
+  for (uint64_t k = 0; k < nonzeros; ++k) values[k] = r.f32();
+  if (outer[0] != 0 || uint64_t(outer[columns]) != nonzeros) r.fail("corrupt: S offsets");
+  for (uint32_t j = 0; j < columns; ++j) {
+    if (outer[j + 1] < outer[j]) r.fail("corrupt: S offsets decrease");
+  }
+  for (uint64_t k = 0; k < nonzeros; ++k) {
+    if (inner[k] < 0 || uint32_t(inner[k]) >= rows) r.fail("corrupt: S row index out of range");
+    if (!std::isfinite(values[k])) r.fail("corrupt: S holds a non-finite value");
+  }
+}
+
+// Opens a section of the expected tag; returns where it ends.
+size_t open_section(ByteReader& r, uint32_t expected, const char* name) {
+  const uint32_t tag = r.u32();
+  r.u32();
+  const uint64_t size = r.u64();
+  if (tag != expected) r.fail(std::string("corrupt: expected the ") + name + " section");
+  r.need(size, 1, name);
+  return r.position() + size;
+}
+
+void close_section(ByteReader& r, size_t end, const char* name) {
+  if (r.position() != end) r.fail(std::string("corrupt: the ") + name + " section's size");
+}
+
+}  // namespace
+
+std::string CacheKey::file_name() const {
+  char name[40];
+  std::snprintf(name, sizeof name, "meshless-%016llx.bgcache",
+                static_cast<unsigned long long>(high));
+  return name;
+}
+
+CacheKey precomputation_key(const SceneDescription& scene,
+                            const std::map<std::string, SettingValue>& used_settings,
+                            const std::vector<std::string>& ignored_settings,
+                            const BakePoints* placement_points) {
+  ByteWriter w;
+  w.u32(kPrecomputationCacheVersion);
+  w.u32(BAKEGI_VERSION_MAJOR);
+  w.u32(BAKEGI_VERSION_MINOR);
+  w.u32(BAKEGI_VERSION_PATCH);
+  w.u32(kSceneFileVersion);
+  {
+    // Hashed at once so that the key material stays small for large scenes.
+    const std::vector<uint8_t> encoded = encode_scene_file(scene, nullptr);
+    add_hash(w, geometry_and_materials(encoded));
+  }
+  for (const auto& [key, value] : used_settings) {
+    if (std::find(ignored_settings.begin(), ignored_settings.end(), key) !=
+        ignored_settings.end()) {
+      continue;
+    }
+    w.string(key);
+    w.u32(uint32_t(value.index()));
+    if (const int64_t* i = std::get_if<int64_t>(&value)) w.u64(uint64_t(*i));
+    if (const double* d = std::get_if<double>(&value)) w.f64(*d);
+    if (const std::string* text = std::get_if<std::string>(&value)) w.string(*text);
+  }
+  w.u32(placement_points ? 1 : 0);
+  if (placement_points) {
+    ByteWriter points;
+    points.u64(placement_points->size());
+    for (const glm::vec3& p : placement_points->positions) points.vec3(p);
+    for (const glm::vec3& n : placement_points->normals) points.vec3(n);
+    for (uint32_t id : placement_points->object_ids) points.u32(id);
+    add_hash(w, points.bytes);
+  }
+  return CacheKey{fnv1a64(w.bytes), word_hash(w.bytes)};
+}
+
+std::vector<uint8_t> encode_precomputation(const MeshlessPrecomputation& precomputation,
+                                           const CacheKey& key) {
+  ByteWriter w;
+  w.bytes.insert(w.bytes.end(), std::begin(kMagic), std::end(kMagic));
+  w.u32(kPrecomputationCacheVersion);
+  w.u32(0);
+  w.u64(key.high);
+  w.u64(key.low);
+  const size_t payload_size_at = w.bytes.size();
+  w.u64(0);  // payload size, patched below
+  write_statistics(w, precomputation.statistics);
+  write_points(w, precomputation.all);
+  write_transfer(w, precomputation.transfer);
+  w.patch_u64(payload_size_at, w.bytes.size() - kHeaderBytes);
+  w.u64(fnv1a64(w.bytes));
+  return std::move(w.bytes);
+}
+
+std::shared_ptr<MeshlessPrecomputation> decode_precomputation(std::span<const uint8_t> bytes,
+                                                              const CacheKey& expected,
+                                                              const std::string& name,
+                                                              const JobContext* job) {
+  const auto fail = [&](const std::string& what) {
+    throw Error(BAKEGI_ERROR_BAD_FILE, name + ": " + what);
+  };
+  if (bytes.size() < kHeaderBytes + kTrailerBytes ||
+      std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    fail("corrupt: not a meshless cache file");
+  }
+  ByteReader header(bytes.subspan(sizeof kMagic, kHeaderBytes - sizeof kMagic), name);
+  const uint32_t version = header.u32();
+  if (version != kPrecomputationCacheVersion) {
+    fail("stale: format version " + std::to_string(version) + ", this build uses " +
+         std::to_string(kPrecomputationCacheVersion));
+  }
+  header.u32();
+  CacheKey key;
+  key.high = header.u64();
+  key.low = header.u64();
+  if (!(key == expected)) fail("stale: made for another scene or other settings");
+  const uint64_t payload_bytes = header.u64();
+  if (payload_bytes != bytes.size() - kHeaderBytes - kTrailerBytes) {
+    fail("corrupt: truncated or extended (the header says " + std::to_string(payload_bytes) +
+         " payload bytes, the file holds " +
+         std::to_string(bytes.size() - kHeaderBytes - kTrailerBytes) + ")");
+  }
+  const size_t hashed = bytes.size() - kTrailerBytes;
+  ByteReader trailer(bytes.subspan(hashed), name);
+  if (trailer.u64() != fnv1a64(bytes.first(hashed))) fail("corrupt: checksum mismatch");
+
+  ByteReader r(bytes.subspan(kHeaderBytes, payload_bytes), name);
+  size_t end = open_section(r, kStatistics, "statistics");
+  MeshlessStatistics statistics = read_statistics(r);
+  close_section(r, end, "statistics");
+  end = open_section(r, kPoints, "points");
+  std::vector<BasisPoint> points = read_points(r);
+  close_section(r, end, "points");
+  if (points.empty()) fail("corrupt: no basis points");
+  const uint32_t levels = points.back().level + 1;
+  if (statistics.sender_levels < 1 || statistics.sender_levels > levels) {
+    fail("corrupt: " + std::to_string(statistics.sender_levels) + " sender levels of " +
+         std::to_string(levels));
+  }
+  std::vector<BasisPoint> sender_points;
+  for (const BasisPoint& p : points) {
+    if (p.level < statistics.sender_levels) sender_points.push_back(p);
+  }
+  const uint32_t receiver_count = uint32_t(points.size());
+  const uint32_t sender_count = uint32_t(sender_points.size());
+
+  // The checksum matched, so the basis is built before S is read: S goes straight into its
+  // place (see read_operator).
+  std::shared_ptr<MeshlessPrecomputation> precomputation;
+  try {
+    precomputation = std::make_shared<MeshlessPrecomputation>(
+        BasisHierarchy(std::move(points), job), BasisHierarchy(std::move(sender_points), job));
+  } catch (const Error& e) {
+    // The points were valid when saved; the basis refusing them means the file is damaged.
+    if (e.status() != BAKEGI_ERROR_INVALID_ARGUMENT) throw;
+    fail(std::string("corrupt: ") + e.what());
+  }
+  end = open_section(r, kTransfer, "transfer");
+  for (SparseOperator& channel : precomputation->transfer.channel) {
+    read_operator(r, 3 * receiver_count, sender_count, channel);
+  }
+  close_section(r, end, "transfer");
+  if (r.left() != 0) fail("corrupt: unexpected bytes after the last section");
+  precomputation->statistics = std::move(statistics);
+  return precomputation;
+}
+
+}  // namespace bakegi::meshless
