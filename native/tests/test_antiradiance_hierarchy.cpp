@@ -257,7 +257,8 @@ TEST(AntiradianceHierarchy, AlbedoAndEmissionPerPatch) {
   Texture texture;
   texture.width = 4;
   texture.height = 1;
-  texture.pixels = {{0.1f, 0.5f, 0.7f}, {0.3f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.3f}, {0.7f, 0.5f, 0.1f}};
+  texture.set_texels(
+      {{0.1f, 0.5f, 0.7f}, {0.3f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.3f}, {0.7f, 0.5f, 0.1f}});
   d.textures.push_back(texture);
   Material textured;
   textured.albedo = glm::vec3(1.0f);

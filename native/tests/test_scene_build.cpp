@@ -18,7 +18,7 @@ SceneDescription textured_triangle(glm::vec3 albedo) {
   texture.width = 2;
   texture.height = 2;
   // Row 0 (v near 0) first: red, green; row 1: blue, white.
-  texture.pixels = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  texture.set_texels({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}});
   d.textures.push_back(texture);
   Material material;
   material.albedo = albedo;

@@ -123,7 +123,7 @@ TEST(SceneFile, RoundTripIsExact) {
   const SceneDescription& b = scene_back->description;
   ASSERT_EQ(a.textures.size(), b.textures.size());
   EXPECT_EQ(a.textures[0].width, b.textures[0].width);
-  EXPECT_EQ(a.textures[0].pixels, b.textures[0].pixels);
+  EXPECT_EQ(a.textures[0].texels(), b.textures[0].texels());
   ASSERT_EQ(a.materials.size(), 2u);
   ASSERT_EQ(b.materials.size(), 2u);
   for (size_t i = 0; i < 2; ++i) {

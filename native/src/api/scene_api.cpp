@@ -54,10 +54,11 @@ bakegi_status bakegi_scene_add_texture(bakegi_scene* scene, uint32_t width, uint
     texture.width = width;
     texture.height = height;
     const size_t count = size_t(width) * height;
-    texture.pixels.resize(count);
+    std::vector<glm::vec3> texels(count);
     for (size_t i = 0; i < count; ++i) {
-      texture.pixels[i] = {rgb_pixels[3 * i], rgb_pixels[3 * i + 1], rgb_pixels[3 * i + 2]};
+      texels[i] = {rgb_pixels[3 * i], rgb_pixels[3 * i + 1], rgb_pixels[3 * i + 2]};
     }
+    texture.set_texels(std::move(texels));
     bakegi::check_texture(texture, index);
     scene->description.textures.push_back(std::move(texture));
     if (out_texture) *out_texture = uint32_t(index);

@@ -22,7 +22,7 @@ glm::vec3 sample_bilinear(const Texture& texture, glm::vec2 uv) {
   const uint32_t i0 = wrap(x0, texture.width), i1 = wrap(x0 + 1, texture.width);
   const uint32_t j0 = wrap(y0, texture.height), j1 = wrap(y0 + 1, texture.height);
   auto texel = [&](uint32_t i, uint32_t j) {
-    return texture.pixels[size_t(j) * texture.width + i];
+    return texture.texels()[size_t(j) * texture.width + i];
   };
   const glm::vec3 bottom = glm::mix(texel(i0, j0), texel(i1, j0), fx);
   const glm::vec3 top = glm::mix(texel(i0, j1), texel(i1, j1), fx);

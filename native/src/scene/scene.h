@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,23 @@ namespace bakegi {
 
 struct Texture {
   uint32_t width = 0, height = 0;
-  std::vector<glm::vec3> pixels;  // linear RGB, row 0 at v = 0
 
-  bool operator==(const Texture&) const = default;
+  // Linear RGB, row 0 at v = 0.
+  const std::vector<glm::vec3>& texels() const { return shared_texels ? *shared_texels : kNone; }
+  void set_texels(std::vector<glm::vec3> values) {
+    shared_texels = std::make_shared<const std::vector<glm::vec3>>(std::move(values));
+  }
+  // Immutable once set and shared by copies: every job copies the scene it bakes, and a relight
+  // compares it with the previous one; Sponza's textures are 300 MB.
+  std::shared_ptr<const std::vector<glm::vec3>> shared_texels;
+
+  bool operator==(const Texture& other) const {
+    return width == other.width && height == other.height &&
+           (shared_texels == other.shared_texels || texels() == other.texels());
+  }
+
+ private:
+  static inline const std::vector<glm::vec3> kNone{};
 };
 
 struct Material {

@@ -33,7 +33,7 @@ void write_scene(Writer& w, const SceneDescription& scene) {
   for (const Texture& t : scene.textures) {
     w.u32(t.width);
     w.u32(t.height);
-    for (const glm::vec3& p : t.pixels) w.vec3(p);
+    for (const glm::vec3& p : t.texels()) w.vec3(p);
   }
   w.end_section(at);
 
@@ -105,7 +105,9 @@ void read_textures(Reader& r, SceneDescription& scene) {
   for (Texture& t : scene.textures) {
     t.width = r.u32();
     t.height = r.u32();
-    r.array(t.pixels, uint64_t(t.width) * t.height, 12, "texture pixels", [&] { return r.vec3(); });
+    std::vector<glm::vec3> texels;
+    r.array(texels, uint64_t(t.width) * t.height, 12, "texture pixels", [&] { return r.vec3(); });
+    t.set_texels(std::move(texels));
   }
 }
 

@@ -110,12 +110,13 @@ void check_texture(const Texture& texture, size_t index) {
     invalid(name + ": size must be at least 1x1, got " + std::to_string(texture.width) + "x" +
             std::to_string(texture.height));
   }
-  if (texture.pixels.size() != size_t(texture.width) * texture.height) {
-    invalid(name + ": holds " + std::to_string(texture.pixels.size()) + " pixels, expected " +
+  const std::vector<glm::vec3>& texels = texture.texels();
+  if (texels.size() != size_t(texture.width) * texture.height) {
+    invalid(name + ": holds " + std::to_string(texels.size()) + " pixels, expected " +
             std::to_string(size_t(texture.width) * texture.height));
   }
-  for (size_t i = 0; i < texture.pixels.size(); ++i) {
-    const glm::vec3& p = texture.pixels[i];
+  for (size_t i = 0; i < texels.size(); ++i) {
+    const glm::vec3& p = texels[i];
     const std::string where = name + ", pixel (" + std::to_string(i % texture.width) + ", " +
                               std::to_string(i / texture.width) + ")";
     if (!finite(p)) invalid(where + ": value is " + non_finite_word(p));

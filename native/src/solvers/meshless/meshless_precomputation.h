@@ -11,6 +11,7 @@
 
 #include "solvers/meshless/basis_hierarchy.h"
 #include "solvers/meshless/multi_bounce.h"
+#include "solvers/meshless/visible_basis.h"
 #include "solvers/meshless/visible_evaluation.h"
 #include "solvers/solver.h"
 
@@ -59,13 +60,31 @@ struct MeshlessPrecomputation : Precomputation,
     weights_ = std::move(weights);
   }
 
+  // The sender basis's relations for P† (visible_basis.h). They depend on geometry alone, so
+  // the first lighting makes them and every relight reuses them (on Sponza they cost more
+  // than the rest of a relight). `tracer` null: the relations without visibility.
+  std::shared_ptr<const meshless::VisibleRelations> sender_relations(const RayTracer* tracer,
+                                                                     const JobContext* job) const {
+    std::lock_guard<std::mutex> lock(weights_mutex_);
+    const bool visible = tracer != nullptr;
+    if (!relations_ || relations_visible_ != visible) {
+      relations_ = std::make_shared<const meshless::VisibleRelations>(
+          meshless::visible_relations(senders, tracer, job));
+      relations_visible_ = visible;
+    }
+    return relations_;
+  }
+
   size_t memory_bytes() const override {
     std::lock_guard<std::mutex> lock(weights_mutex_);
     return all.memory_bytes() + senders.memory_bytes() + transfer.memory_bytes() +
-           (weights_ ? weights_->memory_bytes() : 0);
+           (weights_ ? weights_->memory_bytes() : 0) +
+           (relations_ ? relations_->memory_bytes() : 0);
   }
 
  private:
+  mutable std::shared_ptr<const meshless::VisibleRelations> relations_;
+  mutable bool relations_visible_ = false;
   mutable std::mutex weights_mutex_;
   mutable std::shared_ptr<const meshless::EvaluationWeights> weights_;
   mutable uint64_t weights_key_ = 0;

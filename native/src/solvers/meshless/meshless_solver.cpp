@@ -424,10 +424,12 @@ std::unique_ptr<IndirectField> MeshlessSolver::light(
                       rays += local_rays;
                     });
   context.throw_if_cancelled();
-  const std::vector<float> e = visible_pull_push_project(
-      senders, visible_relations(senders, settings.visibility ? &inputs.tracer : nullptr, &context),
-      direct, 3, &context);
   const double direct_seconds = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  const std::shared_ptr<const VisibleRelations> relations =
+      system->sender_relations(settings.visibility ? &inputs.tracer : nullptr, &context);
+  const std::vector<float> e = visible_pull_push_project(senders, *relations, direct, 3, &context);
+  const double projection_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   std::vector<float> indirect;
@@ -437,6 +439,7 @@ std::unique_ptr<IndirectField> MeshlessSolver::light(
 
   report.add_count("rays", rays.load());
   report.add_seconds("meshless_direct", direct_seconds);
+  report.add_seconds("meshless_projection", projection_seconds);
   report.add_seconds("meshless_apply", apply_seconds);
   report.add_count("memory_bytes", system->memory_bytes() + indirect.size() * sizeof(float));
   return std::make_unique<MeshlessField>(std::move(system), std::move(indirect),
