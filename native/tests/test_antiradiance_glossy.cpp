@@ -365,12 +365,12 @@ namespace {
 // clamped cosine over it integrates to π (1 + μ)/2, so A = (1 + μ)/2 and the integral 5/6. For
 // a narrow lobe A(μ) → μ (n+2)/(n+1) (phong_lobe.h), so the integral → 2/3 · (n+2)/(n+1).
 TEST(AntiradianceGlossyFold, HemisphericalAlbedoHasItsLimits) {
-  EXPECT_NEAR(antiradiance::phong_hemispherical_albedo(0.0), 5.0 / 6.0, 1e-4);
+  EXPECT_NEAR(phong_hemispherical_albedo(0.0), 5.0 / 6.0, 1e-4);
   const double n = 1e4;
-  EXPECT_NEAR(antiradiance::phong_hemispherical_albedo(n), 2.0 / 3.0 * (n + 2) / (n + 1), 2e-3);
+  EXPECT_NEAR(phong_hemispherical_albedo(n), 2.0 / 3.0 * (n + 2) / (n + 1), 2e-3);
   double previous = 5.0 / 6.0 + 1e-4;
   for (const double exponent : {0.5, 2.0, 7.5, 16.0, 100.0}) {
-    const double h = antiradiance::phong_hemispherical_albedo(exponent);
+    const double h = phong_hemispherical_albedo(exponent);
     EXPECT_LT(h, previous) << exponent;  // a narrower lobe loses more towards grazing
     previous = h;
   }
@@ -388,7 +388,7 @@ TEST(AntiradianceGlossyFold, WideLobesJoinTheAlbedoNarrowOnesStay) {
   test::add_quad(d, {0, 0, 1}, {1, 0, 0}, {0, -1, 0}, 1, 1, narrow);
   d.lights.push_back(test::point_light({0, 0, 0.5f}, glm::vec3(1.0f)));
   const Scene scene = build_scene(d);
-  const float h = float(antiradiance::phong_hemispherical_albedo(7.5));
+  const float h = float(phong_hemispherical_albedo(7.5));
 
   antiradiance::HierarchyOptions options;
   options.max_edge = 1.0f;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "light_transport_fixtures.h"
+#include "scene/phong_lobe.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "solvers/meshless/basis_hierarchy.h"
@@ -77,6 +78,52 @@ TEST(MeshlessGather, UniformSenderOverAParallelPlateGivesAlbedoTimesFormFactor) 
     EXPECT_NEAR(link[c].z, expected, 0.01 * expected) << "channel " << c;
     EXPECT_NEAR(link[c].x, 0.0, 0.01 * expected);
     EXPECT_NEAR(link[c].y, 0.0, 0.01 * expected);
+  }
+}
+
+TEST(MeshlessGather, GlossyLobesReflectAsDiffuseWithTheirHemisphericalAlbedo) {
+  // The method transports diffuse light only. A plate with no diffuse albedo and a glossy lobe
+  // must still hand on the lobe's energy: its links equal those of a diffuse plate whose
+  // albedo is the lobe's hemispherical albedo (exponent 4: ρ_g · 0.77). Both gathers use the
+  // same rays, so the two agree to float rounding.
+  const float half = 1.0f, height = 0.5f;
+  const glm::vec3 glossy(0.5f, 0.4f, 0.3f);
+  const float exponent = 4.0f;
+  auto plate_links = [&](bool glossy_plate) {
+    SceneDescription d;
+    Material material;
+    material.albedo =
+        glossy_plate ? glm::vec3(0.0f) : glossy * float(phong_hemispherical_albedo(exponent));
+    if (glossy_plate) {
+      material.glossy = glossy;
+      material.glossy_exponent = exponent;
+    }
+    d.materials.push_back(material);
+    test::add_quad(d, glm::vec3(0.0f, 0.0f, height), glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), half,
+                   half, 0);
+    d.lights.push_back(test::point_light(glm::vec3(0.0f, 0.0f, 0.2f), glm::vec3(1.0f)));
+    const Scene scene = build_scene(d);
+    const RayTracer tracer(scene);
+    BasisPoint sender;
+    sender.position = glm::vec3(0.0f, 0.0f, height);
+    sender.normal = glm::vec3(0.0f, 0.0f, -1.0f);
+    sender.radius = 10.0f;
+    const BasisHierarchy senders({sender});
+    const std::vector<glm::vec3> folded = meshless::glossy_as_diffuse(scene);
+    GatherSettings settings;
+    settings.rays = 32 * 32;
+    settings.glossy_as_diffuse = &folded;
+    SenderAccumulator accumulator(1);
+    std::vector<BasisValue> scratch;
+    meshless::gather_links(scene, tracer, senders, glm::vec3(0.0f), glm::vec3(0, 0, 1), 0, settings,
+                           accumulator, scratch);
+    return accumulator.value(0);
+  };
+  const meshless::LinkValue from_glossy = plate_links(true);
+  const meshless::LinkValue from_diffuse = plate_links(false);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(from_glossy[c].z, 0.1f * glossy[c]) << "the glossy plate reflects nothing";
+    EXPECT_NEAR(from_glossy[c].z, from_diffuse[c].z, 1e-6f * from_diffuse[c].z + 1e-9f);
   }
 }
 

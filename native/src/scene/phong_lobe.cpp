@@ -29,4 +29,14 @@ double phong_directional_albedo(double exponent, double mu) {
   return (exponent + 2.0) / (2.0 * std::numbers::pi * (exponent + 1.0)) * sum / kSteps;
 }
 
+double phong_hemispherical_albedo(double exponent) {
+  // Midpoint rule in μ²: 2 ∫ A(μ) μ dμ = ∫ A(√s) ds over s in [0, 1]; A is smooth in s.
+  constexpr int kSteps = 64;
+  double sum = 0.0;
+  for (int k = 0; k < kSteps; ++k) {
+    sum += phong_directional_albedo(exponent, std::sqrt((k + 0.5) / kSteps));
+  }
+  return sum / kSteps;
+}
+
 }  // namespace bakegi

@@ -55,4 +55,10 @@ struct PhongLobe {
 // quadrature (the azimuth in closed form, 4096 points along the lobe), error < 1e-5.
 double phong_directional_albedo(double exponent, double mu);
 
+// The cosine-weighted hemispherical albedo of the normalized Phong lobe of exponent n, per
+// unit ρ_g: 2 ∫ A(μ) μ dμ with A from phong_directional_albedo. What a uniform field loses to
+// the lobe, so folding the lobe into the diffuse albedo conserves energy in that field
+// (antiradiance's wide lobes, every lobe of the diffuse-only meshless method).
+double phong_hemispherical_albedo(double exponent);
+
 }  // namespace bakegi

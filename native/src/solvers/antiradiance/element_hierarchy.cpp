@@ -365,16 +365,6 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
   TreeBuilder(seeds, elements_, patches_).run();
 }
 
-double phong_hemispherical_albedo(double exponent) {
-  // Midpoint rule in μ²: 2 ∫ A(μ) μ dμ = ∫ A(√s) ds over s in [0, 1]; A is smooth in s.
-  constexpr int kSteps = 64;
-  double sum = 0.0;
-  for (int k = 0; k < kSteps; ++k) {
-    sum += phong_directional_albedo(exponent, std::sqrt((k + 0.5) / kSteps));
-  }
-  return sum / kSteps;
-}
-
 size_t ElementHierarchy::memory_bytes() const {
   return elements_.capacity() * sizeof(Element) + patches_.capacity() * sizeof(Patch);
 }

@@ -68,11 +68,6 @@ struct HierarchyOptions {
   float glossy_fold_exponent = 0.0f;
 };
 
-// The cosine-weighted hemispherical albedo of the normalized Phong lobe of exponent n, per
-// unit ρ_g: 2 ∫ A(μ) μ dμ with A from phong_directional_albedo. What a uniform field loses to
-// the lobe, so folding it into the diffuse albedo conserves energy in that field.
-double phong_hemispherical_albedo(double exponent);
-
 // Default patch size: the scene's bounding-box diagonal / 32. For the Cornell box (2 m room,
 // diagonal 3.46 m: patches of at most 0.108 m) this gives 13,312 patches and 26,623 elements,
 // whose three RGB bin tables (I_ex, L_in, I_total) take 123 MB at 128 bins and 184 MB at 192.

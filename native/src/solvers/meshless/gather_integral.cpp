@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "direct/surface_point.h"
+#include "scene/phong_lobe.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "solvers/meshless/visible_basis.h"
@@ -22,6 +23,17 @@ glm::vec3 uniform_hemisphere(float u1, float u2) {
 }
 
 }  // namespace
+
+std::vector<glm::vec3> glossy_as_diffuse(const Scene& scene) {
+  std::vector<glm::vec3> folded(scene.description.materials.size(), glm::vec3(0.0f));
+  for (size_t m = 0; m < folded.size(); ++m) {
+    const Material& material = scene.description.materials[m];
+    if (material.has_glossy()) {
+      folded[m] = material.glossy * float(phong_hemispherical_albedo(material.glossy_exponent));
+    }
+  }
+  return folded;
+}
 
 uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& senders,
                       const glm::vec3& position, const glm::vec3& normal, uint64_t receiver,
@@ -48,7 +60,8 @@ uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHi
     const Hit hit = tracer.intersect(Ray{origin, direction});
     if (!hit.hit) continue;
     const Triangle& triangle = scene.triangles[hit.triangle];
-    const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
+    glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
+    if (settings.glossy_as_diffuse) albedo += (*settings.glossy_as_diffuse)[triangle.material];
     if (albedo.x <= 0.0f && albedo.y <= 0.0f && albedo.z <= 0.0f) continue;
     const SurfacePoint y = surface_at_hit(scene, hit, direction);
     // ω̄ points from the receiver towards the sender (where the light comes from).

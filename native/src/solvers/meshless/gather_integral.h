@@ -63,7 +63,15 @@ struct GatherSettings {
   // per level (visible_basis.h): a coarse sender centred behind a wall does not hand its
   // coefficient to surfaces on this side of it. One occlusion ray per candidate function.
   bool visibility = true;
+  // Per material: the glossy lobe's hemispherical albedo (ρ_g times
+  // phong_hemispherical_albedo), added to the diffuse albedo at a hit. The method transports
+  // diffuse light only; folding a lobe keeps its energy and loses its direction. Null: lobes
+  // reflect nothing.
+  const std::vector<glm::vec3>* glossy_as_diffuse = nullptr;
 };
+
+// What GatherSettings::glossy_as_diffuse holds for a scene's materials.
+std::vector<glm::vec3> glossy_as_diffuse(const Scene& scene);
 
 // Adds T'_ij for every sender j of `senders` (the first sender levels of the basis, see
 // TransferOperator::sender_count) into `out`; returns the number of hemisphere rays cast

@@ -353,6 +353,8 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   refinement.gather.seed = uint64_t(settings.seed) ^ 0x7472616e73666572ull;
   refinement.gather.ray_epsilon = inputs.direct.ray_epsilon();
   refinement.gather.visibility = settings.visibility;
+  const std::vector<glm::vec3> folded_glossy = glossy_as_diffuse(scene);
+  refinement.gather.glossy_as_diffuse = &folded_glossy;
   const size_t used = system->memory_bytes() + inputs.tracer.memory_bytes();
   refinement.link_budget_bytes =
       settings.memory_budget_bytes > used ? (settings.memory_budget_bytes - used) / 2 : 1;
