@@ -237,7 +237,9 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *   "epsilon"      float   link threshold, the paper's units (default 0.01; the paper used 0.025)
  *   "gather_rays"  int     hemisphere rays per receiver basis function (default 256)
  *   "bounces"      int     bounces at most, the first included (default 16)
- *   "direct_samples" int   direct-light samples per sender point (default 16)
+ *   "direct_samples" int   direct-light samples per sender point (default 4)
+ *   "sender_cutoff" float  0..1 (default 1e-3): senders whose projected direct light is below
+ *                          this fraction of the largest are skipped when lighting (§3.3)
  *   "viewpoint"    string  "x,y,z": importance particles start there; empty (default): they
  *                          leave the bake points
  *   "visibility"   int     0 or 1 (default 1): at bake points, leave out basis functions

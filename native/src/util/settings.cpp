@@ -130,7 +130,7 @@ const std::vector<std::string>& known_setting_keys() {
       "oracle_factor", "glossy_fold_exponent", "near_field_rays", "near_field_distance",
       // meshless
       "levels", "coarse_spacing", "sender_levels", "epsilon", "gather_rays", "bounces", "viewpoint",
-      "visibility", "cache_dir"};
+      "visibility", "cache_dir", "sender_cutoff"};
   return keys;
 }
 
