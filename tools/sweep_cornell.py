@@ -223,7 +223,7 @@ def parse_setting_list(text):
     return configurations
 
 
-def meshless_sweep(cli, bgs, reference, work, configurations, threads, repeat):
+def meshless_sweep(cli, bgs, reference, work, configurations, threads, repeat, common_settings=None):
     """Meshless at each configuration, two curves (issue 4): the full bake (precompute and
     first solve) and the relight alone (same lights: `bakegi relight --move 0,0,0`, whose
     result equals the full bake's, so both curves share the error)."""
@@ -231,7 +231,7 @@ def meshless_sweep(cli, bgs, reference, work, configurations, threads, repeat):
     for index, configuration in enumerate(configurations):
         values = os.path.join(work, f"meshless_{index}.npy")
         settings = []
-        for key, value in configuration.items():
+        for key, value in list(configuration.items()) + list((common_settings or {}).items()):
             settings += ["--set", f"{key}={value}"]
         output = run([cli, "relight", bgs, "--method", "meshless", "--move", "0,0,0", "--scale", "1",
                       "--repeat", str(max(repeat, 3)), "--threads", str(threads), "--out", values] + settings,

@@ -69,8 +69,10 @@ class MeshlessSolver : public Solver {
   bool can_relight() const override { return true; }
   // Not "visibility": the gather's visibility test (gather_integral.h) shapes T, so a relight
   // or a cache hit with another value would reuse links made under the other rule.
+  // "bounces": the series runs when lighting (apply_operator); only the reported bounce
+  // statistics of the precomputation used it.
   std::vector<std::string> relight_settings() const override {
-    return {"direct_samples", "sender_cutoff", "cache_dir"};
+    return {"direct_samples", "sender_cutoff", "bounces", "cache_dir"};
   }
   std::shared_ptr<const Precomputation> precomputation() const override { return precomputation_; }
   std::unique_ptr<IndirectField> relight(const SolveInputs& inputs, const Precomputation& reuse,
