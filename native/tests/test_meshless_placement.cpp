@@ -362,7 +362,7 @@ TEST(MeshlessPlacement, PointCapRefusesOrDropsLevels) {
     meshless::place_points(built.scene, *built.tracer, glm::vec3(1.2f), settings, context);
     FAIL() << "placement exceeded the cap";
   } catch (const Error& e) {
-    EXPECT_EQ(e.status(), BAKEGI_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(e.status(), BAKEGI_ERROR_OUT_OF_MEMORY);
     EXPECT_NE(std::string(e.what()).find("cap of 1000"), std::string::npos) << e.what();
   }
   // Automatic levels drop the finest ones until the estimate fits.

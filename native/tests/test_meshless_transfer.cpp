@@ -225,6 +225,42 @@ TEST(MeshlessSolver, BadSettingsAndMissingPointsAreRefused) {
   EXPECT_NO_THROW(solver.solve(SolveInputs{scene, tracer, direct, with_viewpoint}, context));
 }
 
+TEST(MeshlessSolver, MemoryBudgetCoarsensWithAWarningOrRefuses) {
+  const Scene scene = build_scene(room_with_block(glm::vec3(0.0f, 0.0f, 1.5f)));
+  const RayTracer tracer(scene);
+  const DirectLight direct(scene, tracer);
+  const BakePoints points = floor_points();
+  auto warnings_with = [&](Settings settings) {
+    MeshlessSolver solver;
+    JobContext context;
+    solver.solve(SolveInputs{scene, tracer, direct, settings, &points}, context);
+    std::string all;
+    for (const std::string& w : context.report().warnings()) all += w + "\n";
+    return all;
+  };
+  // Automatic levels give this 2 m room about 9k points (docs/methods/meshless.md); a 1 MB
+  // budget allows 1,000: fewer levels, said in the report, and a bake all the same.
+  Settings tight;
+  tight.set("gather_rays", int64_t(16));
+  tight.set("memory_budget_mb", int64_t(1));
+  const std::string warned = warnings_with(tight);
+  EXPECT_NE(warned.find("allows only"), std::string::npos) << warned;
+  Settings roomy = tight;
+  roomy.set("memory_budget_mb", int64_t(4096));
+  roomy.set("levels", int64_t(2));
+  EXPECT_EQ(warnings_with(roomy).find("memory budget"), std::string::npos);
+  // A spacing the user fixed cannot be coarsened: refused before any links are made.
+  Settings fixed = tight;
+  fixed.set("coarse_spacing", 0.01);
+  fixed.set("levels", int64_t(1));
+  try {
+    warnings_with(fixed);
+    ADD_FAILURE() << "a 1 cm spacing fit a 1 MB budget";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.status(), BAKEGI_ERROR_OUT_OF_MEMORY) << error.what();
+  }
+}
+
 // Bake points of room_with_block away from the block's footprint (where the floor and the
 // block's bottom face coincide): the floor, and two walls (their normals test the vector
 // irradiance's direction, not only its floor component).

@@ -26,6 +26,7 @@ struct MeshlessStatistics {
   uint64_t links = 0;
   uint64_t potential_links = 0;
   int32_t refinement_stopped_at_level = -1;  // >= 0: the memory budget stopped refinement
+  bool levels_reduced = false;               // the memory budget lowered the automatic levels
   uint32_t bounces = 1;
   std::vector<double> bounce_fractions;
   double coarse_spacing = 0.0;  // metres, level 0

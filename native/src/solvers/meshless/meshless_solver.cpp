@@ -111,6 +111,12 @@ std::string json_array(const std::vector<T>& values) {
 // from the cache (issue 4, item 7). Rays and stage times are the caller's: a load casts none.
 void report_statistics(const MeshlessPrecomputation& system, Report& report) {
   const MeshlessStatistics& s = system.statistics;
+  if (s.levels_reduced) {
+    report.warn("meshless: the memory budget allows only " +
+                std::to_string(system.all.level_count()) +
+                " levels of basis functions, fewer than the automatic choice (coarser indirect "
+                "light); raise memory_budget_mb");
+  }
   if (s.refinement_stopped_at_level >= 0) {
     report.warn("meshless: the memory budget stopped link refinement before receiver level " +
                 std::to_string(s.refinement_stopped_at_level) +
@@ -384,6 +390,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   statistics.links = refinement_stats.links;
   statistics.potential_links = refinement_stats.potential_links;
   statistics.refinement_stopped_at_level = refinement_stats.stopped_at_level;
+  statistics.levels_reduced = placement_stats.levels_reduced;
   statistics.bounces = bounce_stats.bounces;
   statistics.bounce_fractions = bounce_stats.bounce_fraction;
   statistics.coarse_spacing =

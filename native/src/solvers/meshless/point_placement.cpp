@@ -163,7 +163,8 @@ std::string too_many_points_message(double estimate, uint64_t cap, float spacing
   std::ostringstream m;
   m << "meshless placement: about " << uint64_t(estimate) << " points estimated for " << levels
     << " level(s) from R_coarse = " << spacing << " m, more than the cap of " << cap
-    << "; use fewer levels or a larger coarse spacing, or raise the cap";
+    << " (set by memory_budget_mb); use fewer levels or a larger coarse spacing, or raise the "
+       "budget";
   return m.str();
 }
 
@@ -196,7 +197,7 @@ std::vector<BasisPoint> place(const Scene& scene, const RayTracer& tracer,
   }
   const double total = total_estimate(levels);
   if (total > double(settings.max_points)) {
-    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
                 too_many_points_message(total, settings.max_points, coarse, levels));
   }
 
@@ -257,11 +258,11 @@ std::vector<BasisPoint> place(const Scene& scene, const RayTracer& tracer,
         }
       }
       if (points.size() >= settings.max_points) {
-        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+        throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
                     "meshless placement: more than the cap of " +
                         std::to_string(settings.max_points) + " points on level " +
                         std::to_string(level) + " (the estimate was lower: curved or folded " +
-                        "surfaces hold more points); use fewer levels or raise the cap");
+                        "surfaces hold more points); use fewer levels or raise memory_budget_mb");
       }
       grid.insert(uint32_t(points.size()), point.position);
       points.push_back(point);

@@ -82,6 +82,7 @@ void write_statistics(ByteWriter& w, const MeshlessStatistics& s) {
   w.u64(s.links);
   w.u64(s.potential_links);
   w.u32(uint32_t(s.refinement_stopped_at_level));
+  w.u32(s.levels_reduced ? 1u : 0u);
   w.u32(s.bounces);
   w.u64(s.bounce_fractions.size());
   for (double f : s.bounce_fractions) w.f64(f);
@@ -141,6 +142,7 @@ MeshlessStatistics read_statistics(ByteReader& r) {
   s.links = r.u64();
   s.potential_links = r.u64();
   s.refinement_stopped_at_level = int32_t(r.u32());
+  s.levels_reduced = r.u32() != 0;
   s.bounces = r.u32();
   r.array(s.bounce_fractions, r.u64(), 8, "bounce fractions", [&] { return r.f64(); });
   s.coarse_spacing = r.f64();

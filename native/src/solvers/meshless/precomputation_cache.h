@@ -39,7 +39,8 @@ namespace bakegi::meshless {
 
 // Bump when the layout changes or when what the precomputation computes changes (placement,
 // refinement, bounces) so that files made by older code are never loaded.
-inline constexpr uint32_t kPrecomputationCacheVersion = 2;  // 2: glossy lobes fold into T
+// 2: glossy lobes fold into T; 3: levels_reduced in the statistics.
+inline constexpr uint32_t kPrecomputationCacheVersion = 3;
 
 struct CacheKey {
   uint64_t high = 0, low = 0;
