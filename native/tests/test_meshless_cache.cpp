@@ -17,6 +17,7 @@
 #include "capi_test_scene.h"
 #include "direct/direct_light.h"
 #include "light_transport_fixtures.h"
+#include "meshless_test_scenes.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "solvers/meshless/meshless_solver.h"
@@ -33,15 +34,7 @@ namespace fs = std::filesystem;
 
 // A closed room with a block and a point light; bake points on the floor and one wall.
 SceneDescription room(glm::vec3 light, glm::vec3 block_albedo = glm::vec3(0.3f, 0.6f, 0.3f)) {
-  SceneDescription d;
-  const uint32_t walls = test::add_material(d, glm::vec3(0.6f, 0.5f, 0.4f));
-  const uint32_t block = test::add_material(d, block_albedo);
-  d.meshes.push_back(
-      test::make_cube(glm::vec3(-1, -1, 0), glm::vec3(1, 1, 2), test::Facing::kInward, walls));
-  d.meshes.push_back(test::make_cube(glm::vec3(-0.3f, -0.3f, 0.0f), glm::vec3(0.3f, 0.3f, 0.8f),
-                                     test::Facing::kOutward, block));
-  d.lights.push_back(test::point_light(light, glm::vec3(10.0f)));
-  return d;
+  return test::room_with_block(light, block_albedo);
 }
 
 const glm::vec3 kLight(0.5f, 0.2f, 1.8f);

@@ -8,6 +8,7 @@
 
 #include "direct/direct_light.h"
 #include "light_transport_fixtures.h"
+#include "meshless_test_scenes.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "solvers/meshless/basis_hierarchy.h"
@@ -25,25 +26,8 @@ using meshless::BasisHierarchy;
 using meshless::BasisPoint;
 using meshless::BasisValue;
 
-// A floor with a wall standing on it across x = 0 (thin block, 1 m tall); light on the left.
-Scene floor_with_wall() {
-  SceneDescription d;
-  const uint32_t grey = test::add_material(d, glm::vec3(0.5f));
-  test::add_quad(d, glm::vec3(0.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 3.0f, 3.0f, grey);
-  d.meshes.push_back(test::make_cube(glm::vec3(-0.02f, -3.0f, 0.0f), glm::vec3(0.02f, 3.0f, 1.0f),
-                                     test::Facing::kOutward, grey));
-  d.lights.push_back(test::point_light(glm::vec3(-1.0f, 0.0f, 2.0f), glm::vec3(1.0f)));
-  return build_scene(d);
-}
-
-BasisPoint floor_point(float x, float radius, uint32_t level) {
-  BasisPoint p;
-  p.position = glm::vec3(x, 0.0f, 0.0f);
-  p.normal = glm::vec3(0, 0, 1);
-  p.radius = radius;
-  p.level = level;
-  return p;
-}
+using test::floor_point;
+using test::floor_with_wall;
 
 TEST(MeshlessVisibleBasis, PullAveragesOnlyVisibleChildrenAndEq7SkipsBlindLevels) {
   const Scene scene = floor_with_wall();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "light_transport_fixtures.h"
+#include "meshless_test_scenes.h"
 #include "scene/phong_lobe.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
@@ -28,6 +29,9 @@ using meshless::BasisPoint;
 using meshless::BasisValue;
 using meshless::GatherSettings;
 using meshless::SenderAccumulator;
+using test::floor_point;
+using test::floor_with_wall;
+using test::room_with_block;
 
 // Form factor from a differential area to a parallel rectangle [0, a] x [0, b] at height h,
 // one corner straight above it (Howell's catalogue, C-11).
@@ -52,11 +56,7 @@ TEST(MeshlessGather, UniformSenderOverAParallelPlateGivesAlbedoTimesFormFactor) 
   // are not geometry: a scene must have a light, and this one neither blocks nor reflects.
   const Scene scene = build_scene(d);
   const RayTracer tracer(scene);
-  BasisPoint sender;
-  sender.position = glm::vec3(0.0f, 0.0f, height);
-  sender.normal = glm::vec3(0.0f, 0.0f, -1.0f);
-  sender.radius = 10.0f;
-  const BasisHierarchy senders({sender});
+  const BasisHierarchy senders = test::single_sender_facing_down(height);
 
   GatherSettings settings;
   settings.rays = 64 * 64;
@@ -104,11 +104,7 @@ TEST(MeshlessGather, GlossyLobesReflectAsDiffuseWithTheirHemisphericalAlbedo) {
     d.lights.push_back(test::point_light(glm::vec3(0.0f, 0.0f, 0.2f), glm::vec3(1.0f)));
     const Scene scene = build_scene(d);
     const RayTracer tracer(scene);
-    BasisPoint sender;
-    sender.position = glm::vec3(0.0f, 0.0f, height);
-    sender.normal = glm::vec3(0.0f, 0.0f, -1.0f);
-    sender.radius = 10.0f;
-    const BasisHierarchy senders({sender});
+    const BasisHierarchy senders = test::single_sender_facing_down(height);
     const std::vector<glm::vec3> folded = meshless::glossy_as_diffuse(scene);
     GatherSettings settings;
     settings.rays = 32 * 32;
@@ -127,19 +123,7 @@ TEST(MeshlessGather, GlossyLobesReflectAsDiffuseWithTheirHemisphericalAlbedo) {
   }
 }
 
-// A closed room with a block and a point light, and bake points on its floor.
-SceneDescription room_with_block(glm::vec3 light) {
-  SceneDescription d;
-  const uint32_t walls = test::add_material(d, glm::vec3(0.6f, 0.5f, 0.4f));
-  const uint32_t block = test::add_material(d, glm::vec3(0.3f, 0.6f, 0.3f));
-  d.meshes.push_back(
-      test::make_cube(glm::vec3(-1, -1, 0), glm::vec3(1, 1, 2), test::Facing::kInward, walls));
-  d.meshes.push_back(test::make_cube(glm::vec3(-0.3f, -0.3f, 0.0f), glm::vec3(0.3f, 0.3f, 0.8f),
-                                     test::Facing::kOutward, block));
-  d.lights.push_back(test::point_light(light, glm::vec3(10.0f)));
-  return d;
-}
-
+// Bake points on the floor of test::room_with_block.
 BakePoints floor_points() {
   std::vector<glm::vec3> positions, normals;
   for (int i = 0; i < 12; ++i) {
@@ -342,26 +326,6 @@ TEST(MeshlessSolver, SingleBounceAgreesWithThePathTracer) {
   EXPECT_NEAR(floor_ratio, 1.0, 0.10);
   EXPECT_NEAR(wall_ratio, 1.0, 0.10);
   EXPECT_LT(*error, 0.25);
-}
-
-// A floor with a wall standing on it across x = 0 (thin block, 1 m tall).
-Scene floor_with_wall() {
-  SceneDescription d;
-  const uint32_t grey = test::add_material(d, glm::vec3(0.5f));
-  test::add_quad(d, glm::vec3(0.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 3.0f, 3.0f, grey);
-  d.meshes.push_back(test::make_cube(glm::vec3(-0.02f, -3.0f, 0.0f), glm::vec3(0.02f, 3.0f, 1.0f),
-                                     test::Facing::kOutward, grey));
-  d.lights.push_back(test::point_light(glm::vec3(-1.0f, 0.0f, 2.0f), glm::vec3(1.0f)));
-  return build_scene(d);
-}
-
-BasisPoint floor_point(float x, float radius, uint32_t level) {
-  BasisPoint p;
-  p.position = glm::vec3(x, 0.0f, 0.0f);
-  p.normal = glm::vec3(0, 0, 1);
-  p.radius = radius;
-  p.level = level;
-  return p;
 }
 
 TEST(MeshlessVisibleEvaluation, FunctionsBehindAWallAreLeftOutAndLevelsRenormalized) {
