@@ -317,6 +317,88 @@ BAKEGI_API bakegi_status bakegi_job_start_relight(const bakegi_job* previous,
                                                   const bakegi_settings* settings,
                                                   bakegi_job** out_job);
 
+/* ---- lightmaps -------------------------------------------------------------------------- */
+
+/* Lightmap textures: texels of meshes' lightmap UV maps become bake points, and the baked
+ * values become padded OpenEXR files. All lightmaps of a bake share one set of bake points,
+ * so that every object is baked in ONE job:
+ *   1. bakegi_lightmaps_create; bakegi_lightmaps_add for each mesh (its lightmap UVs and
+ *      resolution); optionally bakegi_lightmaps_reject_inside once all are added;
+ *   2. bakegi_lightmaps_get_points -> bakegi_job_start -> bakegi_job_get_result (3 floats per
+ *      point, all lightmaps' points concatenated in the order added);
+ *   3. bakegi_lightmaps_write_exr for each lightmap, passing the whole result each time.
+ * Texel (x, y) of a W x H lightmap covers UVs [x/W, (x+1)/W] x [y/H, (y+1)/H]; row 0 is at
+ * v = 0 as in Blender (the files are written top-down, as EXR readers expect). Triangles are
+ * rasterized conservatively: a texel that a triangle covers even partly gets a sample (on
+ * the triangle, at the texel centre's barycentrics clamped onto it), and a texel covered by
+ * several triangles gets one sample from each, averaged by covered area when written. */
+typedef struct bakegi_lightmaps bakegi_lightmaps;
+
+BAKEGI_API bakegi_status bakegi_lightmaps_create(bakegi_lightmaps** out_lightmaps);
+BAKEGI_API void bakegi_lightmaps_destroy(bakegi_lightmaps* lightmaps);
+
+/* Adds a width x height lightmap (each 1..8192) for mesh `mesh` of `scene` (its index as
+ * returned by bakegi_scene_add_mesh): lightmap_uvs holds 6 * triangle_count floats (u, v per
+ * corner, in the order of the mesh's indices), normally in [0,1] (parts outside are
+ * clipped). Positions and shading normals come from the mesh; the points carry its
+ * object_id. Triangles with zero UV or world area are skipped (counted in the info).
+ * *out_lightmap (may be NULL) gets the lightmap's index, 0, 1, ... in the order added. */
+BAKEGI_API bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps,
+                                              const bakegi_scene* scene, uint32_t mesh,
+                                              const float* lightmap_uvs, uint32_t width,
+                                              uint32_t height, uint32_t* out_lightmap);
+
+/* Drops the samples of every lightmap that lie inside or under other geometry of `scene`
+ * (the whole scene, lights included: it is validated and traced like a bake): from each
+ * sample, `rays` (1..4096; 0 = 32) fixed rays over its hemisphere; a sample is dropped when
+ * at least backface_fraction (in (0,1]; 0 = 0.25) of them hit back faces closer than
+ * max_distance metres (0 = any distance). Their texels are filled from neighbours when
+ * written. Call after the last bakegi_lightmaps_add and before bakegi_lightmaps_get_points.
+ * *out_rejected (may be NULL) gets the number of samples dropped. */
+BAKEGI_API bakegi_status bakegi_lightmaps_reject_inside(bakegi_lightmaps* lightmaps,
+                                                        const bakegi_scene* scene, uint32_t rays,
+                                                        float backface_fraction,
+                                                        float max_distance,
+                                                        uint64_t* out_rejected);
+
+typedef struct bakegi_lightmap_info {
+  uint32_t width, height;
+  uint64_t first_point;        /* its samples are points [first_point, first_point + */
+  uint64_t point_count;        /*   point_count) of bakegi_lightmaps_get_points */
+  uint64_t covered_texels;     /* texels with at least one sample */
+  uint64_t rejected_samples;   /* dropped by bakegi_lightmaps_reject_inside */
+  uint64_t skipped_triangles;  /* zero UV area or zero world area */
+} bakegi_lightmap_info;
+
+BAKEGI_API uint32_t bakegi_lightmaps_count(const bakegi_lightmaps* lightmaps);
+BAKEGI_API bakegi_status bakegi_lightmaps_get_info(const bakegi_lightmaps* lightmaps,
+                                                   uint32_t lightmap,
+                                                   bakegi_lightmap_info* out_info);
+/* All lightmaps' samples as bake points (count = the sum of their point_count), for
+ * bakegi_job_start. Fails if there are none. */
+BAKEGI_API bakegi_status bakegi_lightmaps_get_points(const bakegi_lightmaps* lightmaps,
+                                                     bakegi_points** out_points);
+
+typedef enum bakegi_exr_compression {
+  BAKEGI_EXR_ZIP = 0, /* lossless, the default */
+  BAKEGI_EXR_PIZ = 1, /* lossless, better on noisy images */
+  BAKEGI_EXR_NONE = 2
+} bakegi_exr_compression;
+
+/* Writes lightmap `lightmap` as an RGB OpenEXR file at path (UTF-8; written to a temporary
+ * file beside it and renamed, so an existing file is replaced only by a complete one).
+ * rgb: 3 * count floats, the bake result for ALL points of bakegi_lightmaps_get_points
+ * (count must equal their number); each texel is the coverage-weighted mean of its samples,
+ * then `padding` (0..1024) rounds of dilation fill the texels around covered ones (gutters,
+ * rejected texels) from their neighbours: use at least the UV margin in texels. Texels
+ * farther from any chart stay 0. full_float: 0 = half floats (enough for light, half the
+ * size), 1 = 32-bit floats. */
+BAKEGI_API bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps,
+                                                    uint32_t lightmap, const float* rgb,
+                                                    uint64_t count, const char* path,
+                                                    uint32_t padding, int full_float,
+                                                    bakegi_exr_compression compression);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,255 @@
+// bakegi_lightmaps_*: lightmap texels as bake points, and baked values as padded EXR files
+// (see the lightmaps section of bakegi.h for the order of calls).
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "api/api_guard.h"
+#include "api/handles.h"
+#include "bake_points/backface_rejection.h"
+#include "bake_points/texel_rasterizer.h"
+#include "scene/ray_tracer.h"
+#include "scene/scene_validation.h"
+#include "writers/exr_writer.h"
+#include "writers/lightmap_padding.h"
+
+using bakegi::Error;
+using bakegi::guarded;
+using bakegi::require;
+
+struct bakegi_lightmaps {
+  struct Lightmap {
+    bakegi::TexelSamples samples;
+    uint64_t rejected = 0;
+  };
+  std::vector<Lightmap> lightmaps;
+
+  uint64_t total_points() const {
+    uint64_t total = 0;
+    for (const Lightmap& l : lightmaps) total += l.samples.size();
+    return total;
+  }
+};
+
+namespace {
+
+// 8192^2 texels take about 2 GB while written (image, mask, weights, EXR scanlines).
+constexpr uint32_t kMaxLightmapSide = 8192;
+constexpr uint32_t kMaxPadding = 1024;
+
+const bakegi_lightmaps::Lightmap& lightmap_at(const bakegi_lightmaps* lightmaps, uint32_t index) {
+  if (index >= lightmaps->lightmaps.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "lightmap " + std::to_string(index) + " does not exist (there are " +
+                    std::to_string(lightmaps->lightmaps.size()) + ")");
+  }
+  return lightmaps->lightmaps[index];
+}
+
+// The mesh's triangles with the caller's lightmap UVs, as the rasterizer takes them.
+std::vector<bakegi::LightmapTriangle> lightmap_triangles(const bakegi::Mesh& mesh,
+                                                         const float* uvs) {
+  const size_t triangle_count = mesh.indices.size() / 3;
+  std::vector<bakegi::LightmapTriangle> triangles(triangle_count);
+  for (size_t t = 0; t < triangle_count; ++t) {
+    bakegi::LightmapTriangle& tri = triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const size_t corner = 3 * t + k;
+      tri.p[k] = mesh.positions.at(mesh.indices[corner]);
+      tri.n[k] = mesh.corner_normals.empty() ? glm::vec3(0.0f) : mesh.corner_normals[corner];
+      tri.uv[k] = {uvs[2 * corner], uvs[2 * corner + 1]};
+      if (!std::isfinite(tri.uv[k].x) || !std::isfinite(tri.uv[k].y)) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap_uvs: triangle " + std::to_string(t) +
+                                                       " corner " + std::to_string(k) +
+                                                       " is not finite");
+      }
+    }
+  }
+  return triangles;
+}
+
+}  // namespace
+
+extern "C" {
+
+bakegi_status bakegi_lightmaps_create(bakegi_lightmaps** out_lightmaps) {
+  return guarded(__func__, [&] {
+    require(out_lightmaps, "out_lightmaps");
+    *out_lightmaps = new bakegi_lightmaps();
+  });
+}
+
+void bakegi_lightmaps_destroy(bakegi_lightmaps* lightmaps) {
+  delete lightmaps;
+}
+
+bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_scene* scene,
+                                   uint32_t mesh, const float* lightmap_uvs, uint32_t width,
+                                   uint32_t height, uint32_t* out_lightmap) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    require(scene, "scene");
+    require(lightmap_uvs, "lightmap_uvs");
+    const auto& meshes = scene->description.meshes;
+    if (mesh >= meshes.size()) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "mesh " + std::to_string(mesh) +
+                                                     " does not exist (the scene has " +
+                                                     std::to_string(meshes.size()) + ")");
+    }
+    if (width < 1 || height < 1 || width > kMaxLightmapSide || height > kMaxLightmapSide) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap size " + std::to_string(width) + " x " +
+                                                     std::to_string(height) + " is not in 1.." +
+                                                     std::to_string(kMaxLightmapSide));
+    }
+    bakegi_lightmaps::Lightmap lightmap;
+    lightmap.samples = bakegi::rasterize_texels(lightmap_triangles(meshes[mesh], lightmap_uvs),
+                                                width, height, meshes[mesh].object_id);
+    lightmaps->lightmaps.push_back(std::move(lightmap));
+    if (out_lightmap) *out_lightmap = uint32_t(lightmaps->lightmaps.size() - 1);
+  });
+}
+
+bakegi_status bakegi_lightmaps_reject_inside(bakegi_lightmaps* lightmaps, const bakegi_scene* scene,
+                                             uint32_t rays, float backface_fraction,
+                                             float max_distance, uint64_t* out_rejected) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    require(scene, "scene");
+    bakegi::BackfaceRejectionOptions options;
+    if (rays != 0) options.rays = rays;
+    if (backface_fraction != 0) options.backface_fraction = backface_fraction;
+    options.max_distance = max_distance;
+    const bakegi::Scene built = bakegi::build_scene(scene->description);
+    const bakegi::RayTracer tracer(built);
+    uint64_t rejected = 0;
+    for (bakegi_lightmaps::Lightmap& lightmap : lightmaps->lightmaps) {
+      bakegi::TexelSamples& samples = lightmap.samples;
+      const std::vector<uint8_t> flags = bakegi::flag_samples_inside_geometry(
+          built, tracer, samples.points.positions, samples.face_normals, samples.points.normals,
+          options);
+      std::vector<bool> keep(flags.size());
+      uint64_t dropped = 0;
+      for (size_t i = 0; i < flags.size(); ++i) {
+        keep[i] = !flags[i];
+        dropped += flags[i];
+      }
+      bakegi::keep_samples(samples, keep);
+      lightmap.rejected += dropped;
+      rejected += dropped;
+    }
+    if (out_rejected) *out_rejected = rejected;
+  });
+}
+
+uint32_t bakegi_lightmaps_count(const bakegi_lightmaps* lightmaps) {
+  return lightmaps ? uint32_t(lightmaps->lightmaps.size()) : 0;
+}
+
+bakegi_status bakegi_lightmaps_get_info(const bakegi_lightmaps* lightmaps, uint32_t lightmap,
+                                        bakegi_lightmap_info* out_info) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    require(out_info, "out_info");
+    const bakegi_lightmaps::Lightmap& l = lightmap_at(lightmaps, lightmap);
+    bakegi_lightmap_info info{};
+    info.width = l.samples.width;
+    info.height = l.samples.height;
+    for (uint32_t i = 0; i < lightmap; ++i)
+      info.first_point += lightmaps->lightmaps[i].samples.size();
+    info.point_count = l.samples.size();
+    info.covered_texels = l.samples.covered_texels();
+    info.rejected_samples = l.rejected;
+    info.skipped_triangles =
+        l.samples.skipped_degenerate_uv + l.samples.skipped_degenerate_geometry;
+    *out_info = info;
+  });
+}
+
+bakegi_status bakegi_lightmaps_get_points(const bakegi_lightmaps* lightmaps,
+                                          bakegi_points** out_points) {
+  return guarded(__func__, [&] {
+    require(out_points, "out_points");
+    *out_points = nullptr;
+    require(lightmaps, "lightmaps");
+    const uint64_t total = lightmaps->total_points();
+    if (total == 0) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "the lightmaps have no texel samples (no lightmap added, or no triangle "
+                  "covers a texel)");
+    }
+    auto handle = std::make_unique<bakegi_points>();
+    bakegi::BakePoints& points = handle->points;
+    points.positions.reserve(total);
+    points.normals.reserve(total);
+    points.object_ids.reserve(total);
+    for (const bakegi_lightmaps::Lightmap& l : lightmaps->lightmaps) {
+      const bakegi::BakePoints& p = l.samples.points;
+      points.positions.insert(points.positions.end(), p.positions.begin(), p.positions.end());
+      points.normals.insert(points.normals.end(), p.normals.begin(), p.normals.end());
+      points.object_ids.insert(points.object_ids.end(), p.object_ids.begin(), p.object_ids.end());
+    }
+    *out_points = handle.release();
+  });
+}
+
+bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint32_t lightmap,
+                                         const float* rgb, uint64_t count, const char* path,
+                                         uint32_t padding, int full_float,
+                                         bakegi_exr_compression compression) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    require(rgb, "rgb");
+    require(path, "path");
+    if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
+    const bakegi_lightmaps::Lightmap& l = lightmap_at(lightmaps, lightmap);
+    const uint64_t total = lightmaps->total_points();
+    if (count != total) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "count " + std::to_string(count) + " differs from the lightmaps' " +
+                      std::to_string(total) + " points (pass the whole bake result)");
+    }
+    if (padding > kMaxPadding) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "padding " + std::to_string(padding) + " is over " + std::to_string(kMaxPadding));
+    }
+    if (full_float != 0 && full_float != 1) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "full_float must be 0 or 1");
+    }
+    bakegi::ExrWriteOptions options;
+    options.pixel_type = full_float ? bakegi::ExrPixelType::kFloat : bakegi::ExrPixelType::kHalf;
+    switch (compression) {
+      case BAKEGI_EXR_ZIP:
+        options.compression = bakegi::ExrCompression::kZip;
+        break;
+      case BAKEGI_EXR_PIZ:
+        options.compression = bakegi::ExrCompression::kPiz;
+        break;
+      case BAKEGI_EXR_NONE:
+        options.compression = bakegi::ExrCompression::kNone;
+        break;
+      default:
+        throw Error(
+            BAKEGI_ERROR_INVALID_ARGUMENT,
+            "compression " + std::to_string(int(compression)) + " is not a bakegi_exr_compression");
+    }
+    uint64_t first = 0;
+    for (uint32_t i = 0; i < lightmap; ++i) first += lightmaps->lightmaps[i].samples.size();
+    std::vector<glm::vec3> values(l.samples.size());
+    for (size_t i = 0; i < values.size(); ++i) {
+      const float* v = rgb + 3 * (first + i);
+      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                    "rgb of point " + std::to_string(first + i) + " is not finite");
+      }
+      values[i] = {v[0], v[1], v[2]};
+    }
+    std::vector<uint8_t> filled;
+    bakegi::RgbImage image = bakegi::resolve_texels(l.samples, values.data(), filled);
+    bakegi::dilate_texels(image, filled, padding);
+    bakegi::write_exr(path, image, options);
+  });
+}
+
+}  // extern "C"

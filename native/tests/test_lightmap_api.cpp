@@ -1,0 +1,307 @@
+// The lightmap C API end to end: texels of two meshes become one set of bake points, a fake
+// bake result (a constant per lightmap) written as EXR reads back per lightmap within half
+// precision, rejection drops the floor texels under a box, and misuse returns
+// INVALID_ARGUMENT with a message (never a throw).
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bakegi/bakegi.h"
+#include "bakegi/bakegi_handles.hpp"
+#include "writers/exr_writer.h"
+
+namespace bakegi::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LightmapsDeleter {
+  void operator()(bakegi_lightmaps* l) const { bakegi_lightmaps_destroy(l); }
+};
+using LightmapsPtr = std::unique_ptr<bakegi_lightmaps, LightmapsDeleter>;
+
+// A quad with its positions, indices and lightmap UVs (the UV square, diagonal 0-2).
+struct Quad {
+  std::vector<float> positions;
+  std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  std::vector<float> uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+  // centre +- u +- v, normal u x v.
+  Quad(glm::vec3 c, glm::vec3 u, glm::vec3 v) {
+    for (const glm::vec3& p : {c - u - v, c + u - v, c + u + v, c - u + v}) {
+      positions.insert(positions.end(), {p.x, p.y, p.z});
+    }
+  }
+  uint32_t add_to(bakegi_scene* scene, uint32_t object_id) const {
+    bakegi_mesh_desc d{};
+    d.positions = positions.data();
+    d.vertex_count = 4;
+    d.indices = indices.data();
+    d.triangle_count = 2;
+    d.object_id = object_id;
+    uint32_t mesh = 0;
+    EXPECT_EQ(bakegi_scene_add_mesh(scene, &d, &mesh), BAKEGI_OK) << bakegi_last_error();
+    return mesh;
+  }
+};
+
+SceneHandle lit_scene() {
+  bakegi_scene* scene = nullptr;
+  EXPECT_EQ(bakegi_scene_create(&scene), BAKEGI_OK);
+  bakegi_material_desc m{};
+  m.albedo[0] = m.albedo[1] = m.albedo[2] = 0.5f;
+  m.albedo_texture = BAKEGI_NO_TEXTURE;
+  EXPECT_EQ(bakegi_scene_add_material(scene, &m, nullptr), BAKEGI_OK);
+  bakegi_light_desc l{};
+  l.type = BAKEGI_LIGHT_POINT;
+  l.position[2] = 3;
+  l.color[0] = l.color[1] = l.color[2] = 1;
+  EXPECT_EQ(bakegi_scene_add_light(scene, &l, nullptr), BAKEGI_OK);
+  return SceneHandle(scene);
+}
+
+LightmapsPtr new_lightmaps() {
+  bakegi_lightmaps* l = nullptr;
+  EXPECT_EQ(bakegi_lightmaps_create(&l), BAKEGI_OK);
+  return LightmapsPtr(l);
+}
+
+class LightmapApi : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = fs::path(::testing::TempDir()) /
+                 ("bakegi_lightmap_api_" +
+                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(directory_);
+    fs::create_directories(directory_);
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+  std::string path(const std::string& name) const { return (directory_ / name).string(); }
+  fs::path directory_;
+};
+
+TEST_F(LightmapApi, TwoLightmapsOneBakeRoundTrip) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
+  const Quad wall({0, 2, 1}, {2, 0, 0}, {0, 0, 1});  // faces -y
+  const uint32_t floor_mesh = floor.add_to(scene.get(), 10);
+  const uint32_t wall_mesh = wall.add_to(scene.get(), 11);
+  LightmapsPtr lightmaps = new_lightmaps();
+  uint32_t first = 99, second = 99;
+  ASSERT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), floor_mesh, floor.uvs.data(), 8, 8,
+                                 &first),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  ASSERT_EQ(
+      bakegi_lightmaps_add(lightmaps.get(), scene.get(), wall_mesh, wall.uvs.data(), 4, 2, &second),
+      BAKEGI_OK)
+      << bakegi_last_error();
+  EXPECT_EQ(first, 0u);
+  EXPECT_EQ(second, 1u);
+  EXPECT_EQ(bakegi_lightmaps_count(lightmaps.get()), 2u);
+
+  bakegi_lightmap_info info0{}, info1{};
+  ASSERT_EQ(bakegi_lightmaps_get_info(lightmaps.get(), 0, &info0), BAKEGI_OK);
+  ASSERT_EQ(bakegi_lightmaps_get_info(lightmaps.get(), 1, &info1), BAKEGI_OK);
+  EXPECT_EQ(info0.width, 8u);
+  EXPECT_EQ(info0.covered_texels, 64u);
+  EXPECT_EQ(info0.point_count, 72u);  // + the 8 diagonal texels' second samples
+  EXPECT_EQ(info0.first_point, 0u);
+  EXPECT_EQ(info0.skipped_triangles, 0u);
+  EXPECT_EQ(info1.covered_texels, 8u);
+  EXPECT_EQ(info1.first_point, 72u);
+
+  bakegi_points* raw_points = nullptr;
+  ASSERT_EQ(bakegi_lightmaps_get_points(lightmaps.get(), &raw_points), BAKEGI_OK);
+  PointsHandle points(raw_points);
+  const uint64_t count = bakegi_points_count(points.get());
+  ASSERT_EQ(count, info0.point_count + info1.point_count);
+  std::vector<float> normals(3 * count);
+  std::vector<uint32_t> ids(count);
+  ASSERT_EQ(bakegi_points_get(points.get(), nullptr, normals.data(), ids.data()), BAKEGI_OK);
+  EXPECT_EQ(ids[0], 10u);
+  EXPECT_EQ(ids[count - 1], 11u);
+  EXPECT_FLOAT_EQ(normals[2], 1.0f);                     // floor: +z
+  EXPECT_FLOAT_EQ(normals[3 * (count - 1) + 1], -1.0f);  // wall: -y
+
+  // A fake bake result: one constant per lightmap.
+  const glm::vec3 floor_value(0.25f, 0.5f, 1.5f), wall_value(3.0f, 0.125f, 7.0f);
+  std::vector<float> rgb;
+  for (uint64_t i = 0; i < count; ++i) {
+    const glm::vec3 v = i < info0.point_count ? floor_value : wall_value;
+    rgb.insert(rgb.end(), {v.x, v.y, v.z});
+  }
+  ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
+                                       path("floor.exr").c_str(), 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 1, rgb.data(), count,
+                                       path("wall.exr").c_str(), 2, 1, BAKEGI_EXR_PIZ),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  const RgbImage floor_image = read_exr(path("floor.exr"));
+  ASSERT_EQ(floor_image.width, 8u);
+  ASSERT_EQ(floor_image.height, 8u);
+  for (const glm::vec3& p : floor_image.pixels) {
+    // These values are exact in half; the weighted mean of equal values is within 1 ulp.
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], floor_value[c], floor_value[c] * 0x1p-11f);
+  }
+  const RgbImage wall_image = read_exr(path("wall.exr"));
+  ASSERT_EQ(wall_image.width, 4u);
+  ASSERT_EQ(wall_image.height, 2u);
+  for (const glm::vec3& p : wall_image.pixels) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], wall_value[c], wall_value[c] * 1e-6f);
+  }
+}
+
+// A chart covering only the lower-left quarter: the padding fills 2 texels around it, and
+// the rest stays 0.
+TEST_F(LightmapApi, PaddingAroundAChart) {
+  SceneHandle scene = lit_scene();
+  Quad quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  for (float& uv : quad.uvs) uv *= 0.5f;
+  const uint32_t mesh = quad.add_to(scene.get(), 0);
+  LightmapsPtr lightmaps = new_lightmaps();
+  ASSERT_EQ(
+      bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, quad.uvs.data(), 8, 8, nullptr),
+      BAKEGI_OK);
+  bakegi_points* raw = nullptr;
+  ASSERT_EQ(bakegi_lightmaps_get_points(lightmaps.get(), &raw), BAKEGI_OK);
+  PointsHandle points(raw);
+  const uint64_t count = bakegi_points_count(points.get());
+  const std::vector<float> rgb(3 * count, 1.0f);
+  ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
+                                       path("chart.exr").c_str(), 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  const RgbImage image = read_exr(path("chart.exr"));
+  for (uint32_t y = 0; y < 8; ++y) {
+    for (uint32_t x = 0; x < 8; ++x) {
+      const float expected = x < 6 && y < 6 ? 1.0f : 0.0f;  // chart 4x4 + 2 texels
+      EXPECT_EQ(image.pixels[y * 8 + x].x, expected) << x << "," << y;
+    }
+  }
+}
+
+TEST_F(LightmapApi, RejectsFloorTexelsUnderABox) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
+  const uint32_t floor_mesh = floor.add_to(scene.get(), 0);
+  // The box [-0.5,0.5]^2 x [-0.25,0.5], sunk into the floor, normals outwards.
+  const std::vector<Quad> box = {
+      Quad({0, 0, 0.5f}, {0.5f, 0, 0}, {0, 0.5f, 0}),
+      Quad({0, 0, -0.25f}, {0, 0.5f, 0}, {0.5f, 0, 0}),
+      Quad({0.5f, 0, 0.125f}, {0, 0.5f, 0}, {0, 0, 0.375f}),
+      Quad({-0.5f, 0, 0.125f}, {0, 0, 0.375f}, {0, 0.5f, 0}),
+      Quad({0, 0.5f, 0.125f}, {0, 0, 0.375f}, {0.5f, 0, 0}),
+      Quad({0, -0.5f, 0.125f}, {0.5f, 0, 0}, {0, 0, 0.375f}),
+  };
+  for (const Quad& q : box) q.add_to(scene.get(), 1);
+  LightmapsPtr lightmaps = new_lightmaps();
+  ASSERT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), floor_mesh, floor.uvs.data(), 8, 8,
+                                 nullptr),
+            BAKEGI_OK);
+  uint64_t rejected = 0;
+  ASSERT_EQ(bakegi_lightmaps_reject_inside(lightmaps.get(), scene.get(), 0, 0, 0, &rejected),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  // Texels are 0.5 m: the 2 x 2 whose centres (+-0.25) lie under the box, 6 samples (two of
+  // them are diagonal texels with 2 samples each); texels centred 0.25 m beside it stay.
+  EXPECT_EQ(rejected, 6u);
+  bakegi_lightmap_info info{};
+  ASSERT_EQ(bakegi_lightmaps_get_info(lightmaps.get(), 0, &info), BAKEGI_OK);
+  EXPECT_EQ(info.rejected_samples, 6u);
+  EXPECT_EQ(info.covered_texels, 60u);
+  EXPECT_EQ(info.point_count, 66u);
+
+  // Written with padding, the rejected texels are filled from their neighbours.
+  const std::vector<float> rgb(3 * info.point_count, 0.5f);
+  ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), info.point_count,
+                                       path("floor.exr").c_str(), 1, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_OK);
+  const RgbImage image = read_exr(path("floor.exr"));
+  for (const glm::vec3& p : image.pixels) EXPECT_EQ(p.x, 0.5f);
+}
+
+TEST_F(LightmapApi, ErrorsAreStatusesWithMessages) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const uint32_t mesh = floor.add_to(scene.get(), 0);
+  EXPECT_EQ(bakegi_lightmaps_create(nullptr), BAKEGI_ERROR_INVALID_ARGUMENT);
+  LightmapsPtr lightmaps = new_lightmaps();
+  bakegi_lightmaps* l = lightmaps.get();
+  const float* uvs = floor.uvs.data();
+
+  EXPECT_EQ(bakegi_lightmaps_add(nullptr, scene.get(), mesh, uvs, 4, 4, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_add(l, nullptr, mesh, uvs, 4, 4, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_add(l, scene.get(), mesh, nullptr, 4, 4, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(bakegi_last_error()).find("lightmap_uvs is NULL"), std::string::npos);
+  EXPECT_EQ(bakegi_lightmaps_add(l, scene.get(), 5, uvs, 4, 4, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(bakegi_last_error()).find("mesh 5"), std::string::npos);
+  EXPECT_EQ(bakegi_lightmaps_add(l, scene.get(), mesh, uvs, 0, 4, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_add(l, scene.get(), mesh, uvs, 4, 100000, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  std::vector<float> nan_uvs = floor.uvs;
+  nan_uvs[3] = NAN;
+  EXPECT_EQ(bakegi_lightmaps_add(l, scene.get(), mesh, nan_uvs.data(), 4, 4, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_count(l), 0u);  // failed adds add nothing
+
+  bakegi_points* points = reinterpret_cast<bakegi_points*>(1);
+  EXPECT_EQ(bakegi_lightmaps_get_points(l, &points), BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(points, nullptr);
+  bakegi_lightmap_info info{};
+  EXPECT_EQ(bakegi_lightmaps_get_info(l, 0, &info), BAKEGI_ERROR_INVALID_ARGUMENT);
+
+  ASSERT_EQ(bakegi_lightmaps_add(l, scene.get(), mesh, uvs, 4, 4, nullptr), BAKEGI_OK);
+  ASSERT_EQ(bakegi_lightmaps_get_info(l, 0, &info), BAKEGI_OK);
+  std::vector<float> rgb(3 * info.point_count, 1.0f);
+  const uint64_t n = info.point_count;
+  const std::string out = path("x.exr");
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n - 1, out.c_str(), 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(bakegi_last_error()).find("count"), std::string::npos);
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 1, rgb.data(), n, out.c_str(), 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, nullptr, n, out.c_str(), 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, nullptr, 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, "", 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 5000, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 2, 2, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 2, 0,
+                                       static_cast<bakegi_exr_compression>(9)),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  rgb[4] = NAN;
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 2, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(bakegi_last_error()).find("point 1"), std::string::npos);
+  rgb[4] = 1.0f;
+  const std::string unwritable = path("missing/dir/x.exr");
+  EXPECT_EQ(
+      bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, unwritable.c_str(), 2, 0, BAKEGI_EXR_ZIP),
+      BAKEGI_ERROR_IO);
+  EXPECT_NE(std::string(bakegi_last_error()).find(unwritable), std::string::npos);
+  EXPECT_FALSE(fs::exists(out));
+
+  EXPECT_EQ(bakegi_lightmaps_reject_inside(l, nullptr, 0, 0, 0, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_reject_inside(l, scene.get(), 0, 2.0f, 0, nullptr),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_count(nullptr), 0u);
+  bakegi_lightmaps_destroy(nullptr);
+}
+
+}  // namespace
+}  // namespace bakegi::test
