@@ -280,8 +280,7 @@ TEST_F(LightmapApi, ErrorsAreStatusesWithMessages) {
             BAKEGI_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 2, 2, BAKEGI_EXR_ZIP),
             BAKEGI_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 2, 0,
-                                       static_cast<bakegi_exr_compression>(9)),
+  EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 2, 0, 9u),
             BAKEGI_ERROR_INVALID_ARGUMENT);
   rgb[4] = NAN;
   EXPECT_EQ(bakegi_lightmaps_write_exr(l, 0, rgb.data(), n, out.c_str(), 2, 0, BAKEGI_EXR_ZIP),

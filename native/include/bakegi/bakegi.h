@@ -392,12 +392,13 @@ typedef enum bakegi_exr_compression {
  * then `padding` (0..1024) rounds of dilation fill the texels around covered ones (gutters,
  * rejected texels) from their neighbours: use at least the UV margin in texels. Texels
  * farther from any chart stay 0. full_float: 0 = half floats (enough for light, half the
- * size), 1 = 32-bit floats. */
+ * size), 1 = 32-bit floats. compression: a bakegi_exr_compression value (passed as an integer, so
+ * that a value outside the enum is refused rather than stored in one). */
 BAKEGI_API bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps,
                                                     uint32_t lightmap, const float* rgb,
                                                     uint64_t count, const char* path,
                                                     uint32_t padding, int full_float,
-                                                    bakegi_exr_compression compression);
+                                                    uint32_t compression);
 
 #ifdef __cplusplus
 }

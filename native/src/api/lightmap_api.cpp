@@ -196,8 +196,7 @@ bakegi_status bakegi_lightmaps_get_points(const bakegi_lightmaps* lightmaps,
 
 bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint32_t lightmap,
                                          const float* rgb, uint64_t count, const char* path,
-                                         uint32_t padding, int full_float,
-                                         bakegi_exr_compression compression) {
+                                         uint32_t padding, int full_float, uint32_t compression) {
   return guarded(__func__, [&] {
     require(lightmaps, "lightmaps");
     require(rgb, "rgb");
@@ -230,9 +229,8 @@ bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint
         options.compression = bakegi::ExrCompression::kNone;
         break;
       default:
-        throw Error(
-            BAKEGI_ERROR_INVALID_ARGUMENT,
-            "compression " + std::to_string(int(compression)) + " is not a bakegi_exr_compression");
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "compression " + std::to_string(compression) +
+                                                       " is not a bakegi_exr_compression");
     }
     uint64_t first = 0;
     for (uint32_t i = 0; i < lightmap; ++i) first += lightmaps->lightmaps[i].samples.size();
