@@ -75,6 +75,34 @@ class CommandLine(common.SmallCornellCase):
         self.assertEqual(symmetric[-1]["error"], 0.0)
         self.assertGreater(symmetric[0]["error"], 0.05)
 
+    def test_bake_writes_the_lightmap_exr_of_an_exported_scene(self):
+        """export_scene_file(target='LIGHTMAP') writes the .bgs and its .bgl layout; the CLI
+        bakes them into the same atlas as the add-on (same method, same seed: identical
+        texels, read back through Blender's EXR loader)."""
+        import bpy
+        scene = os.path.join(self.work, "cornell_lightmap.bgs")
+        exported = self.bakegi.export_scene_file(scene, target="LIGHTMAP", objects="VISIBLE",
+                                                 texels_per_meter=16.0)
+        self.assertTrue(os.path.isfile(exported["lightmap_layout"]))
+        out = os.path.join(self.work, "exr")
+        completed = self.run_cli("bake", scene, "--method", "antiradiance", "--set", "bins=48",
+                                 "--lightmaps", exported["lightmap_layout"], "--exr-dir", out)
+        self.assertIn("lightmap_0.exr", completed.stderr)
+        cli_image = bpy.data.images.load(os.path.join(out, "lightmap_0.exr"))
+        # The UV maps exist now, so the add-on's bake lays out the same atlas.
+        report = self.bakegi.bake(method="antiradiance", method_settings={"bins": 48},
+                                  target="LIGHTMAP", objects="VISIBLE", texels_per_meter=16.0,
+                                  lightmap_folder=self.work)
+        self.assertEqual(report["lightmap"]["uv_maps_created"], [])
+        addon_image = bpy.data.images[report["lightmap"]["image"]]
+        self.assertEqual(tuple(cli_image.size), tuple(addon_image.size))
+        a = numpy.empty(len(cli_image.pixels), numpy.float32)
+        b = numpy.empty_like(a)
+        cli_image.pixels.foreach_get(a)
+        addon_image.pixels.foreach_get(b)
+        self.assertGreater(float(a.max()), 0.0)
+        numpy.testing.assert_array_equal(a, b)
+
 
 if __name__ == "__main__":
     common.run_tests(__name__)

@@ -252,7 +252,51 @@ class UiTest:
         self.screenshot("ui_after_cancel.png")
 
         yield from self.live_indirect(scene, objects)
+        yield from self.lightmap(scene, objects, before, predicted, positions)
         os.remove(os.path.join(self.output, "_probe.png"))
+
+    def lightmap(self, scene, objects, before, predicted, positions):
+        """Bake Indirect with the Lightmap Textures target from the window: Material Preview
+        must show the indirect light through the lightmap atlas (the hook's image branch),
+        raising the ceiling by about what the bake predicts, as for the color attribute."""
+        started = time.perf_counter()
+        failures = []
+        from bakegi import operators
+
+        with self.override():
+            bpy.ops.bakegi.remove_bake()  # the attribute bake and its hook go first
+        settings = scene.bakegi
+        settings.live_indirect = False
+        # The live step moved the light and doubled its power: put it back, so that the
+        # prediction (the first bake's light) holds.
+        light = bpy.data.objects["CeilingLight"]
+        light.location.x -= 0.4
+        light.data.energy /= 2.0
+        settings.method = "antiradiance"
+        settings.target = "LIGHTMAP"
+        settings.texels_per_meter = 24.0
+        with self.override():
+            result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
+        if result != {"RUNNING_MODAL"}:
+            failures.append(f"operator returned {result}")
+        bake_started = time.perf_counter()
+        while operators.runtime["running"] and time.perf_counter() - bake_started < BAKE_WAIT_SECONDS:
+            yield 0.2
+        ceiling = bpy.data.objects["Ceiling"]
+        if ceiling.get("bakegi_lightmap_weight") is None:
+            failures.append("the ceiling has no lightmap tile after the bake")
+        if common.ATTRIBUTE in ceiling.data.color_attributes:
+            failures.append("the ceiling still has the color attribute")
+        yield from self.wait_for_viewport()
+        pixels = self.screenshot("ui_lightmap.png")
+        after, _ = self.mean_linear(pixels, positions)
+        increase = after - before
+        print(f"ui: lightmap bake, ceiling luminance {after:.4f} (before any bake {before:.4f}), "
+              f"predicted increase {predicted:.4f}; {settings.last_result}")
+        if not 0.5 * predicted <= increase <= 2.0 * predicted:
+            failures.append(f"with the lightmap the ceiling rose by {increase:.4f}, predicted "
+                            f"{predicted:.4f}")
+        self.record("test_ui.lightmap_shows_in_material_preview", started, failures)
 
     def live_indirect(self, scene, objects):
         """Live indirect from the window: a meshless bake with the toggle on, then a light

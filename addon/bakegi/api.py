@@ -3,6 +3,7 @@
 
     import bakegi
     report = bakegi.bake(method="pathtrace", samples=64, target="CORNER", objects="VISIBLE")
+    report = bakegi.bake(target="LIGHTMAP", texels_per_meter=40, objects="VISIBLE")
     bakegi.export_scene_file("/tmp/scene.bgs", target="CORNER", objects="VISIBLE")
     bakegi.remove_bake()
 
@@ -14,7 +15,7 @@ import time
 
 import bpy
 
-from . import export, live, operators, session, writeback
+from . import export, live, operators, properties, session, writeback
 from .native import BakeGIError
 
 
@@ -23,8 +24,19 @@ def _context(context):
 
 
 def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SELECTED",
-         threads=0, hook_materials=True, context=None, method_settings=None, live=False):
-    """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes.
+         threads=0, hook_materials=True, context=None, method_settings=None, live=False,
+         texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
+         lightmap_uv_method="SMART", lightmap_padding=4, lightmap_folder="//bakegi_lightmaps",
+         lightmap_full_float=False):
+    """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes
+    (target 'CORNER' or 'POINT'), or into a lightmap atlas (target 'LIGHTMAP').
+
+    Lightmaps: each target's UV map lightmap_uv_map (made with lightmap_uv_method, 'SMART'
+    or 'LIGHTMAP_PACK', where missing) gets a square tile of texels_per_meter texels per
+    metre (at most lightmap_max_size) in one atlas, written as
+    <lightmap_folder>/BakeGI_Lightmap_<scene>.exr (// = next to the .blend) and loaded as
+    the image BakeGI_Lightmap_<scene>; report["lightmap"] holds its size, texel counts and
+    path.
 
     objects: 'SELECTED', 'VISIBLE', or a list of objects (or their names). Every visible
     object takes part in the light transport; only the targets receive the attribute.
@@ -40,10 +52,16 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
     scene is changed."""
     context = _context(context)
+    lightmap = export.LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
+                                      max_side=lightmap_max_size, padding=lightmap_padding,
+                                      uv_method=lightmap_uv_method)
+    folder = properties.lightmap_directory(lightmap_folder) if target == "LIGHTMAP" else ""
     report = session.BakeSession(context, method=method, samples=samples, seed=seed,
                                  target=target, objects=objects, threads=threads,
                                  hook_materials=hook_materials,
-                                 method_settings=method_settings, live=live).run()
+                                 method_settings=method_settings, live=live,
+                                 lightmap=lightmap, lightmap_folder=folder,
+                                 lightmap_full_float=lightmap_full_float).run()
     scene = context.scene
     if hasattr(scene, "bakegi"):
         operators.store_report(scene, report)
@@ -63,18 +81,31 @@ def live_stop():
     live.stop()
 
 
-def export_scene_file(path, target="CORNER", objects="SELECTED", context=None):
+def export_scene_file(path, target="CORNER", objects="SELECTED", context=None,
+                      texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
+                      lightmap_uv_method="SMART", lightmap_padding=4):
     """Writes the evaluated scene and the targets' bake points to a .bgs file (what the
-    CLI and the sweep read). Returns a dict with counts, seconds, warnings and, per
-    target object, its slice of the bake points."""
+    CLI and the sweep read). target 'LIGHTMAP' also writes the atlas layout beside it
+    (<path without .bgs>.bgl: `bakegi bake X.bgs --lightmaps X.bgl --exr-dir D` writes the
+    EXR) and creates missing lightmap UV maps. Returns a dict with counts, seconds,
+    warnings and, per target object, its slice of the bake points."""
     context = _context(context)
     start = time.perf_counter()
-    exported = export.export_scene(context, target, objects)
+    lightmap = export.LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
+                                      max_side=lightmap_max_size, padding=lightmap_padding,
+                                      uv_method=lightmap_uv_method)
+    exported = export.export_scene(context, target, objects, lightmap=lightmap)
+    layout_path = None
     try:
         exported.scene.write(str(path), exported.points)
+        if exported.lightmaps is not None:
+            stem = str(path)[:-4] if str(path).endswith(".bgs") else str(path)
+            layout_path = stem + ".bgl"
+            exported.lightmaps.lightmaps.write(layout_path)
     finally:
         exported.close()
-    return {"path": str(path), "seconds": time.perf_counter() - start,
+    return {"path": str(path), "lightmap_layout": layout_path,
+            "seconds": time.perf_counter() - start,
             "counts": exported.counts, "warnings": exported.warnings + exported.skipped,
             "targets": [{"object": t.object_name, "domain": t.domain, "start": t.start,
                          "count": t.count} for t in exported.targets]}

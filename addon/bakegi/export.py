@@ -24,11 +24,12 @@ from typing import Dict, List
 
 import numpy as np
 
-from . import light_units, materials, native
+from . import light_units, lightmap_layout, lightmap_uvs, materials, native
 from .native import BakeGIError
 
 MESH_LIKE = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
-TARGET_DOMAINS = ("CORNER", "POINT")
+# Where a bake goes: a color attribute on face corners or vertices, or lightmap textures.
+TARGET_DOMAINS = ("CORNER", "POINT", "LIGHTMAP")
 
 
 @dataclass
@@ -42,6 +43,40 @@ class BakeTarget:
     domain: str
     start: int
     count: int
+    # LIGHTMAP only: (scale_u, scale_v, offset_u, offset_v) of its tile in the atlas, and the
+    # tile's side in texels.
+    atlas_scale_offset: tuple = ()
+    tile_side: int = 0
+
+
+@dataclass
+class LightmapOptions:
+    """What a LIGHTMAP bake needs besides the scene (see lightmap_layout, lightmap_uvs)."""
+
+    uv_map: str = "BakeGI"
+    texels_per_meter: float = 40.0
+    max_side: int = 1024
+    padding: int = 4
+    uv_method: str = "SMART"
+    reject_inside: bool = True
+
+
+@dataclass
+class ExportedLightmaps:
+    """The atlas of a LIGHTMAP bake: the core's texel samples and where each target sits."""
+
+    lightmaps: native.Lightmaps
+    width: int
+    height: int
+    options: LightmapOptions
+    created_uv_maps: list = field(default_factory=list)  # [(object, mesh)] made for this bake
+    rejected_samples: int = 0
+    covered_texels: int = 0
+    density_scale: float = 1.0
+    seconds: Dict[str, float] = field(default_factory=dict)
+
+    def close(self):
+        self.lightmaps.close()
 
 
 @dataclass
@@ -56,10 +91,13 @@ class ExportedScene:
     counts: Dict[str, int] = field(default_factory=dict)
     seconds: float = 0.0
     object_names: List[str] = field(default_factory=list)  # by the core's object id
+    lightmaps: ExportedLightmaps = None  # LIGHTMAP bakes only
 
     def close(self):
         self.scene.close()
         self.points.close()
+        if self.lightmaps is not None:
+            self.lightmaps.close()
 
 
 def name_objects(message, object_names):
@@ -183,15 +221,29 @@ class _LocalMesh:
     normals: np.ndarray  # (T*3, 3) corner normals of the triangles' corners
     uvs: np.ndarray  # (T*3, 2) or None
     tri_materials: np.ndarray  # (T,) core material ids
+    lightmap_uvs: np.ndarray = None  # (T*3, 2) of the lightmap UV map (LIGHTMAP targets)
+
+
+@dataclass
+class _LightmapSource:
+    """A LIGHTMAP target as exported: its core mesh and the triangles' lightmap UVs."""
+
+    mesh_id: int
+    uvs: np.ndarray  # (T*3, 2)
+    world_area: float
 
 
 class SceneExporter:
     """Builds the core Scene from a depsgraph."""
 
-    def __init__(self, depsgraph, warnings, scene=None):
+    def __init__(self, depsgraph, warnings, scene=None, lightmap_objects=(), lightmap_uv_map=""):
         self.depsgraph = depsgraph
         self.warnings = warnings
         self.scene = scene if scene is not None else native.Scene()
+        # LIGHTMAP bakes: the targets' names, whose lightmap UVs are read, and what was found.
+        self.lightmap_objects = set(lightmap_objects)
+        self.lightmap_uv_map = lightmap_uv_map
+        self.lightmap_sources = {}  # object name -> _LightmapSource
         self.material_ids = {}  # original material name_full (or None) -> core id
         self.material_infos = {}  # original material name_full -> MaterialInfo
         self.texture_ids = {}  # (image name_full) -> core texture id
@@ -288,9 +340,21 @@ class SceneExporter:
                 loop_uv = _get(layer.data, "uv", len(mesh.loops), np.float32, 2)
                 corner = np.repeat(slot_index == i, 3)
                 uvs[corner] = loop_uv[tri_loops[corner]]
-        return _LocalMesh(positions, tri_vertices, normals, uvs, tri_materials)
+        lightmap_uvs = None
+        if obj.name in self.lightmap_objects:
+            layer = mesh.uv_layers.get(self.lightmap_uv_map)
+            if layer is None:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                                  f"object '{obj.name}': its modifiers drop the lightmap UV map "
+                                  f"'{self.lightmap_uv_map}'; apply them or bake to face corners")
+            loop_uv = _get(layer.data, "uv", len(mesh.loops), np.float32, 2)
+            lightmap_uvs = loop_uv[tri_loops]
+            if not np.isfinite(lightmap_uvs).all():
+                raise _invalid(f"object '{obj.name}': UV map '{self.lightmap_uv_map}' has "
+                               "non-finite coordinates")
+        return _LocalMesh(positions, tri_vertices, normals, uvs, tri_materials, lightmap_uvs)
 
-    def add_instance(self, obj, matrix_world):
+    def add_instance(self, obj, matrix_world, is_instance=False):
         local = self._local_mesh(obj)
         if local is None:
             return
@@ -301,11 +365,17 @@ class SceneExporter:
         object_id = len(self.object_names)
         self.object_names.append(obj.name)
         try:
-            self.scene.add_mesh(positions, local.tri_vertices, corner_normals=normals,
-                                corner_uvs=local.uvs, triangle_materials=local.tri_materials,
-                                object_id=object_id)
+            mesh_id = self.scene.add_mesh(positions, local.tri_vertices,
+                                          corner_normals=normals, corner_uvs=local.uvs,
+                                          triangle_materials=local.tri_materials,
+                                          object_id=object_id)
         except BakeGIError as error:
             raise BakeGIError(error.status, name_objects(error.message, self.object_names))
+        if local.lightmap_uvs is not None and not is_instance:
+            corners = positions[local.tri_vertices.reshape(-1)]
+            self.lightmap_sources[obj.name] = _LightmapSource(
+                mesh_id, local.lightmap_uvs,
+                float(lightmap_layout.triangle_areas(corners).sum()))
         self.meshes += 1
         self.triangles += len(local.tri_vertices)
 
@@ -478,9 +548,13 @@ def target_points(obj, depsgraph, domain, warnings):
 # ---- the whole export ---------------------------------------------------------------------
 
 
-def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None):
+def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, lightmap=None):
     """Exports the evaluated scene and the bake points of the target objects.
 
+    target 'LIGHTMAP': the bake points are the texels of the targets' lightmap UV maps
+    (lightmap: LightmapOptions); a missing UV map is created first (the only change to the
+    Blender data; ExportedLightmaps.created_uv_maps lists them, and export removes them
+    again if it fails).
     Raises BakeGIError (with the object and element named) for invalid input; the Blender
     data is left as it was."""
     start = time.perf_counter()
@@ -493,19 +567,65 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None):
             "selected" if objects == "SELECTED" else "visible" if objects == "VISIBLE" else
             "given")
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"nothing to bake: {why}")
+    created_uv_maps = []
+    if target == "LIGHTMAP":
+        lightmap = lightmap or LightmapOptions()
+        _check_lightmap_options(lightmap)
+        created_uv_maps = lightmap_uvs.ensure(context, targets, lightmap.uv_map,
+                                              lightmap.uv_method, lightmap.texels_per_meter,
+                                              lightmap.max_side, lightmap.padding)
+        depsgraph = None  # the new UV maps must be evaluated
+    try:
+        return _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps,
+                       start)
+    except BaseException:
+        lightmap_uvs.remove(context.blend_data, created_uv_maps,
+                            lightmap.uv_map if lightmap else "")
+        raise
+
+
+def _check_lightmap_options(options):
+    if not (isinstance(options.texels_per_meter, (int, float)) and
+            0.0 < options.texels_per_meter <= 10000.0):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"texels_per_meter must be in (0, 10000], not "
+                          f"{options.texels_per_meter!r}")
+    if not (isinstance(options.max_side, int) and
+            lightmap_layout.MIN_SIDE <= options.max_side <= lightmap_layout.MAX_ATLAS_SIDE):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"the largest lightmap must be {lightmap_layout.MIN_SIDE}.."
+                          f"{lightmap_layout.MAX_ATLAS_SIDE} texels, not {options.max_side!r}")
+    if not (isinstance(options.padding, int) and 0 <= options.padding <= 64):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"padding must be 0..64 texels, not {options.padding!r}")
+
+
+def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps, start):
     if depsgraph is None:
         depsgraph = context.evaluated_depsgraph_get()
     warnings = []
-    exporter = SceneExporter(depsgraph, warnings)
+    names = [o.name for o in targets] if target == "LIGHTMAP" else ()
+    exporter = SceneExporter(depsgraph, warnings, lightmap_objects=names,
+                             lightmap_uv_map=lightmap.uv_map if lightmap else "")
     points = None
+    exported_lightmaps = None
     try:
         for instance in depsgraph.object_instances:
             obj = instance.object
             if obj.type in MESH_LIKE:
-                exporter.add_instance(obj, instance.matrix_world)
+                exporter.add_instance(obj, instance.matrix_world, instance.is_instance)
             elif obj.type == "LIGHT":
                 exporter.add_light(obj, instance.matrix_world)
         exporter.set_world(context.scene.world)
+
+        if target == "LIGHTMAP":
+            exported_lightmaps, bake_targets = _lightmap_points(exporter, targets, lightmap,
+                                                               warnings)
+            exported_lightmaps.created_uv_maps = created_uv_maps
+            points = exported_lightmaps.lightmaps.points()
+            offset = len(points)
+            return _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
+                             exported_lightmaps)
 
         positions, normals, ids, bake_targets = [], [], [], []
         offset = 0
@@ -522,14 +642,83 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None):
         exporter.scene.close()
         if points is not None:
             points.close()
+        if exported_lightmaps is not None:
+            exported_lightmaps.close()
         raise
+    return _exported(exporter, points, bake_targets, warnings, skipped, offset, start)
+
+
+def _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
+              exported_lightmaps=None):
     counts = {"meshes": exporter.meshes, "triangles": exporter.triangles,
               "lights": exporter.lights, "materials": len(exporter.material_ids),
               "textures": sum(1 for v in exporter.texture_ids.values() if v is not None),
               "bake_points": offset, "targets": len(bake_targets)}
+    if exported_lightmaps is not None:
+        counts.update(lightmap_width=exported_lightmaps.width,
+                      lightmap_height=exported_lightmaps.height,
+                      lightmap_covered_texels=exported_lightmaps.covered_texels,
+                      lightmap_rejected_samples=exported_lightmaps.rejected_samples)
     return ExportedScene(exporter.scene, points, bake_targets, exporter.material_infos,
                          _unique(warnings), skipped, counts, time.perf_counter() - start,
-                         exporter.object_names)
+                         exporter.object_names, exported_lightmaps)
+
+
+def _lightmap_points(exporter, targets, options, warnings):
+    """Lays the targets' lightmaps out in one atlas and rasterizes their texels (core).
+    Returns (ExportedLightmaps, [BakeTarget])."""
+    t0 = time.perf_counter()
+    sources = []
+    for obj in targets:
+        source = exporter.lightmap_sources.get(obj.name)
+        if source is None:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"'{obj.name}' has no triangles to bake a lightmap on")
+        sources.append(source)
+    uv_areas = []
+    for obj, source in zip(targets, sources):
+        outside = (source.uvs < -1e-4) | (source.uvs > 1.0 + 1e-4)
+        if outside.any():
+            warnings.append(f"'{obj.name}': UV map '{options.uv_map}' reaches outside [0, 1]; "
+                            "those parts are clipped to the edge of its lightmap")
+        uv_areas.append(float(lightmap_layout.triangle_areas(
+            np.clip(source.uvs, 0.0, 1.0)).sum()))
+    # An object's own density (Object properties > BakeGI Lightmap; 0 = the bake's).
+    densities = [float(getattr(obj, "bakegi_texels_per_meter", 0.0)) or
+                 options.texels_per_meter for obj in targets]
+    atlas = lightmap_layout.layout([s.world_area for s in sources], uv_areas, densities,
+                                   options.max_side, options.padding)
+    for i in atlas.clamped:
+        warnings.append(f"'{targets[i].name}': its lightmap is limited to {options.max_side} "
+                        f"texels, below {densities[i]:g} texels per metre")
+    if atlas.density_scale < 1.0:
+        warnings.append(f"the lightmaps did not fit one {lightmap_layout.MAX_ATLAS_SIDE}-texel "
+                        f"atlas; every object got {atlas.density_scale:.0%} of the asked "
+                        "density")
+    result = ExportedLightmaps(native.Lightmaps(), atlas.width, atlas.height, options,
+                               density_scale=atlas.density_scale)
+    try:
+        lightmaps = result.lightmaps
+        for i, source in enumerate(sources):
+            uvs = atlas.to_atlas(i, source.uvs)
+            if i == 0:
+                lightmaps.add(exporter.scene, source.mesh_id, uvs, atlas.width, atlas.height)
+            else:
+                lightmaps.add_to(0, exporter.scene, source.mesh_id, uvs)
+        result.seconds["rasterize"] = time.perf_counter() - t0
+        if options.reject_inside:
+            t1 = time.perf_counter()
+            result.rejected_samples = lightmaps.reject_inside(exporter.scene)
+            result.seconds["reject_inside"] = time.perf_counter() - t1
+        info = lightmaps.info(0)
+        result.covered_texels = info["covered_texels"]
+    except BaseException:
+        result.close()
+        raise
+    bake_targets = [BakeTarget(obj.name, obj.data.name_full, "LIGHTMAP", 0, 0,
+                               atlas.scale_offset(i), atlas.tiles[i].side)
+                    for i, obj in enumerate(targets)]
+    return result, bake_targets
 
 
 def export_lights(context, scene, depsgraph=None):

@@ -41,6 +41,14 @@ from . import light_units
 ATTRIBUTE_NAME = "BakeGI_Indirect"
 NODE_PREFIX = "BakeGI_"
 HOOK_PROPERTY = "bakegi_hook"
+# Version 2 of the hook reads the lightmap atlas too; version-1 hooks are rebuilt.
+HOOK_VERSION = 2
+# Object custom properties of a LIGHTMAP bake (read by the hook's Attribute nodes of type
+# OBJECT): the object's tile in the atlas (atlas UV = uv * scale + offset) and 1.0 while the
+# object has a lightmap (objects without one read 0, so their lightmap term vanishes).
+LIGHTMAP_SCALE = "bakegi_lightmap_scale"
+LIGHTMAP_OFFSET = "bakegi_lightmap_offset"
+LIGHTMAP_WEIGHT = "bakegi_lightmap_weight"
 
 # Cycles' default surface for faces without a material.
 DEFAULT_ALBEDO = (0.8, 0.8, 0.8)
@@ -419,15 +427,30 @@ def is_hooked(material):
     return material is not None and material.get(HOOK_PROPERTY) is not None
 
 
+def _hook_version(material):
+    record = material.get(HOOK_PROPERTY)
+    try:
+        return int(record.get("version", 1))
+    except (AttributeError, TypeError, ValueError):
+        return 1
+
+
 def can_hook(material, info):
     return (material is not None and material.use_nodes and material.node_tree is not None
             and active_output(material.node_tree) is not None and
             (info.color_source is not None or max(info.albedo) > 0.0))
 
 
-def hook(material, info):
-    """Adds albedo x BakeGI_Indirect as camera-only emission. Returns True if hooked now."""
-    if is_hooked(material) or not can_hook(material, info):
+def hook(material, info, lightmap_image=None, uv_map="BakeGI"):
+    """Adds albedo x (BakeGI_Indirect + the object's lightmap texel) as camera-only emission.
+    A material hooked already only gets the lightmap image and UV map set. Returns True if
+    hooked now."""
+    if is_hooked(material) and _hook_version(material) < HOOK_VERSION:
+        unhook(material)
+    if is_hooked(material):
+        set_lightmap(material, lightmap_image, uv_map)
+        return False
+    if not can_hook(material, info):
         return False
     tree = material.node_tree
     output = active_output(tree)
@@ -452,9 +475,14 @@ def hook(material, info):
     attribute = new("ShaderNodeAttribute", "Indirect", -900, -300)
     attribute.attribute_type = "GEOMETRY"
     attribute.attribute_name = ATTRIBUTE_NAME
+    lightmap = _lightmap_nodes(new, links, lightmap_image, uv_map)
+    indirect = new("ShaderNodeVectorMath", "Indirect_Sum", -700, -480)
+    indirect.operation = "ADD"
+    links.new(attribute.outputs["Color"], indirect.inputs[0])
+    links.new(lightmap, indirect.inputs[1])
     times_albedo = new("ShaderNodeVectorMath", "Times_Albedo", -650, -300)
     times_albedo.operation = "MULTIPLY"
-    links.new(attribute.outputs["Color"], times_albedo.inputs[0])
+    links.new(indirect.outputs["Vector"], times_albedo.inputs[0])
     color_node = tree.nodes.get(info.color_source[0]) if info.color_source else None
     if color_node is not None and info.color_source[1] < len(color_node.outputs):
         links.new(color_node.outputs[info.color_source[1]], times_albedo.inputs[1])
@@ -479,8 +507,60 @@ def hook(material, info):
         links.new(direct.from_socket, add.inputs[0])
     links.new(emission.outputs["Emission"], add.inputs[1])
     links.new(add.outputs["Shader"], surface_input)
+    record["version"] = HOOK_VERSION
     material[HOOK_PROPERTY] = record
     return True
+
+
+def _lightmap_nodes(new, links, image, uv_map):
+    """The object's lightmap texel: UV map -> (uv * scale + offset) -> atlas image, times
+    the object's lightmap weight (0 for objects without a lightmap). Returns its output."""
+    uv = new("ShaderNodeUVMap", "Lightmap_UV", -1500, -650)
+    uv.uv_map = uv_map
+    scale = _object_attribute(new, "Lightmap_Scale", LIGHTMAP_SCALE, -1500, -800)
+    offset = _object_attribute(new, "Lightmap_Offset", LIGHTMAP_OFFSET, -1500, -950)
+    weight = _object_attribute(new, "Lightmap_Weight", LIGHTMAP_WEIGHT, -1100, -950)
+    place = new("ShaderNodeVectorMath", "Lightmap_Place", -1300, -700)
+    place.operation = "MULTIPLY_ADD"
+    links.new(uv.outputs["UV"], place.inputs[0])
+    links.new(scale.outputs["Vector"], place.inputs[1])
+    links.new(offset.outputs["Vector"], place.inputs[2])
+    texture = new("ShaderNodeTexImage", "Lightmap", -1100, -650)
+    texture.interpolation = "Linear"
+    texture.extension = "EXTEND"
+    texture.image = image
+    links.new(place.outputs["Vector"], texture.inputs["Vector"])
+    weighted = new("ShaderNodeVectorMath", "Lightmap_Weighted", -850, -650)
+    weighted.operation = "SCALE"
+    links.new(texture.outputs["Color"], weighted.inputs[0])
+    links.new(weight.outputs["Fac"], weighted.inputs["Scale"])
+    return weighted.outputs["Vector"]
+
+
+def _object_attribute(new, name, attribute_name, x, y):
+    node = new("ShaderNodeAttribute", name, x, y)
+    node.attribute_type = "OBJECT"
+    node.attribute_name = attribute_name
+    return node
+
+
+def set_lightmap(material, image, uv_map):
+    """Points a hooked material's lightmap nodes at `image` (None: keep the current one) and
+    the lightmap UV map."""
+    tree = material.node_tree
+    texture = tree.nodes.get(NODE_PREFIX + "Lightmap") if tree is not None else None
+    uv = tree.nodes.get(NODE_PREFIX + "Lightmap_UV") if tree is not None else None
+    if texture is not None and image is not None:
+        texture.image = image
+    if uv is not None and uv_map and image is not None:
+        uv.uv_map = uv_map
+
+
+def lightmap_image(material):
+    """The lightmap image a hooked material reads (or None)."""
+    tree = material.node_tree if material is not None else None
+    texture = tree.nodes.get(NODE_PREFIX + "Lightmap") if tree is not None else None
+    return texture.image if texture is not None else None
 
 
 def unhook(material):

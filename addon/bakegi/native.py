@@ -147,7 +147,23 @@ _SIGNATURES = {
     "bakegi_scene_clear_lights": (c_int, [_P]),
     "bakegi_job_can_relight": (c_int, [_P]),
     "bakegi_job_start_relight": (c_int, [_P, _P, _P, _P, _PP]),
+    "bakegi_lightmaps_create": (c_int, [_PP]),
+    "bakegi_lightmaps_destroy": (None, [_P]),
+    "bakegi_lightmaps_add": (c_int, [_P, _P, c_uint32, POINTER(c_float), c_uint32, c_uint32,
+                                     POINTER(c_uint32)]),
+    "bakegi_lightmaps_add_to": (c_int, [_P, c_uint32, _P, c_uint32, POINTER(c_float)]),
+    "bakegi_lightmaps_reject_inside": (c_int, [_P, _P, c_uint32, c_float, c_float,
+                                               POINTER(c_uint64)]),
+    "bakegi_lightmaps_count": (c_uint32, [_P]),
+    "bakegi_lightmaps_get_info": (c_int, [_P, c_uint32, _P]),
+    "bakegi_lightmaps_get_points": (c_int, [_P, _PP]),
+    "bakegi_lightmaps_write_exr": (c_int, [_P, c_uint32, POINTER(c_float), c_uint64, c_char_p,
+                                           c_uint32, c_int, c_uint32]),
+    "bakegi_lightmaps_write_file": (c_int, [_P, c_char_p]),
+    "bakegi_lightmaps_read_file": (c_int, [c_char_p, _PP]),
 }
+
+EXR_COMPRESSION = {"ZIP": 0, "PIZ": 1, "NONE": 2}
 
 _library = None
 _library_lock = threading.Lock()
@@ -453,6 +469,107 @@ class Points(_Handle):
         _check(load_library().bakegi_points_get(self.handle, _fptr(p), _fptr(nn), _uptr(ids)),
                "bakegi_points_get")
         return p, nn, ids
+
+
+class LightmapInfo(Structure):
+    _fields_ = [
+        ("width", c_uint32),
+        ("height", c_uint32),
+        ("first_point", c_uint64),
+        ("point_count", c_uint64),
+        ("covered_texels", c_uint64),
+        ("rejected_samples", c_uint64),
+        ("skipped_triangles", c_uint64),
+    ]
+
+
+class Lightmaps(_Handle):
+    """Lightmap texels as bake points, and the baked values as EXR files (bakegi_lightmaps):
+
+        lightmaps = Lightmaps()
+        index = lightmaps.add(scene, mesh_id, uvs, 512, 512)   # uvs: (triangles*3, 2)
+        lightmaps.add_to(index, scene, other_mesh_id, other_uvs)  # a second object, same map
+        lightmaps.reject_inside(scene)
+        points = lightmaps.points()   # -> Job(scene, points, settings)
+        lightmaps.write_exr(index, job.result(), "/path/lightmap.exr", padding=4)
+    """
+
+    _destroy_name = "bakegi_lightmaps_destroy"
+
+    def __init__(self, handle=None):
+        lib = load_library()
+        if handle is None:
+            out = c_void_p()
+            _check(lib.bakegi_lightmaps_create(byref(out)), "bakegi_lightmaps_create")
+            handle = out.value
+        super().__init__(handle)
+
+    def add(self, scene, mesh, uvs, width, height):
+        """A width x height lightmap for core mesh `mesh` of `scene`; uvs: (3*T, 2) lightmap
+        UVs of its triangles' corners. Returns the lightmap's index."""
+        uv = _floats(uvs, 2, "lightmap uvs")
+        out = c_uint32()
+        _check(load_library().bakegi_lightmaps_add(self.handle, scene.handle, int(mesh),
+                                                   _fptr(uv), int(width), int(height),
+                                                   byref(out)), "bakegi_lightmaps_add")
+        return out.value
+
+    def add_to(self, lightmap, scene, mesh, uvs):
+        """Rasterizes another mesh into lightmap `lightmap` (an atlas: uvs already placed in
+        the mesh's own region)."""
+        uv = _floats(uvs, 2, "lightmap uvs")
+        _check(load_library().bakegi_lightmaps_add_to(self.handle, int(lightmap), scene.handle,
+                                                      int(mesh), _fptr(uv)),
+               "bakegi_lightmaps_add_to")
+
+    def reject_inside(self, scene, rays=0, backface_fraction=0.0, max_distance=0.0):
+        """Drops samples inside or under other geometry; returns how many."""
+        out = c_uint64()
+        _check(load_library().bakegi_lightmaps_reject_inside(
+            self.handle, scene.handle, int(rays), float(backface_fraction),
+            float(max_distance), byref(out)), "bakegi_lightmaps_reject_inside")
+        return int(out.value)
+
+    def __len__(self):
+        return int(load_library().bakegi_lightmaps_count(self.handle))
+
+    def info(self, lightmap):
+        info = LightmapInfo()
+        _check(load_library().bakegi_lightmaps_get_info(self.handle, int(lightmap),
+                                                        byref(info)), "bakegi_lightmaps_get_info")
+        return {name: int(getattr(info, name)) for name, _ in LightmapInfo._fields_}
+
+    def points(self):
+        """All lightmaps' samples as Points (a new handle)."""
+        out = c_void_p()
+        _check(load_library().bakegi_lightmaps_get_points(self.handle, byref(out)),
+               "bakegi_lightmaps_get_points")
+        return Points(handle=out.value)
+
+    def write_exr(self, lightmap, rgb, path, padding=4, full_float=False, compression="ZIP"):
+        """Writes lightmap `lightmap` as an OpenEXR file (atomically). rgb: the whole bake
+        result, (points, 3)."""
+        if compression not in EXR_COMPRESSION:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"compression must be one of {tuple(EXR_COMPRESSION)}, not "
+                              f"{compression!r}")
+        values = _floats(rgb, 3, "rgb")
+        _check(load_library().bakegi_lightmaps_write_exr(
+            self.handle, int(lightmap), _fptr(values), values.shape[0], os.fsencode(path),
+            int(padding), 1 if full_float else 0, EXR_COMPRESSION[compression]),
+            "bakegi_lightmaps_write_exr")
+
+    def write(self, path):
+        """Writes the .bgl layout file (for the CLI: bakegi bake ... --lightmaps)."""
+        _check(load_library().bakegi_lightmaps_write_file(self.handle, os.fsencode(path)),
+               "bakegi_lightmaps_write_file")
+
+    @classmethod
+    def read(cls, path):
+        out = c_void_p()
+        _check(load_library().bakegi_lightmaps_read_file(os.fsencode(path), byref(out)),
+               "bakegi_lightmaps_read_file")
+        return cls(out.value)
 
 
 class Settings(_Handle):

@@ -67,6 +67,19 @@ def meshless_details(report):
     return lines
 
 
+def lightmap_details(report):
+    """Lines for the panel: the atlas of a lightmap bake."""
+    lm = report.get("lightmap")
+    if not isinstance(lm, dict) or "width" not in lm:
+        return []
+    lines = [f"Lightmap: {lm['width']} x {lm['height']} atlas, "
+             f"{lm.get('covered_texels', 0):,} texels baked, "
+             f"{lm.get('rejected_samples', 0):,} samples inside geometry"]
+    if lm.get("path"):
+        lines.append(f"File: {lm['path']}")
+    return lines
+
+
 def store_report(scene, report):
     settings = scene.bakegi
     settings.last_result = summary(report)
@@ -86,7 +99,10 @@ def _session_from_scene(context):
     return session.BakeSession(context, method=s.resolved_method(), samples=s.samples,
                                seed=s.seed, target=s.target, objects=s.objects,
                                threads=s.threads, hook_materials=s.hook_materials,
-                               method_settings=s.method_settings(), live=s.live_requested())
+                               method_settings=s.method_settings(), live=s.live_requested(),
+                               lightmap=s.lightmap_options(),
+                               lightmap_folder=s.lightmap_directory(),
+                               lightmap_full_float=s.lightmap_float)
 
 
 def _report_warnings(operator, report):

@@ -40,6 +40,18 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             col.prop(settings, "samples")
             col.prop(settings, "seed")
         col.prop(settings, "target")
+        if settings.target == "LIGHTMAP":
+            sub = col.column()
+            sub.prop(settings, "texels_per_meter")
+            active = context.active_object
+            if active is not None and active.type == "MESH":
+                sub.prop(active, "bakegi_texels_per_meter", text=f"'{active.name}' Texels")
+            sub.prop(settings, "lightmap_max_size")
+            sub.prop(settings, "lightmap_uv_map")
+            sub.prop(settings, "lightmap_uv_method")
+            sub.prop(settings, "lightmap_padding")
+            sub.prop(settings, "lightmap_folder")
+            sub.prop(settings, "lightmap_float")
         col.prop(settings, "objects")
         col.prop(settings, "threads")
         col.prop(settings, "hook_materials")
@@ -106,7 +118,9 @@ def _report_details(settings):
         report = json.loads(settings.last_report) if settings.last_report else {}
     except ValueError:
         return []
-    return operators.meshless_details(report) if isinstance(report, dict) else []
+    if not isinstance(report, dict):
+        return []
+    return operators.meshless_details(report) + operators.lightmap_details(report)
 
 
 classes = (RENDER_PT_bakegi, VIEW3D_PT_bakegi_live)

@@ -28,6 +28,13 @@ DEBUG_METHOD_ITEMS = METHOD_ITEMS + [
 TARGET_ITEMS = [
     ("CORNER", "Face Corners", "One value per face corner: hard edges stay hard"),
     ("POINT", "Vertices", "One value per vertex: smooth across edges, fewer points"),
+    ("LIGHTMAP", "Lightmap Textures", "An OpenEXR lightmap atlas on a lightmap UV map: "
+     "detail independent of the mesh, for export to game engines and the web"),
+]
+
+LIGHTMAP_UV_METHOD_ITEMS = [
+    ("SMART", "Smart UV Project", "Charts split at sharp edges: few seams"),
+    ("LIGHTMAP_PACK", "Lightmap Pack", "Every face its own box: no stretching, many seams"),
 ]
 
 OBJECTS_ITEMS = [
@@ -84,7 +91,34 @@ class BakeGISettings(bpy.types.PropertyGroup):
     seed: IntProperty(name="Seed", default=0, min=0,
                       description="Random seed; a bake is repeatable for a seed")
     target: EnumProperty(name="Target", items=TARGET_ITEMS, default="CORNER",
-                         description="Where the color attribute BakeGI_Indirect is stored")
+                         description="Where the bake is stored: the color attribute "
+                         "BakeGI_Indirect, or lightmap textures")
+    texels_per_meter: FloatProperty(
+        name="Texels per Metre", default=40.0, min=0.1, max=10000.0, soft_max=500.0,
+        description="Lightmaps: texel density on the surfaces; each object's lightmap is "
+        "sized from its area")
+    lightmap_max_size: IntProperty(
+        name="Max Size", default=1024, min=8, max=8192,
+        description="Lightmaps: the largest lightmap of one object, in texels")
+    lightmap_uv_map: StringProperty(
+        name="UV Map", default="BakeGI",
+        description="Lightmaps: the UV map that holds the lightmap layout; a mesh without it "
+        "gets a new one (the other UV maps stay as they are)")
+    lightmap_uv_method: EnumProperty(
+        name="Unwrap", items=LIGHTMAP_UV_METHOD_ITEMS, default="SMART",
+        description="Lightmaps: how a missing lightmap UV map is made")
+    lightmap_padding: IntProperty(
+        name="Padding", default=4, min=0, max=64,
+        description="Lightmaps: texels the charts are dilated into the gutters, so filtering "
+        "and mipmaps never read black at a seam")
+    lightmap_folder: StringProperty(
+        name="Folder", default="//bakegi_lightmaps", subtype="DIR_PATH",
+        description="Lightmaps: where the EXR file is written (// = next to the .blend; an "
+        "unsaved file uses the system's temporary folder)")
+    lightmap_float: BoolProperty(
+        name="Full Float", default=False,
+        description="Lightmaps: 32-bit floats instead of half floats (twice the size; half "
+        "floats hold light to 0.1%)")
     objects: EnumProperty(name="Objects", items=OBJECTS_ITEMS, default="SELECTED",
                           description="Which objects receive the bake (every visible object "
                           "always takes part in the light transport)")
@@ -124,15 +158,40 @@ class BakeGISettings(bpy.types.PropertyGroup):
             return os.path.join(tempfile.gettempdir(), "bakegi_cache")
         return os.path.abspath(bpy.path.abspath(folder))
 
+    def lightmap_options(self):
+        from .export import LightmapOptions
+        return LightmapOptions(uv_map=self.lightmap_uv_map, texels_per_meter=self.texels_per_meter,
+                               max_side=self.lightmap_max_size, padding=self.lightmap_padding,
+                               uv_method=self.lightmap_uv_method)
+
+    def lightmap_directory(self):
+        """The lightmap folder as an absolute path."""
+        return lightmap_directory(self.lightmap_folder)
+
     def live_requested(self):
-        return self.live_indirect and self.resolved_method() == "meshless"
+        return (self.live_indirect and self.resolved_method() == "meshless" and
+                self.target != "LIGHTMAP")
+
+
+def lightmap_directory(folder):
+    """A lightmap folder (// = next to the .blend) as an absolute path; an unsaved file
+    writes into the system's temporary folder."""
+    folder = folder or "//bakegi_lightmaps"
+    if folder.startswith("//") and not bpy.data.filepath:
+        return os.path.join(tempfile.gettempdir(), "bakegi_lightmaps")
+    return os.path.abspath(bpy.path.abspath(folder))
 
 
 def register():
     bpy.utils.register_class(BakeGISettings)
     bpy.types.Scene.bakegi = bpy.props.PointerProperty(type=BakeGISettings)
+    bpy.types.Object.bakegi_texels_per_meter = FloatProperty(
+        name="Texels per Metre", default=0.0, min=0.0, max=10000.0, soft_max=500.0,
+        description="Lightmaps: this object's texel density (0 = the bake's Texels per "
+        "Metre): more for a hero object, less for one seen from afar")
 
 
 def unregister():
+    del bpy.types.Object.bakegi_texels_per_meter
     del bpy.types.Scene.bakegi
     bpy.utils.unregister_class(BakeGISettings)

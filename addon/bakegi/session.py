@@ -11,6 +11,7 @@
 run() does all of it synchronously (background mode and scripts).
 """
 
+import os
 import threading
 import time
 from dataclasses import dataclass
@@ -46,6 +47,10 @@ def validate_arguments(method, samples, seed, target, threads, live=False):
     if method not in METHODS:
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                           f"method must be one of {METHODS}, not {method!r}")
+    if live and target == "LIGHTMAP":
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          "live indirect writes the color attribute; bake it to face corners or "
+                          "vertices, not to lightmaps")
     if live and method not in LIVE_METHODS:
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                           f"live indirect needs a method that relights ({', '.join(LIVE_METHODS)})"
@@ -62,7 +67,9 @@ def validate_arguments(method, samples, seed, target, threads, live=False):
 class BakeSession:
     def __init__(self, context, method="antiradiance", samples=64, seed=0, target="CORNER",
                  objects="SELECTED", threads=0, hook_materials=True, method_settings=None,
-                 live=False):
+                 live=False, lightmap=None, lightmap_folder="", lightmap_full_float=False):
+        """lightmap (target 'LIGHTMAP'): export.LightmapOptions; lightmap_folder: where the
+        atlas is written (absolute); lightmap_full_float: 32-bit floats instead of half."""
         validate_arguments(method, samples, seed, target, threads, live)
         self.context = context
         self.method = method
@@ -77,6 +84,12 @@ class BakeSession:
         self.scene_name = context.scene.name
         # Further core settings of the method (e.g. antiradiance "bins"); the core checks them.
         self.method_settings = dict(method_settings or {})
+        self.lightmap = lightmap if lightmap is not None else export.LightmapOptions()
+        self.lightmap_folder = lightmap_folder
+        self.lightmap_full_float = bool(lightmap_full_float)
+        if target == "LIGHTMAP" and not lightmap_folder:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              "a lightmap bake needs a folder to write its EXR file to")
         self.exported = None
         self.job = None
         self.seconds = {}
@@ -91,8 +104,12 @@ class BakeSession:
     def prepare(self):
         """Exports the scene. The context is used only here (and by finish() when no data
         is given): a modal operator's context does not outlive the call that passed it."""
-        self.exported = export.export_scene(self.context, self.target, self.objects)
+        self.exported = export.export_scene(self.context, self.target, self.objects,
+                                            lightmap=self.lightmap)
         self.seconds["export"] = self.exported.seconds
+        if self.exported.lightmaps is not None:
+            for stage, seconds in self.exported.lightmaps.seconds.items():
+                self.seconds[f"lightmap_{stage}"] = seconds
 
     def start(self):
         if self.exported is None:
@@ -102,9 +119,11 @@ class BakeSession:
             try:
                 self.job = native.Job(self.exported.scene, self.exported.points, settings)
             except BakeGIError as error:
+                self._remove_created_uv_maps()
                 self._release_export()
                 raise self._named(error) from None
             except BaseException:
+                self._remove_created_uv_maps()
                 self._release_export()
                 raise
 
@@ -126,6 +145,7 @@ class BakeSession:
                 job.close()
             else:
                 threading.Thread(target=job.close, name="bakegi-cancel", daemon=True).start()
+        self._remove_created_uv_maps()
         self._release_export()
 
     def finish(self, data=None):
@@ -133,6 +153,8 @@ class BakeSession:
         context's) and hooks materials; returns the report. On failure raises BakeGIError
         and leaves Blender untouched."""
         adopted = False
+        written = False
+        lightmap_report = {}
         try:
             try:
                 self.job.wait()
@@ -143,9 +165,16 @@ class BakeSession:
             core_report = self.job.report()
             t0 = time.perf_counter()
             data = data if data is not None else self.context.blend_data
-            writeback.write_results(data, self.exported.targets, rgb)
+            image = None
+            if self.target == "LIGHTMAP":
+                lightmap_report = self._write_lightmap(data, rgb)
+                image = data.images.get(lightmap_report["image"])
+            else:
+                writeback.write_results(data, self.exported.targets, rgb)
+            written = True
             hooked = (writeback.hook_materials(data, self.exported.materials,
-                                               self.exported.targets)
+                                               self.exported.targets, image,
+                                               self.lightmap.uv_map)
                       if self.hook_materials else [])
             self.seconds["writeback"] = time.perf_counter() - t0
             if self.live:
@@ -163,10 +192,51 @@ class BakeSession:
                 self.job.close()
                 self.job = None
             targets = self.exported.targets if self.exported else []
+            if not written:
+                self._remove_created_uv_maps()
+            exported_lightmaps = self.exported.lightmaps if self.exported else None
             if not adopted:
                 self._release_export()
         self.seconds["total"] = time.perf_counter() - self._created_at
-        return self._report(core_report, targets, hooked)
+        report = self._report(core_report, targets, hooked)
+        if exported_lightmaps is not None:
+            report["lightmap"] = {**lightmap_report, **self._lightmap_counts(exported_lightmaps)}
+        return report
+
+    def _write_lightmap(self, data, rgb):
+        import bpy  # the session runs inside Blender; the rest of this module does not need it
+        path = os.path.join(self.lightmap_folder,
+                            writeback.lightmap_file_name(self.scene_name))
+        image, dropped = writeback.write_lightmap(
+            data, self.exported, rgb, path, self.scene_name, self.lightmap_full_float,
+            bpy.data.filepath)
+        if dropped:
+            self.exported.warnings.append(
+                f"the lightmap atlas was rewritten without {', '.join(sorted(dropped))}; "
+                "bake them together with these objects to keep their lightmaps")
+        return {"path": path, "image": image.name,
+                "file_bytes": os.path.getsize(path) if os.path.exists(path) else 0}
+
+    @staticmethod
+    def _lightmap_counts(exported_lightmaps):
+        lm = exported_lightmaps
+        return {"width": lm.width, "height": lm.height, "texels": lm.width * lm.height,
+                "covered_texels": lm.covered_texels, "rejected_samples": lm.rejected_samples,
+                "density_scale": lm.density_scale,
+                "uv_maps_created": [o for o, _ in lm.created_uv_maps],
+                "texels_per_meter": lm.options.texels_per_meter,
+                "max_side": lm.options.max_side, "padding": lm.options.padding,
+                "uv_map": lm.options.uv_map}
+
+    def _remove_created_uv_maps(self):
+        """A bake that wrote nothing takes back the lightmap UV maps it made."""
+        lightmaps = self.exported.lightmaps if self.exported is not None else None
+        if lightmaps is None or not lightmaps.created_uv_maps:
+            return
+        import bpy
+        from . import lightmap_uvs
+        lightmap_uvs.remove(bpy.data, lightmaps.created_uv_maps, lightmaps.options.uv_map)
+        lightmaps.created_uv_maps = []
 
     def run(self):
         """The whole bake, synchronously."""
@@ -197,7 +267,8 @@ class BakeSession:
                               "target": self.target,
                               "objects": self.objects if isinstance(self.objects, str) else
                               [t.object_name for t in targets]}
-        report["bake_points"] = sum(t.count for t in targets)
+        report["bake_points"] = (self.exported.counts.get("bake_points", 0) if self.exported
+                                 else sum(t.count for t in targets))
         report["objects"] = [t.object_name for t in targets]
         report["hooked_materials"] = hooked
         report["counts"] = dict(self.exported.counts) if self.exported else {}

@@ -1,14 +1,19 @@
 // bakegi bake scene.bgs [--method M] [--samples N] [--seed S] [--sample-offset K]
-//                       [--threads T] [--set key=value ...] --out values.npy
+//                       [--threads T] [--set key=value ...] [--out values.npy]
 //                       [--report report.json]
+//                       [--lightmaps layout.bgl --exr-dir DIR [--padding N] [--float]
+//                        [--compression zip|piz|none]]
+// At least one of --out and --exr-dir.
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 #include "arguments.h"
 #include "bake_run.h"
 #include "commands.h"
 #include "exit_codes.h"
 #include "file_error.h"
+#include "lightmap_output.h"
 #include "npy_file.h"
 #include "scene_file.h"
 #include "usage_error.h"
@@ -19,28 +24,39 @@ int run_bake_command(const std::vector<std::string>& words) {
   std::vector<OptionSpec> specs = bake_setting_options();
   specs.push_back({"out"});
   specs.push_back({"report"});
+  for (const OptionSpec& spec : lightmap_output_options()) specs.push_back(spec);
   const Arguments args(words, specs);
   if (args.positional().size() != 1) throw UsageError("bake expects one scene file");
   const std::string scene_path = args.positional()[0];
-  const std::string out_path = args.require("out");
+  const std::optional<LightmapOutput> lightmap_output = lightmap_output_from(args);
+  const std::optional<std::string> out_path = args.value("out");
+  if (!out_path && !lightmap_output) {
+    throw UsageError("bake needs --out values.npy and/or --lightmaps layout.bgl --exr-dir DIR");
+  }
   const BakeSettings settings = bake_settings_from(args);
-  check_output_folder(out_path);
+  if (out_path) check_output_folder(*out_path);
   if (const auto report_path = args.value("report")) check_output_folder(*report_path);
 
   const SceneFile file = load_scene_file_with_points(scene_path);
   const uint64_t count = bakegi_points_count(file.points.get());
+  // Before the bake: a layout that does not match the points fails now, not after it.
+  LightmapsHandle lightmaps;
+  if (lightmap_output) {
+    lightmaps = prepare_lightmap_output(*lightmap_output, scene_path, file.points.get());
+  }
   const BakeRun run = run_bake(file.scene.get(), file.points.get(), settings, settings.method());
 
-  write_npy_float32(out_path, run.values.data(), {count, 3});
+  if (out_path) write_npy_float32(*out_path, run.values.data(), {count, 3});
   if (const auto report_path = args.value("report")) {
     std::ofstream report(*report_path, std::ios::trunc);
     report << run.report_json << "\n";
     if (!report) throw FileError(*report_path + ": cannot write the report");
   }
   std::printf("%s\n", run.report_json.c_str());
-  std::fprintf(stderr, "baked %llu points with %s in %.3f s -> %s\n",
+  std::fprintf(stderr, "baked %llu points with %s in %.3f s%s%s\n",
                static_cast<unsigned long long>(count), settings.method().c_str(), run.wall_seconds,
-               out_path.c_str());
+               out_path ? " -> " : "", out_path ? out_path->c_str() : "");
+  if (lightmap_output) write_lightmap_exrs(lightmaps.get(), *lightmap_output, run.values);
   return kExitOk;
 }
 

@@ -20,8 +20,15 @@ constexpr const char* kUsage = R"(usage: bakegi <command> [arguments]
 
 commands:
   bake scene.bgs --out values.npy [settings] [--report report.json]
+       [--lightmaps layout.bgl --exr-dir DIR [--padding N] [--float]
+        [--compression zip|piz|none]]
       Bakes the scene file's bake points; writes float32 (n, 3) .npy and prints the
       core's report (JSON) on stdout. Progress goes to stderr; Ctrl-C cancels.
+      With --lightmaps (the lightmap layout exported with the scene file, whose bake
+      points must be the layout's) and --exr-dir, also writes DIR/lightmap_<i>.exr for
+      every lightmap i (DIR is created if missing), padded by N texels (default 4), half
+      floats (--float: 32-bit), ZIP-compressed by default, and prints a line per file on
+      stderr; --out is then optional.
   sweep scene.bgs --samples 1,2,4,... --reference ref.npy --out sweep.json [settings]
         [--repeat R]
       Bakes at each sample count, records wall seconds, error against the reference,

@@ -323,10 +323,14 @@ BAKEGI_API bakegi_status bakegi_job_start_relight(const bakegi_job* previous,
  * values become padded OpenEXR files. All lightmaps of a bake share one set of bake points,
  * so that every object is baked in ONE job:
  *   1. bakegi_lightmaps_create; bakegi_lightmaps_add for each mesh (its lightmap UVs and
- *      resolution); optionally bakegi_lightmaps_reject_inside once all are added;
+ *      resolution), or bakegi_lightmaps_add_to for more meshes in one atlas; optionally
+ *      bakegi_lightmaps_reject_inside once all are added;
  *   2. bakegi_lightmaps_get_points -> bakegi_job_start -> bakegi_job_get_result (3 floats per
  *      point, all lightmaps' points concatenated in the order added);
  *   3. bakegi_lightmaps_write_exr for each lightmap, passing the whole result each time.
+ * To bake elsewhere (the CLI), write the points with bakegi_file_write and the lightmaps
+ * with bakegi_lightmaps_write_file after step 1, and bake the pair with
+ * `bakegi bake scene.bgs --lightmaps layout.bgl --exr-dir DIR`.
  * Texel (x, y) of a W x H lightmap covers UVs [x/W, (x+1)/W] x [y/H, (y+1)/H]; row 0 is at
  * v = 0 as in Blender (the files are written top-down, as EXR readers expect). Triangles are
  * rasterized conservatively: a texel that a triangle covers even partly gets a sample (on
@@ -347,6 +351,18 @@ BAKEGI_API bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps,
                                               const bakegi_scene* scene, uint32_t mesh,
                                               const float* lightmap_uvs, uint32_t width,
                                               uint32_t height, uint32_t* out_lightmap);
+
+/* Rasterizes mesh `mesh` of `scene` into the EXISTING lightmap `lightmap` (its width and
+ * height), appending samples: several objects share one atlas when the caller passes each
+ * one's UVs already placed in its own region of the atlas. The samples carry the mesh's
+ * object_id. Same UV rules as bakegi_lightmaps_add; the lightmap's samples (and the
+ * first_point of the lightmaps after it) change, so call before bakegi_lightmaps_get_points.
+ * Texels covered by several meshes (overlapping UVs) average their samples by coverage.
+ * Refused (INVALID_ARGUMENT) after bakegi_lightmaps_reject_inside has run, whose rejection
+ * the new samples would miss; then nothing is added. */
+BAKEGI_API bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, uint32_t lightmap,
+                                                 const bakegi_scene* scene, uint32_t mesh,
+                                                 const float* lightmap_uvs);
 
 /* Drops the samples of every lightmap that lie inside or under other geometry of `scene`
  * (the whole scene, lights included: it is validated and traced like a bake): from each
@@ -399,6 +415,23 @@ BAKEGI_API bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* ligh
                                                     uint64_t count, const char* path,
                                                     uint32_t padding, int full_float,
                                                     uint32_t compression);
+
+/* A .bgl lightmap layout file (path in UTF-8): every lightmap's size, samples (positions,
+ * normals, object ids, face normals, texel, weight), coverage and counters, and whether
+ * bakegi_lightmaps_reject_inside has run, so that the CLI can write the EXRs of a .bgs file
+ * whose bake points came from bakegi_lightmaps_get_points (bakegi.export_scene_file(
+ * target='LIGHTMAP') writes both). Little-endian, versioned, checksummed, and read with
+ * every count checked against the bytes left before anything is allocated (format in
+ * native/src/bake_points/lightmap_layout_file.h). A lightmaps object read back gives the
+ * same points, info and EXRs as the one written. Write: atomic (a temporary file beside
+ * path, then a rename); BAKEGI_ERROR_IO if it cannot be written. Read: BAKEGI_ERROR_IO if
+ * the file cannot be read, BAKEGI_ERROR_BAD_FILE naming what is wrong if it is not a layout
+ * file, is truncated or corrupt; *out_lightmaps is NULL on failure, else owned by the
+ * caller (bakegi_lightmaps_destroy). */
+BAKEGI_API bakegi_status bakegi_lightmaps_write_file(const bakegi_lightmaps* lightmaps,
+                                                     const char* path);
+BAKEGI_API bakegi_status bakegi_lightmaps_read_file(const char* path,
+                                                    bakegi_lightmaps** out_lightmaps);
 
 #ifdef __cplusplus
 }

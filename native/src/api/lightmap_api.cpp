@@ -9,6 +9,8 @@
 #include "api/api_guard.h"
 #include "api/handles.h"
 #include "bake_points/backface_rejection.h"
+#include "bake_points/lightmap_layout.h"
+#include "bake_points/lightmap_layout_file.h"
 #include "bake_points/texel_rasterizer.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
@@ -19,33 +21,37 @@ using bakegi::Error;
 using bakegi::guarded;
 using bakegi::require;
 
-struct bakegi_lightmaps {
-  struct Lightmap {
-    bakegi::TexelSamples samples;
-    uint64_t rejected = 0;
-  };
-  std::vector<Lightmap> lightmaps;
+using bakegi::kMaxLightmapSide;
+using Lightmap = bakegi::LightmapLayout::Lightmap;
 
-  uint64_t total_points() const {
-    uint64_t total = 0;
-    for (const Lightmap& l : lightmaps) total += l.samples.size();
-    return total;
-  }
+struct bakegi_lightmaps {
+  bakegi::LightmapLayout layout;
 };
 
 namespace {
 
-// 8192^2 texels take about 2 GB while written (image, mask, weights, EXR scanlines).
-constexpr uint32_t kMaxLightmapSide = 8192;
 constexpr uint32_t kMaxPadding = 1024;
 
-const bakegi_lightmaps::Lightmap& lightmap_at(const bakegi_lightmaps* lightmaps, uint32_t index) {
-  if (index >= lightmaps->lightmaps.size()) {
-    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                "lightmap " + std::to_string(index) + " does not exist (there are " +
-                    std::to_string(lightmaps->lightmaps.size()) + ")");
+Lightmap& lightmap_at(bakegi::LightmapLayout& layout, uint32_t index) {
+  if (index >= layout.lightmaps.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap " + std::to_string(index) +
+                                                   " does not exist (there are " +
+                                                   std::to_string(layout.lightmaps.size()) + ")");
   }
-  return lightmaps->lightmaps[index];
+  return layout.lightmaps[index];
+}
+const Lightmap& lightmap_at(const bakegi::LightmapLayout& layout, uint32_t index) {
+  return lightmap_at(const_cast<bakegi::LightmapLayout&>(layout), index);
+}
+
+const bakegi::Mesh& mesh_at(const bakegi_scene* scene, uint32_t mesh) {
+  const auto& meshes = scene->description.meshes;
+  if (mesh >= meshes.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "mesh " + std::to_string(mesh) +
+                                                   " does not exist (the scene has " +
+                                                   std::to_string(meshes.size()) + ")");
+  }
+  return meshes[mesh];
 }
 
 // The mesh's triangles with the caller's lightmap UVs, as the rasterizer takes them.
@@ -92,22 +98,38 @@ bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_sce
     require(lightmaps, "lightmaps");
     require(scene, "scene");
     require(lightmap_uvs, "lightmap_uvs");
-    const auto& meshes = scene->description.meshes;
-    if (mesh >= meshes.size()) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "mesh " + std::to_string(mesh) +
-                                                     " does not exist (the scene has " +
-                                                     std::to_string(meshes.size()) + ")");
-    }
+    const bakegi::Mesh& source = mesh_at(scene, mesh);
     if (width < 1 || height < 1 || width > kMaxLightmapSide || height > kMaxLightmapSide) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap size " + std::to_string(width) + " x " +
                                                      std::to_string(height) + " is not in 1.." +
                                                      std::to_string(kMaxLightmapSide));
     }
-    bakegi_lightmaps::Lightmap lightmap;
-    lightmap.samples = bakegi::rasterize_texels(lightmap_triangles(meshes[mesh], lightmap_uvs),
-                                                width, height, meshes[mesh].object_id);
-    lightmaps->lightmaps.push_back(std::move(lightmap));
-    if (out_lightmap) *out_lightmap = uint32_t(lightmaps->lightmaps.size() - 1);
+    Lightmap lightmap;
+    lightmap.samples = bakegi::rasterize_texels(lightmap_triangles(source, lightmap_uvs), width,
+                                                height, source.object_id);
+    lightmaps->layout.lightmaps.push_back(std::move(lightmap));
+    if (out_lightmap) *out_lightmap = uint32_t(lightmaps->layout.lightmaps.size() - 1);
+  });
+}
+
+bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, uint32_t lightmap,
+                                      const bakegi_scene* scene, uint32_t mesh,
+                                      const float* lightmap_uvs) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    require(scene, "scene");
+    require(lightmap_uvs, "lightmap_uvs");
+    if (lightmaps->layout.rejected_inside) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "bakegi_lightmaps_reject_inside has already run: samples added now would not "
+                  "be checked (add every mesh first, then reject)");
+    }
+    Lightmap& target = lightmap_at(lightmaps->layout, lightmap);
+    const bakegi::Mesh& source = mesh_at(scene, mesh);
+    bakegi::append_samples(
+        target.samples,
+        bakegi::rasterize_texels(lightmap_triangles(source, lightmap_uvs), target.samples.width,
+                                 target.samples.height, source.object_id));
   });
 }
 
@@ -124,11 +146,14 @@ bakegi_status bakegi_lightmaps_reject_inside(bakegi_lightmaps* lightmaps, const 
     const bakegi::Scene built = bakegi::build_scene(scene->description);
     const bakegi::RayTracer tracer(built);
     uint64_t rejected = 0;
-    for (bakegi_lightmaps::Lightmap& lightmap : lightmaps->lightmaps) {
+    for (Lightmap& lightmap : lightmaps->layout.lightmaps) {
       bakegi::TexelSamples& samples = lightmap.samples;
       const std::vector<uint8_t> flags = bakegi::flag_samples_inside_geometry(
           built, tracer, samples.points.positions, samples.face_normals, samples.points.normals,
           options);
+      // Samples are dropped from here on: refuse later additions even if this call then
+      // fails (a call refused for its options above has changed nothing).
+      lightmaps->layout.rejected_inside = true;
       std::vector<bool> keep(flags.size());
       uint64_t dropped = 0;
       for (size_t i = 0; i < flags.size(); ++i) {
@@ -136,15 +161,16 @@ bakegi_status bakegi_lightmaps_reject_inside(bakegi_lightmaps* lightmaps, const 
         dropped += flags[i];
       }
       bakegi::keep_samples(samples, keep);
-      lightmap.rejected += dropped;
+      lightmap.rejected_samples += dropped;
       rejected += dropped;
     }
+    lightmaps->layout.rejected_inside = true;
     if (out_rejected) *out_rejected = rejected;
   });
 }
 
 uint32_t bakegi_lightmaps_count(const bakegi_lightmaps* lightmaps) {
-  return lightmaps ? uint32_t(lightmaps->lightmaps.size()) : 0;
+  return lightmaps ? uint32_t(lightmaps->layout.lightmaps.size()) : 0;
 }
 
 bakegi_status bakegi_lightmaps_get_info(const bakegi_lightmaps* lightmaps, uint32_t lightmap,
@@ -152,15 +178,14 @@ bakegi_status bakegi_lightmaps_get_info(const bakegi_lightmaps* lightmaps, uint3
   return guarded(__func__, [&] {
     require(lightmaps, "lightmaps");
     require(out_info, "out_info");
-    const bakegi_lightmaps::Lightmap& l = lightmap_at(lightmaps, lightmap);
+    const Lightmap& l = lightmap_at(lightmaps->layout, lightmap);
     bakegi_lightmap_info info{};
     info.width = l.samples.width;
     info.height = l.samples.height;
-    for (uint32_t i = 0; i < lightmap; ++i)
-      info.first_point += lightmaps->lightmaps[i].samples.size();
+    info.first_point = lightmaps->layout.first_point(lightmap);
     info.point_count = l.samples.size();
     info.covered_texels = l.samples.covered_texels();
-    info.rejected_samples = l.rejected;
+    info.rejected_samples = l.rejected_samples;
     info.skipped_triangles =
         l.samples.skipped_degenerate_uv + l.samples.skipped_degenerate_geometry;
     *out_info = info;
@@ -173,7 +198,7 @@ bakegi_status bakegi_lightmaps_get_points(const bakegi_lightmaps* lightmaps,
     require(out_points, "out_points");
     *out_points = nullptr;
     require(lightmaps, "lightmaps");
-    const uint64_t total = lightmaps->total_points();
+    const uint64_t total = lightmaps->layout.total_points();
     if (total == 0) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                   "the lightmaps have no texel samples (no lightmap added, or no triangle "
@@ -184,7 +209,7 @@ bakegi_status bakegi_lightmaps_get_points(const bakegi_lightmaps* lightmaps,
     points.positions.reserve(total);
     points.normals.reserve(total);
     points.object_ids.reserve(total);
-    for (const bakegi_lightmaps::Lightmap& l : lightmaps->lightmaps) {
+    for (const Lightmap& l : lightmaps->layout.lightmaps) {
       const bakegi::BakePoints& p = l.samples.points;
       points.positions.insert(points.positions.end(), p.positions.begin(), p.positions.end());
       points.normals.insert(points.normals.end(), p.normals.begin(), p.normals.end());
@@ -202,8 +227,8 @@ bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint
     require(rgb, "rgb");
     require(path, "path");
     if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
-    const bakegi_lightmaps::Lightmap& l = lightmap_at(lightmaps, lightmap);
-    const uint64_t total = lightmaps->total_points();
+    const Lightmap& l = lightmap_at(lightmaps->layout, lightmap);
+    const uint64_t total = lightmaps->layout.total_points();
     if (count != total) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                   "count " + std::to_string(count) + " differs from the lightmaps' " +
@@ -232,8 +257,7 @@ bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint
         throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "compression " + std::to_string(compression) +
                                                        " is not a bakegi_exr_compression");
     }
-    uint64_t first = 0;
-    for (uint32_t i = 0; i < lightmap; ++i) first += lightmaps->lightmaps[i].samples.size();
+    const uint64_t first = lightmaps->layout.first_point(lightmap);
     std::vector<glm::vec3> values(l.samples.size());
     for (size_t i = 0; i < values.size(); ++i) {
       const float* v = rgb + 3 * (first + i);
@@ -247,6 +271,27 @@ bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint
     bakegi::RgbImage image = bakegi::resolve_texels(l.samples, values.data(), filled);
     bakegi::dilate_texels(image, filled, padding);
     bakegi::write_exr(path, image, options);
+  });
+}
+
+bakegi_status bakegi_lightmaps_write_file(const bakegi_lightmaps* lightmaps, const char* path) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    require(path, "path");
+    if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
+    bakegi::write_lightmap_layout_file(path, lightmaps->layout);
+  });
+}
+
+bakegi_status bakegi_lightmaps_read_file(const char* path, bakegi_lightmaps** out_lightmaps) {
+  return guarded(__func__, [&] {
+    require(out_lightmaps, "out_lightmaps");
+    *out_lightmaps = nullptr;
+    require(path, "path");
+    if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
+    auto handle = std::make_unique<bakegi_lightmaps>();
+    handle->layout = bakegi::read_lightmap_layout_file(path);
+    *out_lightmaps = handle.release();
   });
 }
 

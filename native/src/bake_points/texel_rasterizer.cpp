@@ -204,4 +204,36 @@ void keep_samples(TexelSamples& samples, const std::vector<bool>& keep) {
   samples.weight.resize(kept);
 }
 
+void append_samples(TexelSamples& into, TexelSamples&& more) {
+  if (into.width != more.width || into.height != more.height) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "cannot merge lightmap samples of " + std::to_string(more.width) + " x " +
+                    std::to_string(more.height) + " texels into a " + std::to_string(into.width) +
+                    " x " + std::to_string(into.height) + " lightmap");
+  }
+  if (into.covered.size() != more.covered.size()) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "append_samples: coverage masks differ in size");
+  }
+  // Reserve everything first: if an allocation fails, `into` is left as it was.
+  const auto reserve = [](auto& to, const auto& from) { to.reserve(to.size() + from.size()); };
+  reserve(into.points.positions, more.points.positions);
+  reserve(into.points.normals, more.points.normals);
+  reserve(into.points.object_ids, more.points.object_ids);
+  reserve(into.face_normals, more.face_normals);
+  reserve(into.texel, more.texel);
+  reserve(into.weight, more.weight);
+  const auto append = [](auto& to, const auto& from) {
+    to.insert(to.end(), from.begin(), from.end());
+  };
+  append(into.points.positions, more.points.positions);
+  append(into.points.normals, more.points.normals);
+  append(into.points.object_ids, more.points.object_ids);
+  append(into.face_normals, more.face_normals);
+  append(into.texel, more.texel);
+  append(into.weight, more.weight);
+  for (size_t t = 0; t < into.covered.size(); ++t) into.covered[t] |= more.covered[t];
+  into.skipped_degenerate_uv += more.skipped_degenerate_uv;
+  into.skipped_degenerate_geometry += more.skipped_degenerate_geometry;
+}
+
 }  // namespace bakegi

@@ -25,6 +25,10 @@
 
 namespace bakegi {
 
+// The largest lightmap side: 8192^2 texels take about 2 GB while written (image, mask,
+// weights, EXR scanlines).
+inline constexpr uint32_t kMaxLightmapSide = 8192;
+
 struct LightmapTriangle {
   glm::vec3 p[3];   // world positions
   glm::vec3 n[3];   // shading normals; zero (or not finite) = use the face normal
@@ -53,5 +57,12 @@ TexelSamples rasterize_texels(const std::vector<LightmapTriangle>& triangles, ui
 // Keeps only the samples where keep[i] is true, and recomputes the coverage mask (a texel
 // whose samples were all dropped becomes uncovered, to be filled from its neighbours).
 void keep_samples(TexelSamples& samples, const std::vector<bool>& keep);
+
+// Appends `more` (rasterized at the same size, e.g. another object whose UVs lie in its own
+// region of a shared atlas) to `into`: samples concatenated in that order, coverage masks
+// OR-ed, skipped-triangle counters summed. Throws Error(INVALID_ARGUMENT) if the sizes
+// differ. Where both cover a texel (overlapping UVs), its samples are averaged by coverage
+// like those of two triangles of one mesh.
+void append_samples(TexelSamples& into, TexelSamples&& more);
 
 }  // namespace bakegi
