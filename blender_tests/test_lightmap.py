@@ -222,6 +222,20 @@ class LightmapFiles(LightmapCase):
         sides = [self.tile_side(report, name) for name in walls]
         self.assertAlmostEqual(sides[0] / sides[1], 2.0, delta=0.05)
 
+    def test_objects_sharing_a_mesh_get_a_tile_each(self):
+        """A linked duplicate shares the mesh (and its lightmap UV map) but not the light
+        it receives: each object is baked into its own tile."""
+        box = self.objects["ShortBox"]
+        twin = box.copy()  # shares box.data
+        twin.location.x += 0.05
+        bpy.context.scene.collection.objects.link(twin)
+        bpy.context.view_layer.update()
+        report = self.bake_lightmap(objects=[box, twin])
+        self.assertEqual(sorted(report["objects"]), sorted([box.name, twin.name]))
+        self.assertNotEqual(tuple(box["bakegi_lightmap_offset"]),
+                            tuple(twin["bakegi_lightmap_offset"]))
+        self.assertEqual(len([l for l in box.data.uv_layers if l.name == "BakeGI"]), 1)
+
     @staticmethod
     def tile_side(report, name):
         return bpy.data.objects[name]["bakegi_lightmap_scale"][0] * report["lightmap"]["width"]

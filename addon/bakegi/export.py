@@ -115,8 +115,10 @@ def _invalid(message):
 # ---- which objects ----------------------------------------------------------------------
 
 
-def resolve_targets(context, objects):
-    """objects: 'SELECTED', 'VISIBLE' or a list of objects or names.
+def resolve_targets(context, objects, shared_meshes=False):
+    """objects: 'SELECTED', 'VISIBLE' or a list of objects or names. shared_meshes: objects
+    that share a mesh are all baked (lightmaps: each object has its own tile); otherwise
+    only the first of them (a color attribute lives on the mesh).
     Returns (mesh objects to bake, [reasons for skipped objects])."""
     view_layer = context.view_layer
     if objects == "SELECTED":
@@ -153,7 +155,7 @@ def resolve_targets(context, objects):
         if len(mesh.polygons) == 0:
             skipped.append(f"'{obj.name}' skipped: its mesh has no faces")
             continue
-        if mesh.name_full in meshes:
+        if mesh.name_full in meshes and not shared_meshes:
             skipped.append(f"'{obj.name}' skipped: shares mesh '{mesh.name}' with "
                            f"'{meshes[mesh.name_full]}', which is baked")
             continue
@@ -561,7 +563,7 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
     if target not in TARGET_DOMAINS:
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                           f"target must be one of {TARGET_DOMAINS}, not {target!r}")
-    targets, skipped = resolve_targets(context, objects)
+    targets, skipped = resolve_targets(context, objects, shared_meshes=target == "LIGHTMAP")
     if not targets:
         why = "; ".join(skipped) if skipped else "no mesh object is " + (
             "selected" if objects == "SELECTED" else "visible" if objects == "VISIBLE" else
@@ -573,7 +575,7 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
         _check_lightmap_options(lightmap)
         created_uv_maps = lightmap_uvs.ensure(context, targets, lightmap.uv_map,
                                               lightmap.uv_method, lightmap.texels_per_meter,
-                                              lightmap.max_side, lightmap.padding)
+                                              lightmap.max_side)
         depsgraph = None  # the new UV maps must be evaluated
     try:
         return _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps,

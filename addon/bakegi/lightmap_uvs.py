@@ -11,8 +11,8 @@ UV map (what textures use) never changes unless the mesh had no UV map at all.
     LIGHTMAP_PACK: Lightmap Pack (bl_operators.uvcalc_lightmap): every face its own box,
            run on the mesh data directly, no mode switch; many seams, no wasted stretching.
 
-The margin between charts is given in texels of the object's expected tile, so that the
-padding the writer dilates (padding texels on each side) fits between charts.
+The margin between charts is two texels of the object's expected tile: enough for
+bilinear filtering at a chart's edge to read the chart's own dilated gutter.
 """
 
 import math
@@ -31,6 +31,7 @@ def find(mesh, name):
 
 def _expected_side(obj, texels_per_meter, max_side):
     """A rough tile side before the UVs exist (charts usually cover ~60% of [0,1]^2)."""
+    texels_per_meter = getattr(obj, "bakegi_texels_per_meter", 0.0) or texels_per_meter
     area = sum(p.area for p in obj.data.polygons)
     scale = obj.matrix_world.to_scale()
     area *= abs(scale.x * scale.y * scale.z) ** (2.0 / 3.0)
@@ -121,7 +122,7 @@ class _nullcontext:
         return False
 
 
-def ensure(context, objects, name, method, texels_per_meter, max_side, padding):
+def ensure(context, objects, name, method, texels_per_meter, max_side):
     """Makes sure every object's mesh has the UV map `name`; creates it where missing.
     Returns [(object name, mesh name_full)] of the maps created (to remove them again if
     the bake does not finish)."""
@@ -136,9 +137,12 @@ def ensure(context, objects, name, method, texels_per_meter, max_side, padding):
             mesh = obj.data
             if find(mesh, name) is not None:
                 continue
-            # Two charts' dilated gutters (padding texels each) must fit between them.
-            margin = (2.0 * padding + 1.0) / _expected_side(obj, texels_per_meter, max_side)
-            margin = min(max(margin, 0.002), 0.2)
+            # Two texels between charts: bilinear filtering at a chart's edge then reads
+            # its own (dilated) gutter. A wider margin (room for the whole padding on both
+            # sides) left Sponza's many-island meshes (thousands of charts each) covering
+            # about 10% of their map, the rest margin.
+            margin = 2.0 / _expected_side(obj, texels_per_meter, max_side)
+            margin = min(max(margin, 0.001), 0.2)
             layer, previous_active = _new_layer(obj, name)
             created.append((obj.name, mesh.name_full))
             try:
