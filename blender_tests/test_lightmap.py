@@ -80,6 +80,8 @@ class Lightmap(LightmapCase):
         image = bpy.data.images[lm["image"]]
         self.assertEqual(tuple(image.size), (lm["width"], lm["height"]))
         self.assertGreater(lm["covered_texels"], 0)
+        self.assertGreaterEqual(report["bake_points"], lm["covered_texels"])  # 1+ per texel
+        self.assertIn("lightmap_rasterize", report["seconds"])
         self.assertEqual(sorted(lm["uv_maps_created"]), sorted(NAMES))
         # The user's UV map is untouched and still the one textures render with.
         after = numpy.empty_like(user_uv)

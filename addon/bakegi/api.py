@@ -27,7 +27,7 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
          threads=0, hook_materials=True, context=None, method_settings=None, live=False,
          texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
          lightmap_uv_method="SMART", lightmap_padding=4, lightmap_folder="//bakegi_lightmaps",
-         lightmap_full_float=False):
+         lightmap_full_float=False, lightmap_reject_inside=True):
     """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes
     (target 'CORNER' or 'POINT'), or into a lightmap atlas (target 'LIGHTMAP').
 
@@ -36,7 +36,8 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     metre (at most lightmap_max_size) in one atlas, written as
     <lightmap_folder>/BakeGI_Lightmap_<scene>.exr (// = next to the .blend) and loaded as
     the image BakeGI_Lightmap_<scene>; report["lightmap"] holds its size, texel counts and
-    path.
+    path. lightmap_reject_inside: drop texels that lie inside other geometry (off for
+    single-sided foliage, which it rejects too).
 
     objects: 'SELECTED', 'VISIBLE', or a list of objects (or their names). Every visible
     object takes part in the light transport; only the targets receive the attribute.
@@ -54,7 +55,8 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     context = _context(context)
     lightmap = export.LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
                                       max_side=lightmap_max_size, padding=lightmap_padding,
-                                      uv_method=lightmap_uv_method)
+                                      uv_method=lightmap_uv_method,
+                                      reject_inside=bool(lightmap_reject_inside))
     folder = properties.lightmap_directory(lightmap_folder) if target == "LIGHTMAP" else ""
     report = session.BakeSession(context, method=method, samples=samples, seed=seed,
                                  target=target, objects=objects, threads=threads,

@@ -74,6 +74,28 @@ class ExportedLightmaps:
     covered_texels: int = 0
     density_scale: float = 1.0
     seconds: Dict[str, float] = field(default_factory=dict)
+    # Before build(): the core scene and, per target, (core mesh id, atlas UVs (3T, 2)).
+    scene: native.Scene = None
+    pending: list = field(default_factory=list)
+
+    def build(self):
+        """Rasterizes every target's texels into the atlas and drops those inside geometry
+        (core work, seconds on large scenes; no bpy, so it may run on a worker thread).
+        Returns the bake points (a new native.Points)."""
+        t0 = time.perf_counter()
+        for i, (mesh_id, uvs) in enumerate(self.pending):
+            if i == 0:
+                self.lightmaps.add(self.scene, mesh_id, uvs, self.width, self.height)
+            else:
+                self.lightmaps.add_to(0, self.scene, mesh_id, uvs)
+        self.pending = []
+        self.seconds["rasterize"] = time.perf_counter() - t0
+        if self.options.reject_inside:
+            t1 = time.perf_counter()
+            self.rejected_samples = self.lightmaps.reject_inside(self.scene)
+            self.seconds["reject_inside"] = time.perf_counter() - t1
+        self.covered_texels = self.lightmaps.info(0)["covered_texels"]
+        return self.lightmaps.points()
 
     def close(self):
         self.lightmaps.close()
@@ -95,7 +117,8 @@ class ExportedScene:
 
     def close(self):
         self.scene.close()
-        self.points.close()
+        if self.points is not None:
+            self.points.close()
         if self.lightmaps is not None:
             self.lightmaps.close()
 
@@ -550,13 +573,16 @@ def target_points(obj, depsgraph, domain, warnings):
 # ---- the whole export ---------------------------------------------------------------------
 
 
-def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, lightmap=None):
+def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, lightmap=None,
+                 defer_texels=False):
     """Exports the evaluated scene and the bake points of the target objects.
 
     target 'LIGHTMAP': the bake points are the texels of the targets' lightmap UV maps
     (lightmap: LightmapOptions); a missing UV map is created first (the only change to the
     Blender data; ExportedLightmaps.created_uv_maps lists them, and export removes them
     again if it fails).
+    defer_texels (LIGHTMAP): leave `points` None and the texels to
+    ExportedLightmaps.build(), for a worker thread.
     Raises BakeGIError (with the object and element named) for invalid input; the Blender
     data is left as it was."""
     start = time.perf_counter()
@@ -579,7 +605,7 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
         depsgraph = None  # the new UV maps must be evaluated
     try:
         return _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps,
-                       start)
+                       start, defer_texels)
     except BaseException:
         lightmap_uvs.remove(context.blend_data, created_uv_maps,
                             lightmap.uv_map if lightmap else "")
@@ -602,7 +628,8 @@ def _check_lightmap_options(options):
                           f"padding must be 0..64 texels, not {options.padding!r}")
 
 
-def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps, start):
+def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps, start,
+            defer_texels=False):
     if depsgraph is None:
         depsgraph = context.evaluated_depsgraph_get()
     warnings = []
@@ -624,8 +651,8 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             exported_lightmaps, bake_targets = _lightmap_points(exporter, targets, lightmap,
                                                                warnings)
             exported_lightmaps.created_uv_maps = created_uv_maps
-            points = exported_lightmaps.lightmaps.points()
-            offset = len(points)
+            points = None if defer_texels else exported_lightmaps.build()
+            offset = len(points) if points is not None else 0
             return _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
                              exported_lightmaps)
 
@@ -667,9 +694,8 @@ def _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
 
 
 def _lightmap_points(exporter, targets, options, warnings):
-    """Lays the targets' lightmaps out in one atlas and rasterizes their texels (core).
-    Returns (ExportedLightmaps, [BakeTarget])."""
-    t0 = time.perf_counter()
+    """Lays the targets' lightmaps out in one atlas (their texels are rasterized by
+    ExportedLightmaps.build()). Returns (ExportedLightmaps, [BakeTarget])."""
     sources = []
     for obj in targets:
         source = exporter.lightmap_sources.get(obj.name)
@@ -698,25 +724,9 @@ def _lightmap_points(exporter, targets, options, warnings):
                         f"atlas; every object got {atlas.density_scale:.0%} of the asked "
                         "density")
     result = ExportedLightmaps(native.Lightmaps(), atlas.width, atlas.height, options,
-                               density_scale=atlas.density_scale)
-    try:
-        lightmaps = result.lightmaps
-        for i, source in enumerate(sources):
-            uvs = atlas.to_atlas(i, source.uvs)
-            if i == 0:
-                lightmaps.add(exporter.scene, source.mesh_id, uvs, atlas.width, atlas.height)
-            else:
-                lightmaps.add_to(0, exporter.scene, source.mesh_id, uvs)
-        result.seconds["rasterize"] = time.perf_counter() - t0
-        if options.reject_inside:
-            t1 = time.perf_counter()
-            result.rejected_samples = lightmaps.reject_inside(exporter.scene)
-            result.seconds["reject_inside"] = time.perf_counter() - t1
-        info = lightmaps.info(0)
-        result.covered_texels = info["covered_texels"]
-    except BaseException:
-        result.close()
-        raise
+                               density_scale=atlas.density_scale, scene=exporter.scene,
+                               pending=[(s.mesh_id, atlas.to_atlas(i, s.uvs))
+                                        for i, s in enumerate(sources)])
     bake_targets = [BakeTarget(obj.name, obj.data.name_full, "LIGHTMAP", 0, 0,
                                atlas.scale_offset(i), atlas.tiles[i].side)
                     for i, obj in enumerate(targets)]

@@ -50,6 +50,7 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             sub.prop(settings, "lightmap_uv_map")
             sub.prop(settings, "lightmap_uv_method")
             sub.prop(settings, "lightmap_padding")
+            sub.prop(settings, "lightmap_reject_inside")
             sub.prop(settings, "lightmap_folder")
             sub.prop(settings, "lightmap_float")
         col.prop(settings, "objects")

@@ -111,6 +111,11 @@ class BakeGISettings(bpy.types.PropertyGroup):
         name="Padding", default=4, min=0, max=64,
         description="Lightmaps: texels the charts are dilated into the gutters, so filtering "
         "and mipmaps never read black at a seam")
+    lightmap_reject_inside: BoolProperty(
+        name="Reject Texels Inside Geometry", default=True,
+        description="Lightmaps: texels whose rays mostly hit back faces lie inside or under "
+        "other geometry and are filled from their neighbours instead of baked; turn off for "
+        "foliage of single-sided leaves, which it also rejects")
     lightmap_folder: StringProperty(
         name="Folder", default="//bakegi_lightmaps", subtype="DIR_PATH",
         description="Lightmaps: where the EXR file is written (// = next to the .blend; an "
@@ -162,7 +167,8 @@ class BakeGISettings(bpy.types.PropertyGroup):
         from .export import LightmapOptions
         return LightmapOptions(uv_map=self.lightmap_uv_map, texels_per_meter=self.texels_per_meter,
                                max_side=self.lightmap_max_size, padding=self.lightmap_padding,
-                               uv_method=self.lightmap_uv_method)
+                               uv_method=self.lightmap_uv_method,
+                               reject_inside=self.lightmap_reject_inside)
 
     def lightmap_directory(self):
         """The lightmap folder as an absolute path."""

@@ -92,6 +92,10 @@ class BakeSession:
                               "a lightmap bake needs a folder to write its EXR file to")
         self.exported = None
         self.job = None
+        # Lightmaps: the worker thread that rasterizes the texels, then starts the job.
+        self._starter = None
+        self._starter_error = None
+        self._cancelled = False
         self.seconds = {}
         self._started_at = None
         self._created_at = time.perf_counter()
@@ -105,29 +109,64 @@ class BakeSession:
         """Exports the scene. The context is used only here (and by finish() when no data
         is given): a modal operator's context does not outlive the call that passed it."""
         self.exported = export.export_scene(self.context, self.target, self.objects,
-                                            lightmap=self.lightmap)
+                                            lightmap=self.lightmap, defer_texels=True)
         self.seconds["export"] = self.exported.seconds
-        if self.exported.lightmaps is not None:
-            for stage, seconds in self.exported.lightmaps.seconds.items():
-                self.seconds[f"lightmap_{stage}"] = seconds
 
     def start(self):
+        """Starts the bake and returns; the core works on its own threads. A lightmap bake
+        first rasterizes its texels (seconds on a large scene) on a worker thread, so that
+        the UI keeps its progress and Esc from the start."""
         if self.exported is None:
             self.prepare()
         self._started_at = time.perf_counter()
+        if self.exported.points is None:
+            self._starter = threading.Thread(target=self._build_texels_and_start,
+                                             name="bakegi-lightmap-texels", daemon=True)
+            self._starter.start()
+            return
+        try:
+            self._start_job()
+        except BakeGIError as error:
+            self._remove_created_uv_maps()
+            self._release_export()
+            raise self._named(error) from None
+        except BaseException:
+            self._remove_created_uv_maps()
+            self._release_export()
+            raise
+
+    def _start_job(self):
         with native.Settings(**self.settings) as settings:
-            try:
-                self.job = native.Job(self.exported.scene, self.exported.points, settings)
-            except BakeGIError as error:
-                self._remove_created_uv_maps()
-                self._release_export()
-                raise self._named(error) from None
-            except BaseException:
-                self._remove_created_uv_maps()
-                self._release_export()
-                raise
+            self.job = native.Job(self.exported.scene, self.exported.points, settings)
+
+    def _build_texels_and_start(self):
+        """Worker thread: no bpy here, only the core (ctypes releases the GIL)."""
+        try:
+            points = self.exported.lightmaps.build()
+            self.exported.points = points
+            lightmaps = self.exported.lightmaps
+            self.exported.counts.update(bake_points=len(points),
+                                        lightmap_covered_texels=lightmaps.covered_texels,
+                                        lightmap_rejected_samples=lightmaps.rejected_samples)
+            if not self._cancelled:
+                self._start_job()
+        except BaseException as error:  # handed to finish() on the main thread
+            self._starter_error = error
+
+    def _join_starter(self):
+        """Waits for the lightmap worker; raises what it raised."""
+        if self._starter is not None:
+            self._starter.join()
+            self._starter = None
+        if self._starter_error is not None:
+            error, self._starter_error = self._starter_error, None
+            raise error
 
     def poll(self):
+        if self._starter is not None and self._starter.is_alive():
+            return Progress(0.0, "rasterizing lightmap texels", -1.0, False)
+        if self.job is None:  # the worker failed: finish() raises its error
+            return Progress(1.0, "", -1.0, True)
         job = self.job
         fraction = min(max(job.progress, 0.0), 1.0)
         elapsed = time.perf_counter() - self._started_at
@@ -138,6 +177,24 @@ class BakeSession:
         """Stops the bake; nothing in Blender is changed. wait=False returns at once and
         lets a helper thread wait for the core's threads to wind down (the UI stays
         responsive)."""
+        self._cancelled = True
+        self._remove_created_uv_maps()  # bpy: here, on the main thread
+        starter, self._starter = self._starter, None
+        if starter is not None and starter.is_alive():
+            # The lightmap worker may still start a job: wind both down behind it.
+            def wind_down():
+                starter.join()
+                self._stop_job(True)
+                self._release_export()
+            if wait:
+                wind_down()
+            else:
+                threading.Thread(target=wind_down, name="bakegi-cancel", daemon=True).start()
+            return
+        self._stop_job(wait)
+        self._release_export()
+
+    def _stop_job(self, wait):
         job, self.job = self.job, None
         if job is not None:
             job.cancel()
@@ -145,8 +202,6 @@ class BakeSession:
                 job.close()
             else:
                 threading.Thread(target=job.close, name="bakegi-cancel", daemon=True).start()
-        self._remove_created_uv_maps()
-        self._release_export()
 
     def finish(self, data=None):
         """Waits for the job, writes the result into `data` (bpy.data; default: the
@@ -157,6 +212,7 @@ class BakeSession:
         lightmap_report = {}
         try:
             try:
+                self._join_starter()
                 self.job.wait()
             except BakeGIError as error:
                 raise self._named(error) from None
@@ -254,6 +310,10 @@ class BakeSession:
 
     def _report(self, core, targets, hooked):
         report = dict(core)
+        lightmaps = self.exported.lightmaps if self.exported is not None else None
+        if lightmaps is not None:
+            for stage, seconds in lightmaps.seconds.items():
+                self.seconds[f"lightmap_{stage}"] = seconds
         core_seconds = report.get("seconds")
         core_seconds = core_seconds if isinstance(core_seconds, dict) else {}
         # The add-on's stages (export, bake, writeback, total: the whole call) beside the

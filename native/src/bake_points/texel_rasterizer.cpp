@@ -214,8 +214,13 @@ void append_samples(TexelSamples& into, TexelSamples&& more) {
   if (into.covered.size() != more.covered.size()) {
     throw Error(BAKEGI_ERROR_INTERNAL, "append_samples: coverage masks differ in size");
   }
-  // Reserve everything first: if an allocation fails, `into` is left as it was.
-  const auto reserve = [](auto& to, const auto& from) { to.reserve(to.size() + from.size()); };
+  // Reserve everything first: if an allocation fails, `into` is left as it was. Capacity
+  // grows geometrically: an atlas collects one object after another (Sponza: 170), and an
+  // exact reserve would copy the whole atlas at every object.
+  const auto reserve = [](auto& to, const auto& from) {
+    const size_t needed = to.size() + from.size();
+    if (needed > to.capacity()) to.reserve(std::max(needed, to.capacity() + to.capacity() / 2));
+  };
   reserve(into.points.positions, more.points.positions);
   reserve(into.points.normals, more.points.normals);
   reserve(into.points.object_ids, more.points.object_ids);
