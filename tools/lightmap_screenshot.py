@@ -30,10 +30,13 @@ def arguments():
     parser.add_argument("--texels-per-meter", type=float, default=40.0)
     parser.add_argument("--max-size", type=int, default=1024)
     parser.add_argument("--method", default="antiradiance")
+    parser.add_argument("--samples", type=int, default=64, help="pathtrace: paths per texel sample")
     parser.add_argument("--uv-method", default="SMART")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="a core setting of the method, e.g. bins=108")
     parser.add_argument("--exposure", type=float, default=None, help="view exposure (stops)")
+    parser.add_argument("--target", default="LIGHTMAP", choices=("LIGHTMAP", "CORNER"),
+                        help="CORNER: the color attribute instead, for comparison")
     parser.add_argument("--png", required=True, help="the viewport screenshot")
     parser.add_argument("--atlas-png", default=None, help="the atlas, tone-mapped, as PNG")
     parser.add_argument("--json", required=True)
@@ -100,12 +103,14 @@ class Screenshot:
             scene.view_settings.exposure = args.exposure
         yield 0.5
         start = time.perf_counter()
-        report = bakegi.bake(method=args.method, target="LIGHTMAP", objects="VISIBLE",
+        report = bakegi.bake(method=args.method, samples=args.samples, target=args.target,
+                             objects="VISIBLE",
                              texels_per_meter=args.texels_per_meter,
                              lightmap_max_size=args.max_size, lightmap_uv_method=args.uv_method,
                              method_settings=method_settings(args.set))
         wall = time.perf_counter() - start
-        lm = report["lightmap"]
+        lm = report.get("lightmap") or {"width": 0, "height": 0, "covered_texels": 0,
+                                        "rejected_samples": 0, "image": "", "uv_maps_created": []}
         print(f"lightmap: {lm['width']} x {lm['height']} atlas, {lm['covered_texels']:,} texels "
               f"baked, {report['bake_points']:,} samples, {lm['rejected_samples']:,} rejected; "
               f"bake call {wall:.1f} s")
@@ -128,7 +133,7 @@ class Screenshot:
         yield from self.wait_for_shaders()
         os.makedirs(os.path.dirname(os.path.abspath(args.png)), exist_ok=True)
         self.screenshot(os.path.abspath(args.png))
-        if args.atlas_png:
+        if args.atlas_png and lm["image"]:
             save_atlas_png(bpy.data.images[lm["image"]], os.path.abspath(args.atlas_png))
 
         record = {
