@@ -79,6 +79,20 @@ class UiTest:
         self.cases.append({"name": name, "status": status, "seconds": round(time.perf_counter() - started, 2),
                            "message": "; ".join(failures)})
 
+    def bake_from_window(self, failures):
+        """Bake Indirect as a click starts it (the timer-driven modal); yields until it ends."""
+        from bakegi import operators
+
+        with self.override():
+            result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
+        if result != {"RUNNING_MODAL"}:
+            failures.append(f"operator returned {result}")
+        bake_started = time.perf_counter()
+        while operators.runtime["running"] and time.perf_counter() - bake_started < BAKE_WAIT_SECONDS:
+            yield 0.2
+        if operators.runtime["running"]:
+            failures.append(f"the operator still runs after {BAKE_WAIT_SECONDS} s")
+
     def override(self):
         return bpy.context.temp_override(window=self.window, area=self.area, region=self.region)
 
@@ -261,8 +275,6 @@ class UiTest:
         raising the ceiling by about what the bake predicts, as for the color attribute."""
         started = time.perf_counter()
         failures = []
-        from bakegi import operators
-
         with self.override():
             bpy.ops.bakegi.remove_bake()  # the attribute bake and its hook go first
         settings = scene.bakegi
@@ -275,13 +287,7 @@ class UiTest:
         settings.method = "antiradiance"
         settings.target = "LIGHTMAP"
         settings.texels_per_meter = 24.0
-        with self.override():
-            result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
-        if result != {"RUNNING_MODAL"}:
-            failures.append(f"operator returned {result}")
-        bake_started = time.perf_counter()
-        while operators.runtime["running"] and time.perf_counter() - bake_started < BAKE_WAIT_SECONDS:
-            yield 0.2
+        yield from self.bake_from_window(failures)
         ceiling = bpy.data.objects["Ceiling"]
         if ceiling.get("bakegi_lightmap_weight") is None:
             failures.append("the ceiling has no lightmap tile after the bake")
@@ -305,20 +311,13 @@ class UiTest:
         started = time.perf_counter()
         failures = []
         live = sys.modules["bakegi.live"]
-        from bakegi import operators
 
         settings = scene.bakegi
         settings.method = "meshless"
         settings.meshless_levels = 3  # a quicker precompute: this checks the plumbing
         settings.use_cache = False
         settings.live_indirect = True
-        with self.override():
-            result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
-        if result != {"RUNNING_MODAL"}:
-            failures.append(f"operator returned {result}")
-        bake_started = time.perf_counter()
-        while operators.runtime["running"] and time.perf_counter() - bake_started < BAKE_WAIT_SECONDS:
-            yield 0.2
+        yield from self.bake_from_window(failures)
         state = live.state()
         if state is None:
             failures.append("no live state after the meshless bake with Live Indirect on")

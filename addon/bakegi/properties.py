@@ -158,10 +158,7 @@ class BakeGISettings(bpy.types.PropertyGroup):
 
     def cache_directory(self):
         """The cache folder as an absolute path."""
-        folder = self.cache_folder or "//bakegi_cache"
-        if folder.startswith("//") and not bpy.data.filepath:
-            return os.path.join(tempfile.gettempdir(), "bakegi_cache")
-        return os.path.abspath(bpy.path.abspath(folder))
+        return blend_relative_directory(self.cache_folder, "bakegi_cache")
 
     def lightmap_options(self):
         from .export import LightmapOptions
@@ -179,13 +176,18 @@ class BakeGISettings(bpy.types.PropertyGroup):
                 self.target != "LIGHTMAP")
 
 
-def lightmap_directory(folder):
-    """A lightmap folder (// = next to the .blend) as an absolute path; an unsaved file
-    writes into the system's temporary folder."""
-    folder = folder or "//bakegi_lightmaps"
+def blend_relative_directory(folder, name):
+    """A folder setting as an absolute path: // is next to the .blend (empty: //<name>);
+    an unsaved file has no folder, so its // folders go to the system's temporary folder."""
+    folder = folder or "//" + name
     if folder.startswith("//") and not bpy.data.filepath:
-        return os.path.join(tempfile.gettempdir(), "bakegi_lightmaps")
+        return os.path.join(tempfile.gettempdir(), name)
     return os.path.abspath(bpy.path.abspath(folder))
+
+
+def lightmap_directory(folder):
+    """The lightmap folder as an absolute path."""
+    return blend_relative_directory(folder, "bakegi_lightmaps")
 
 
 def register():
