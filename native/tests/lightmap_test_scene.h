@@ -53,6 +53,47 @@ struct Quad {
   }
 };
 
+// Two unit quads side by side, x in [0, 1] and [1, 2], y in [0, 1] at height z, normal +z,
+// sharing the edge from vertex 1 (1, 0) to vertex 4 (1, 1). Vertices 0..5: (0,0) (1,0) (2,0)
+// (0,1) (1,1) (2,1); triangles: left (0,1,4) (0,4,3), right (1,2,5) (1,5,4).
+struct Strip {
+  std::vector<float> positions;
+  std::vector<uint32_t> indices = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4};
+  explicit Strip(float z = 0) {
+    for (float y : {0.0f, 1.0f}) {
+      for (float x : {0.0f, 1.0f, 2.0f}) positions.insert(positions.end(), {x, y, z});
+    }
+  }
+  uint32_t add_to(bakegi_scene* scene, uint32_t object_id) const {
+    bakegi_mesh_desc d{};
+    d.positions = positions.data();
+    d.vertex_count = 6;
+    d.indices = indices.data();
+    d.triangle_count = 4;
+    d.object_id = object_id;
+    uint32_t mesh = 0;
+    EXPECT_EQ(bakegi_scene_add_mesh(scene, &d, &mesh), BAKEGI_OK) << bakegi_last_error();
+    return mesh;
+  }
+  // Lightmap UVs per corner: each quad is a chart, uv = origin + scale * (x - x0, y) with
+  // x0 = 0 on the left quad and 1 on the right one. One chart when the right quad's origin
+  // is the left one's + (left_scale, 0) and the scales are equal; else the shared edge is
+  // a UV seam.
+  std::vector<float> uvs(glm::vec2 left_origin, float left_scale, glm::vec2 right_origin,
+                         float right_scale) const {
+    std::vector<float> out;
+    for (size_t corner = 0; corner < indices.size(); ++corner) {
+      const uint32_t v = indices[corner];
+      const bool right = corner >= 6;
+      const glm::vec2 local(positions[3 * v] - (right ? 1.0f : 0.0f), positions[3 * v + 1]);
+      const glm::vec2 uv =
+          right ? right_origin + right_scale * local : left_origin + left_scale * local;
+      out.insert(out.end(), {uv.x, uv.y});
+    }
+    return out;
+  }
+};
+
 inline SceneHandle lit_scene() {
   bakegi_scene* scene = nullptr;
   EXPECT_EQ(bakegi_scene_create(&scene), BAKEGI_OK);

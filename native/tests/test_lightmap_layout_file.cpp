@@ -1,7 +1,8 @@
 // The .bgl lightmap layout file: written and read back through the C API it gives the same
-// info, points and (byte for byte) EXR files, and keeps "rejection has run"; a truncated,
-// bit-flipped, foreign or lying file is BAKEGI_ERROR_BAD_FILE naming the problem (a huge
-// count fails before anything is allocated for it), a missing one BAKEGI_ERROR_IO.
+// info, points and (byte for byte) EXR files, and keeps "rejection has run" and the UV
+// seams (version 1 files, from before seams, still read); a truncated, bit-flipped,
+// foreign or lying file is BAKEGI_ERROR_BAD_FILE naming the problem (a huge count fails
+// before anything is allocated for it), a missing one BAKEGI_ERROR_IO.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -340,6 +341,116 @@ TEST_F(LightmapLayoutFile, ContentsAreChecked) {
   bad = layout;
   bad.lightmaps[0].samples.points.positions = {{NAN, 0, 0}};
   refused(bad, "position is not finite");
+  bad = layout;
+  bad.lightmaps[0].seams = {LightmapSeam{{{0, 0}, {0, 1}}, {{1, 0}, {1, INFINITY}}}};
+  refused(bad, "seam 0: a UV is not finite");
+}
+
+// One lightmap with `seams` seams, as encode_lightmap_layout writes it.
+LightmapLayout one_texel_layout(size_t seams) {
+  LightmapLayout layout;
+  layout.lightmaps.resize(1);
+  TexelSamples& s = layout.lightmaps[0].samples;
+  s.width = 2;
+  s.height = 1;
+  s.points.positions = {{0, 0, 0}};
+  s.points.normals = {{0, 0, 1}};
+  s.points.object_ids = {5};
+  s.face_normals = {{0, 0, 1}};
+  s.texel = {1};
+  s.weight = {1.0f};
+  s.covered = {0, 1};
+  for (size_t i = 0; i < seams; ++i) {
+    const float u = 0.1f * float(i);
+    layout.lightmaps[0].seams.push_back({{{u, 0}, {u, 1}}, {{u + 0.5f, 0.25f}, {u + 0.5f, 0.75f}}});
+  }
+  return layout;
+}
+
+bool same_seams(const std::vector<LightmapSeam>& a, const std::vector<LightmapSeam>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    for (int k = 0; k < 2; ++k) {
+      if (a[i].a[k] != b[i].a[k] || a[i].b[k] != b[i].b[k]) return false;
+    }
+  }
+  return true;
+}
+
+TEST_F(LightmapLayoutFile, SeamsSurviveTheRoundTrip) {
+  const LightmapLayout layout = one_texel_layout(3);
+  const LightmapLayout read = decode_lightmap_layout(encode_lightmap_layout(layout), "seams");
+  ASSERT_EQ(read.lightmaps.size(), 1u);
+  EXPECT_TRUE(same_seams(read.lightmaps[0].seams, layout.lightmaps[0].seams));
+
+  // Through the C API: a mesh of two charts has a seam, stitched into its EXR; the layout
+  // read back writes the same bytes (it would not, unstitched).
+  const Strip strip;
+  const uint32_t mesh = strip.add_to(scene_.get(), 7);
+  const LightmapsPtr lightmaps = new_lightmaps();
+  const std::vector<float> uvs = strip.uvs({0.1f, 0.1f}, 0.3f, {0.55f, 0.2f}, 0.35f);
+  ASSERT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene_.get(), mesh, uvs.data(), 24, 24, nullptr),
+            BAKEGI_OK);
+  ASSERT_EQ(bakegi_lightmaps_write_file(lightmaps.get(), path("strip.bgl").c_str()), BAKEGI_OK);
+  const LightmapLayout strip_layout = read_lightmap_layout_file(path("strip.bgl"));
+  ASSERT_EQ(strip_layout.lightmaps.size(), 1u);
+  EXPECT_EQ(strip_layout.lightmaps[0].seams.size(), 1u);
+  bakegi_lightmaps* raw = nullptr;
+  ASSERT_EQ(bakegi_lightmaps_read_file(path("strip.bgl").c_str(), &raw), BAKEGI_OK);
+  const LightmapsPtr strip_read(raw);
+  bakegi_points* raw_points = nullptr;
+  ASSERT_EQ(bakegi_lightmaps_get_points(lightmaps.get(), &raw_points), BAKEGI_OK);
+  const PointsHandle points(raw_points);
+  const uint64_t count = bakegi_points_count(points.get());
+  std::vector<float> rgb(3 * count);
+  ASSERT_EQ(bakegi_points_get(points.get(), rgb.data(), nullptr, nullptr), BAKEGI_OK);
+  for (float& v : rgb) v = 0.25f + 0.5f * v;  // a gradient across the seam
+  ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
+                                       path("memory.exr").c_str(), 2, 1, BAKEGI_EXR_ZIP),
+            BAKEGI_OK);
+  ASSERT_EQ(bakegi_lightmaps_write_exr(strip_read.get(), 0, rgb.data(), count,
+                                       path("file.exr").c_str(), 2, 1, BAKEGI_EXR_ZIP),
+            BAKEGI_OK);
+  EXPECT_EQ(file_bytes(path("memory.exr")), file_bytes(path("file.exr")));
+
+  // A seam count larger than the file fails before anything is allocated for it: the
+  // count sits before the last seam's 32 bytes and the trailer.
+  std::vector<uint8_t> bytes = encode_lightmap_layout(one_texel_layout(1));
+  put_u64(bytes, bytes.size() - 8 - 32 - 8, uint64_t(1) << 60);
+  rehash(bytes);
+  EXPECT_EQ(read_back(bytes), BAKEGI_ERROR_BAD_FILE);
+  EXPECT_NE(last_error().find("seams needs"), std::string::npos) << last_error();
+}
+
+// Files of version 1 (written before seams were stored) read as lightmaps without seams.
+TEST_F(LightmapLayoutFile, VersionOneReadsWithoutSeams) {
+  const LightmapLayout layout = one_texel_layout(0);
+  std::vector<uint8_t> bytes = encode_lightmap_layout(layout);
+  // Version 1 is version 2 without the seam count (u64, 0 here) that ends each lightmap
+  // section: drop it from the one section and from the sizes in the header (at 16) and
+  // the section header (at 32 + 8).
+  const size_t seam_count_at = bytes.size() - 8 - 8;
+  bytes.erase(bytes.begin() + seam_count_at, bytes.begin() + seam_count_at + 8);
+  put_u32(bytes, 8, 1);
+  uint64_t payload = 0, section = 0;
+  for (int i = 0; i < 8; ++i) {
+    payload |= uint64_t(bytes[16 + i]) << (8 * i);
+    section |= uint64_t(bytes[40 + i]) << (8 * i);
+  }
+  put_u64(bytes, 16, payload - 8);
+  put_u64(bytes, 40, section - 8);
+  rehash(bytes);
+  const LightmapLayout read = decode_lightmap_layout(bytes, "version 1");
+  ASSERT_EQ(read.lightmaps.size(), 1u);
+  EXPECT_TRUE(read.lightmaps[0].seams.empty());
+  EXPECT_EQ(read.lightmaps[0].samples.texel, layout.lightmaps[0].samples.texel);
+  EXPECT_EQ(read.lightmaps[0].samples.covered, layout.lightmaps[0].samples.covered);
+  EXPECT_EQ(read_back(bytes), BAKEGI_OK) << last_error();
+
+  // The same bytes claiming version 2 lack the seam count.
+  put_u32(bytes, 8, 2);
+  rehash(bytes);
+  EXPECT_EQ(read_back(bytes), BAKEGI_ERROR_BAD_FILE);
 }
 
 TEST_F(LightmapLayoutFile, MissingFileIsIoAndArgumentsAreChecked) {

@@ -345,7 +345,11 @@ BAKEGI_API void bakegi_lightmaps_destroy(bakegi_lightmaps* lightmaps);
  * returned by bakegi_scene_add_mesh): lightmap_uvs holds 6 * triangle_count floats (u, v per
  * corner, in the order of the mesh's indices), normally in [0,1] (parts outside are
  * clipped). Positions and shading normals come from the mesh; the points carry its
- * object_id. Triangles with zero UV or world area are skipped (counted in the info).
+ * object_id. Triangles with zero UV or world area are skipped (counted in the info). The
+ * mesh's UV seams are kept for bakegi_lightmaps_write_exr: edges shared by exactly two
+ * triangles (the same two vertex indices) whose lightmap UVs differ at either end, and
+ * whose shading normals agree there within 10 degrees (a hard edge is a real edge in the
+ * light, not a seam to hide).
  * *out_lightmap (may be NULL) gets the lightmap's index, 0, 1, ... in the order added. */
 BAKEGI_API bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps,
                                               const bakegi_scene* scene, uint32_t mesh,
@@ -358,6 +362,8 @@ BAKEGI_API bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps,
  * object_id. Same UV rules as bakegi_lightmaps_add; the lightmap's samples (and the
  * first_point of the lightmaps after it) change, so call before bakegi_lightmaps_get_points.
  * Texels covered by several meshes (overlapping UVs) average their samples by coverage.
+ * The mesh's UV seams (as for bakegi_lightmaps_add, in the atlas UVs given) join the
+ * lightmap's.
  * Refused (INVALID_ARGUMENT) after bakegi_lightmaps_reject_inside has run, whose rejection
  * the new samples would miss; then nothing is added. */
 BAKEGI_API bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, uint32_t lightmap,
@@ -407,9 +413,15 @@ typedef enum bakegi_exr_compression {
  * (count must equal their number); each texel is the coverage-weighted mean of its samples,
  * then `padding` (0..1024) rounds of dilation fill the texels around covered ones (gutters,
  * rejected texels) from their neighbours: use at least the UV margin in texels. Texels
- * farther from any chart stay 0. full_float: 0 = half floats (enough for light, half the
- * size), 1 = 32-bit floats. compression: a bakegi_exr_compression value (passed as an integer, so
- * that a value outside the enum is refused rather than stored in one). */
+ * farther from any chart stay 0. Then the UV seams are stitched: the texels on both sides
+ * of each seam are adjusted (least squares, a few dozen Gauss-Seidel sweeps over points
+ * 1/2 texel apart) so that bilinear lookups at the same surface point read the same value
+ * from either side, as GPU filtering reads them (texel centres at (i + 0.5) / W). Only
+ * texels within a texel of a seam change (and only filled ones: texels still 0 stay 0);
+ * a lightmap without seams is written as before. full_float: 0 = half floats (enough for
+ * light, half the size), 1 = 32-bit floats. compression: a bakegi_exr_compression value
+ * (passed as an integer, so that a value outside the enum is refused rather than stored in
+ * one). */
 BAKEGI_API bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps,
                                                     uint32_t lightmap, const float* rgb,
                                                     uint64_t count, const char* path,
@@ -417,17 +429,18 @@ BAKEGI_API bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* ligh
                                                     uint32_t compression);
 
 /* A .bgl lightmap layout file (path in UTF-8): every lightmap's size, samples (positions,
- * normals, object ids, face normals, texel, weight), coverage and counters, and whether
- * bakegi_lightmaps_reject_inside has run, so that the CLI can write the EXRs of a .bgs file
- * whose bake points came from bakegi_lightmaps_get_points (bakegi.export_scene_file(
- * target='LIGHTMAP') writes both). Little-endian, versioned, checksummed, and read with
- * every count checked against the bytes left before anything is allocated (format in
- * native/src/bake_points/lightmap_layout_file.h). A lightmaps object read back gives the
- * same points, info and EXRs as the one written. Write: atomic (a temporary file beside
- * path, then a rename); BAKEGI_ERROR_IO if it cannot be written. Read: BAKEGI_ERROR_IO if
- * the file cannot be read, BAKEGI_ERROR_BAD_FILE naming what is wrong if it is not a layout
- * file, is truncated or corrupt; *out_lightmaps is NULL on failure, else owned by the
- * caller (bakegi_lightmaps_destroy). */
+ * normals, object ids, face normals, texel, weight), coverage, UV seams and counters, and
+ * whether bakegi_lightmaps_reject_inside has run, so that the CLI can write the EXRs of a
+ * .bgs file whose bake points came from bakegi_lightmaps_get_points
+ * (bakegi.export_scene_file(target='LIGHTMAP') writes both). Files of format version 1
+ * (before seams were stored) are still read, as lightmaps without seams. Little-endian,
+ * versioned, checksummed, and read with every count checked against the bytes left before
+ * anything is allocated (format in native/src/bake_points/lightmap_layout_file.h). A
+ * lightmaps object read back gives the same points, info and EXRs as the one written.
+ * Write: atomic (a temporary file beside path, then a rename); BAKEGI_ERROR_IO if it cannot
+ * be written. Read: BAKEGI_ERROR_IO if the file cannot be read, BAKEGI_ERROR_BAD_FILE
+ * naming what is wrong if it is not a layout file, is truncated or corrupt; *out_lightmaps
+ * is NULL on failure, else owned by the caller (bakegi_lightmaps_destroy). */
 BAKEGI_API bakegi_status bakegi_lightmaps_write_file(const bakegi_lightmaps* lightmaps,
                                                      const char* path);
 BAKEGI_API bakegi_status bakegi_lightmaps_read_file(const char* path,

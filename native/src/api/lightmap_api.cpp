@@ -11,11 +11,13 @@
 #include "bake_points/backface_rejection.h"
 #include "bake_points/lightmap_layout.h"
 #include "bake_points/lightmap_layout_file.h"
+#include "bake_points/lightmap_seams.h"
 #include "bake_points/texel_rasterizer.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "writers/exr_writer.h"
 #include "writers/lightmap_padding.h"
+#include "writers/seam_stitching.h"
 
 using bakegi::Error;
 using bakegi::guarded;
@@ -104,9 +106,11 @@ bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_sce
                                                      std::to_string(height) + " is not in 1.." +
                                                      std::to_string(kMaxLightmapSide));
     }
+    const std::vector<bakegi::LightmapTriangle> triangles =
+        lightmap_triangles(source, lightmap_uvs);
     Lightmap lightmap;
-    lightmap.samples = bakegi::rasterize_texels(lightmap_triangles(source, lightmap_uvs), width,
-                                                height, source.object_id);
+    lightmap.samples = bakegi::rasterize_texels(triangles, width, height, source.object_id);
+    lightmap.seams = bakegi::find_lightmap_seams(source.indices, triangles, width, height);
     lightmaps->layout.lightmaps.push_back(std::move(lightmap));
     if (out_lightmap) *out_lightmap = uint32_t(lightmaps->layout.lightmaps.size() - 1);
   });
@@ -126,10 +130,17 @@ bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, uint32_t ligh
     }
     Lightmap& target = lightmap_at(lightmaps->layout, lightmap);
     const bakegi::Mesh& source = mesh_at(scene, mesh);
-    bakegi::append_samples(
-        target.samples,
-        bakegi::rasterize_texels(lightmap_triangles(source, lightmap_uvs), target.samples.width,
-                                 target.samples.height, source.object_id));
+    const std::vector<bakegi::LightmapTriangle> triangles =
+        lightmap_triangles(source, lightmap_uvs);
+    const uint32_t width = target.samples.width, height = target.samples.height;
+    bakegi::TexelSamples samples =
+        bakegi::rasterize_texels(triangles, width, height, source.object_id);
+    const std::vector<bakegi::LightmapSeam> seams =
+        bakegi::find_lightmap_seams(source.indices, triangles, width, height);
+    // Room first, so that nothing after the samples are appended can fail.
+    target.seams.reserve(target.seams.size() + seams.size());
+    bakegi::append_samples(target.samples, std::move(samples));
+    target.seams.insert(target.seams.end(), seams.begin(), seams.end());
   });
 }
 
@@ -270,6 +281,7 @@ bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint
     std::vector<uint8_t> filled;
     bakegi::RgbImage image = bakegi::resolve_texels(l.samples, values.data(), filled);
     bakegi::dilate_texels(image, filled, padding);
+    bakegi::stitch_seams(image, l.samples.covered, filled, l.seams);
     bakegi::write_exr(path, image, options);
   });
 }

@@ -1,5 +1,6 @@
 // What a set of lightmaps is between rasterization and the EXR writer: each lightmap's texel
-// samples, in the order their bake points are concatenated for the one bake of them all.
+// samples, in the order their bake points are concatenated for the one bake of them all,
+// and its UV seams (stitched when the EXR is written).
 // The C API's bakegi_lightmaps handle holds one; the .bgl file (lightmap_layout_file.h)
 // stores one so that the CLI writes the EXRs of a scene file baked without Blender.
 #pragma once
@@ -7,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bake_points/lightmap_seams.h"
 #include "bake_points/texel_rasterizer.h"
 
 namespace bakegi {
@@ -15,6 +17,8 @@ struct LightmapLayout {
   struct Lightmap {
     TexelSamples samples;
     uint64_t rejected_samples = 0;  // dropped as inside or under geometry
+    // Of every mesh rasterized into it (in atlas UVs for bakegi_lightmaps_add_to).
+    std::vector<LightmapSeam> seams;
   };
   std::vector<Lightmap> lightmaps;
   // Set once inside-geometry rejection has run: samples added after it would be baked

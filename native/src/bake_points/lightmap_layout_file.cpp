@@ -18,6 +18,10 @@ constexpr uint32_t kLightmapSection = section_tag("LMAP");
 constexpr uint32_t kRejectedInside = 1;
 // Bytes per sample: position, normal, object id, face normal, texel, weight.
 constexpr uint64_t kSampleBytes = 12 + 12 + 4 + 12 + 4 + 4;
+// Bytes per seam: four UVs.
+constexpr uint64_t kSeamBytes = 4 * 8;
+// Version 1 had no seams; its files read as lightmaps without any.
+constexpr uint32_t kFirstVersionWithSeams = 2;
 // The fixed part of a lightmap section: width, height and four u64 counters.
 constexpr uint64_t kLightmapHeaderBytes = 4 + 4 + 4 * 8;
 // A layout the writer can hold in memory is far smaller; this only keeps a wrong path (a
@@ -45,6 +49,10 @@ void write_lightmap(ByteWriter& w, const LightmapLayout::Lightmap& lightmap) {
     if (s.covered[t]) words[t / 32] |= uint32_t(1) << (t % 32);
   }
   for (uint32_t word : words) w.u32(word);
+  w.u64(lightmap.seams.size());
+  for (const LightmapSeam& seam : lightmap.seams) {
+    for (const glm::vec2& uv : {seam.a[0], seam.a[1], seam.b[0], seam.b[1]}) w.vec2(uv);
+  }
   w.end_section(at);
 }
 
@@ -54,7 +62,7 @@ bool finite(const glm::vec3& v) {
 
 // Reads one lightmap section's contents and checks them against what the rasterizer makes,
 // so that the C API never works on samples it could not have produced.
-LightmapLayout::Lightmap read_lightmap(ByteReader& r, size_t index) {
+LightmapLayout::Lightmap read_lightmap(ByteReader& r, size_t index, uint32_t version) {
   const std::string name = "lightmap " + std::to_string(index);
   auto fail = [&](const std::string& what) { r.fail(name + ": " + what); };
   LightmapLayout::Lightmap lightmap;
@@ -83,6 +91,22 @@ LightmapLayout::Lightmap read_lightmap(ByteReader& r, size_t index) {
   s.covered.resize(texels);
   for (uint64_t t = 0; t < texels; ++t) s.covered[t] = uint8_t(words[t / 32] >> (t % 32) & 1);
   if (texels % 32 != 0 && words.back() >> (texels % 32) != 0) fail("coverage bits past the map");
+  if (version >= kFirstVersionWithSeams) {
+    const uint64_t seams = r.u64();
+    r.array(lightmap.seams, seams, kSeamBytes, "seams", [&] {
+      LightmapSeam seam;
+      for (glm::vec2* uv : {&seam.a[0], &seam.a[1], &seam.b[0], &seam.b[1]}) *uv = r.vec2();
+      return seam;
+    });
+    for (size_t i = 0; i < lightmap.seams.size(); ++i) {
+      const LightmapSeam& seam = lightmap.seams[i];
+      for (const glm::vec2& uv : {seam.a[0], seam.a[1], seam.b[0], seam.b[1]}) {
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
+          fail("seam " + std::to_string(i) + ": a UV is not finite");
+        }
+      }
+    }
+  }
 
   // The rasterizer's invariants: finite positions, unit normals, texels inside the map,
   // weights in (0, 1], and a texel is covered iff it has samples.
@@ -134,8 +158,8 @@ LightmapLayout decode_lightmap_layout(std::span<const uint8_t> bytes, const std:
   }
   ByteReader header(bytes.subspan(8, kHeaderBytes - 8), name);
   const uint32_t version = header.u32();
-  if (version != kLightmapLayoutFileVersion) {
-    fail("format version " + std::to_string(version) + " is not supported (this build reads " +
+  if (version < 1 || version > kLightmapLayoutFileVersion) {
+    fail("format version " + std::to_string(version) + " is not supported (this build reads 1.." +
          std::to_string(kLightmapLayoutFileVersion) + ")");
   }
   header.u32();
@@ -168,7 +192,7 @@ LightmapLayout decode_lightmap_layout(std::span<const uint8_t> bytes, const std:
     }
     r.need(size, 1, "lightmap section");
     const size_t end = r.position() + size;
-    layout.lightmaps.push_back(read_lightmap(r, i));
+    layout.lightmaps.push_back(read_lightmap(r, i, version));
     if (r.position() != end) {
       fail("lightmap " + std::to_string(i) + ": section size does not match its contents");
     }

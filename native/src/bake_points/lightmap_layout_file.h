@@ -1,4 +1,4 @@
-// The .bgl lightmap layout file: a LightmapLayout (every lightmap's size, samples, coverage
+// The .bgl lightmap layout file: a LightmapLayout (every lightmap's size, samples, coverage, seams
 // and counters), so that the CLI can write the EXRs of a .bgs scene file whose bake points
 // came from the same layout (bakegi.export_scene_file(target='LIGHTMAP') writes both).
 //
@@ -10,12 +10,16 @@
 //              u64 triangles skipped for zero UV area, u64 for zero world area,
 //              per sample (each array in turn): position vec3, shading normal vec3,
 //              object id u32, face normal vec3, texel u32 (y * width + x), weight f32,
-//              coverage: width * height bytes, 1 where a texel has samples
+//              coverage: width * height bits in u32 words, bit t % 32 of word t / 32
+//              set where texel t has samples,
+//              (version 2 on) u64 seams, per seam 4 UVs as vec2 f32: side A's at the
+//              edge's two vertices, then side B's at the same two (LightmapSeam)
 //   trailer  u64 FNV-1a 64 hash of header and payload
 // Reading checks the hash, and every count against the bytes left before it allocates;
 // then that the contents are what the rasterizer makes (sizes 1..kMaxLightmapSide, unit
-// normals, texels inside the map, weights in (0, 1], coverage = the texels with samples).
-// Anything else is Error(BAD_FILE) naming what is wrong.
+// normals, texels inside the map, weights in (0, 1], coverage = the texels with samples,
+// finite seam UVs). Anything else is Error(BAD_FILE) naming what is wrong. Version 1 files
+// (before seams) are still read, as lightmaps without seams (written unstitched).
 #pragma once
 
 #include <cstdint>
@@ -27,7 +31,8 @@
 
 namespace bakegi {
 
-inline constexpr uint32_t kLightmapLayoutFileVersion = 1;
+// Writes this version; reads 1 (no seams) and 2.
+inline constexpr uint32_t kLightmapLayoutFileVersion = 2;
 
 std::vector<uint8_t> encode_lightmap_layout(const LightmapLayout& layout);
 // Throws Error(BAD_FILE) naming what is wrong; `name` prefixes the messages.
