@@ -6,14 +6,13 @@
 #include "util/byte_stream.h"
 #include "util/error.h"
 #include "util/file_bytes.h"
+#include "util/framed_file.h"
 
 namespace bakegi {
 
 namespace {
 
 constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'L'};
-constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8;
-constexpr size_t kTrailerBytes = 8;
 constexpr uint32_t kLightmapSection = section_tag("LMAP");
 constexpr uint32_t kRejectedInside = 1;
 // Bytes per sample: position, normal, object id, face normal, texel, weight.
@@ -135,46 +134,22 @@ LightmapLayout::Lightmap read_lightmap(ByteReader& r, size_t index, uint32_t ver
 }  // namespace
 
 std::vector<uint8_t> encode_lightmap_layout(const LightmapLayout& layout) {
-  ByteWriter w;
-  w.bytes.insert(w.bytes.end(), std::begin(kMagic), std::end(kMagic));
-  w.u32(kLightmapLayoutFileVersion);
-  w.u32(0);
-  w.u64(0);  // payload size, patched below
+  ByteWriter w = begin_framed_file(kMagic, kLightmapLayoutFileVersion);
   w.u32(layout.rejected_inside ? kRejectedInside : 0);
   w.u32(uint32_t(layout.lightmaps.size()));
   for (const LightmapLayout::Lightmap& lightmap : layout.lightmaps) write_lightmap(w, lightmap);
-  w.patch_u64(16, w.bytes.size() - kHeaderBytes);
-  w.u64(fnv1a64(w.bytes));
-  return std::move(w.bytes);
+  return finish_framed_file(w);
 }
 
 LightmapLayout decode_lightmap_layout(std::span<const uint8_t> bytes, const std::string& name) {
   auto fail = [&](const std::string& what) -> void {
     throw Error(BAKEGI_ERROR_BAD_FILE, name + ": " + what);
   };
-  if (bytes.size() < kHeaderBytes + kTrailerBytes ||
-      std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
-    fail("not a bakegi lightmap layout file (no BAKEGI lightmap header)");
-  }
-  ByteReader header(bytes.subspan(8, kHeaderBytes - 8), name);
-  const uint32_t version = header.u32();
-  if (version < 1 || version > kLightmapLayoutFileVersion) {
-    fail("format version " + std::to_string(version) + " is not supported (this build reads 1.." +
-         std::to_string(kLightmapLayoutFileVersion) + ")");
-  }
-  header.u32();
-  const uint64_t payload_bytes = header.u64();
-  if (payload_bytes != bytes.size() - kHeaderBytes - kTrailerBytes) {
-    fail("truncated or extended: the header says " + std::to_string(payload_bytes) +
-         " payload bytes, the file holds " +
-         std::to_string(bytes.size() - kHeaderBytes - kTrailerBytes));
-  }
-  const size_t hashed = bytes.size() - kTrailerBytes;
-  ByteReader trailer(bytes.subspan(hashed), name);
-  if (trailer.u64() != fnv1a64(bytes.first(hashed))) fail("corrupt: checksum mismatch");
-
+  const FramedPayload framed =
+      open_framed_file(bytes, kMagic, 1, kLightmapLayoutFileVersion, "lightmap layout file", name);
+  const uint32_t version = framed.version;
   LightmapLayout layout;
-  ByteReader r(bytes.subspan(kHeaderBytes, payload_bytes), name);
+  ByteReader r(framed.payload, name);
   const uint32_t flags = r.u32();
   if (flags & ~kRejectedInside) fail("unknown flags " + std::to_string(flags));
   layout.rejected_inside = (flags & kRejectedInside) != 0;

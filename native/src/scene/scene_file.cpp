@@ -8,14 +8,13 @@
 #include "scene/scene_validation.h"
 #include "util/byte_stream.h"
 #include "util/error.h"
+#include "util/framed_file.h"
 
 namespace bakegi {
 
 namespace {
 
 constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'S'};
-constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8;
-constexpr size_t kTrailerBytes = 8;
 
 constexpr uint32_t kTextures = section_tag("TEXR"), kMaterials = section_tag("MATL"),
                    kMeshes = section_tag("MESH"), kLights = section_tag("LGHT"),
@@ -213,46 +212,21 @@ void check_contents(const SceneFile& file, const std::string& name) {
 }  // namespace
 
 std::vector<uint8_t> encode_scene_file(const SceneDescription& scene, const BakePoints* points) {
-  Writer w;
-  w.bytes.insert(w.bytes.end(), std::begin(kMagic), std::end(kMagic));
-  w.u32(kSceneFileVersion);
-  w.u32(0);
-  w.u64(0);  // payload size, patched below
+  Writer w = begin_framed_file(kMagic, kSceneFileVersion);
   write_scene(w, scene);
   if (points) write_points(w, *points);
-  w.patch_u64(16, w.bytes.size() - kHeaderBytes);
-  w.u64(fnv1a64(w.bytes));
-  return std::move(w.bytes);
+  return finish_framed_file(w);
 }
 
 SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& name) {
   auto fail = [&](const std::string& what) -> void {
     throw Error(BAKEGI_ERROR_BAD_FILE, name + ": " + what);
   };
-  if (bytes.size() < kHeaderBytes + kTrailerBytes ||
-      std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
-    fail("not a bakegi scene file (no BAKEGI header)");
-  }
-  Reader header(bytes.subspan(8, kHeaderBytes - 8), name);
-  const uint32_t version = header.u32();
-  if (version < kOldestSceneFileVersion || version > kSceneFileVersion) {
-    fail("format version " + std::to_string(version) + " is not supported (this build reads " +
-         std::to_string(kOldestSceneFileVersion) + " to " + std::to_string(kSceneFileVersion) +
-         ")");
-  }
-  header.u32();
-  const uint64_t payload_bytes = header.u64();
-  if (payload_bytes != bytes.size() - kHeaderBytes - kTrailerBytes) {
-    fail("truncated or extended: the header says " + std::to_string(payload_bytes) +
-         " payload bytes, the file holds " +
-         std::to_string(bytes.size() - kHeaderBytes - kTrailerBytes));
-  }
-  const size_t hashed = bytes.size() - kTrailerBytes;
-  Reader trailer(bytes.subspan(hashed), name);
-  if (trailer.u64() != fnv1a64(bytes.first(hashed))) fail("corrupt: checksum mismatch");
-
+  const FramedPayload framed = open_framed_file(bytes, kMagic, kOldestSceneFileVersion,
+                                                kSceneFileVersion, "scene file", name);
+  const uint32_t version = framed.version;
   SceneFile file;
-  Reader r(bytes.subspan(kHeaderBytes, payload_bytes), name);
+  Reader r(framed.payload, name);
   const uint32_t order[] = {kTextures, kMaterials, kMeshes, kLights, kWorld, kPoints};
   for (uint32_t expected : order) {
     if (expected == kPoints && r.left() == 0) break;
