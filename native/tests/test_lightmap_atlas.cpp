@@ -176,6 +176,33 @@ TEST_F(LightmapAtlas, MisuseIsRefusedWithAMessage) {
 }
 
 // The merge itself: samples concatenated, coverage OR-ed, counters summed, sizes checked.
+// 8192^2 texels covered by one quad could need 67 M samples (5 GiB): refused with
+// OUT_OF_MEMORY before a sample is allocated, both as a new lightmap and added to an atlas
+// that already holds a small chart, which stays as it was.
+TEST_F(LightmapAtlas, SamplesOverTheBudgetAreRefusedBeforeAllocating) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
+  const uint32_t mesh = floor.add_to(scene.get(), 0);
+  LightmapsPtr lightmaps = new_lightmaps();
+  bakegi_lightmaps* l = lightmaps.get();
+  EXPECT_EQ(bakegi_lightmaps_add(l, scene.get(), mesh, floor.uvs.data(), 8192, 8192, nullptr),
+            BAKEGI_ERROR_OUT_OF_MEMORY);
+  EXPECT_NE(std::string(bakegi_last_error()).find("lower the texel density"), std::string::npos)
+      << bakegi_last_error();
+  EXPECT_EQ(bakegi_lightmaps_count(l), 0u);
+
+  const std::vector<float> corner = floor.placed_uvs({0.01f, 0.01f}, {0.0f, 0.0f});
+  ASSERT_EQ(bakegi_lightmaps_add(l, scene.get(), mesh, corner.data(), 8192, 8192, nullptr),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  bakegi_lightmap_info before{}, after{};
+  ASSERT_EQ(bakegi_lightmaps_get_info(l, 0, &before), BAKEGI_OK);
+  EXPECT_EQ(bakegi_lightmaps_add_to(l, 0, scene.get(), mesh, floor.uvs.data()),
+            BAKEGI_ERROR_OUT_OF_MEMORY);
+  ASSERT_EQ(bakegi_lightmaps_get_info(l, 0, &after), BAKEGI_OK);
+  EXPECT_EQ(after.point_count, before.point_count);
+}
+
 TEST(LightmapAtlasMerge, AppendSamplesMergesAndChecksSizes) {
   auto planar = [](glm::vec2 a, glm::vec2 b, glm::vec2 c) {
     LightmapTriangle t;

@@ -41,6 +41,36 @@ std::vector<double> weight_per_texel(const TexelSamples& s) {
   return w;
 }
 
+// The memory check's bound must never be below the samples really made (else a budget
+// check passes and the allocation does not fit), and not wildly above them for ordinary
+// triangles (else sensible lightmaps are refused).
+TEST(LightmapRasterizer, SampleBoundHoldsForRandomTriangles) {
+  uint32_t state = 12345;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<LightmapTriangle> triangles;
+    const int count = 1 + trial % 5;
+    for (int i = 0; i < count; ++i) {
+      // Some corners outside [0,1]^2, to exercise the clipping.
+      auto uv = [&] { return glm::vec2(next() * 1.4f - 0.2f, next() * 1.4f - 0.2f); };
+      triangles.push_back(planar(uv(), uv(), uv()));
+    }
+    const uint32_t width = 5 + trial % 40, height = 3 + (trial * 7) % 37;
+    const TexelSamples samples = rasterize_texels(triangles, width, height);
+    const uint64_t bound = max_texel_samples(triangles, width, height);
+    EXPECT_GE(bound, samples.size()) << "trial " << trial;
+  }
+  // A quad filling a 64 x 64 map: 2 x 64^2 ... plus the diagonal's texels actually made;
+  // the bound adds the perimeter term, about 2.8 x 4 x 64 x 2, so within 40% here.
+  const std::vector<LightmapTriangle> quad = {planar({0, 0}, {1, 0}, {1, 1}),
+                                              planar({0, 0}, {1, 1}, {0, 1})};
+  const TexelSamples samples = rasterize_texels(quad, 64, 64);
+  EXPECT_LE(double(max_texel_samples(quad, 64, 64)), 1.4 * double(samples.size()));
+}
+
 TEST(LightmapRasterizer, QuadCoveringTheSquareBakesEveryTexel) {
   const std::vector<LightmapTriangle> quad = {planar({0, 0}, {1, 0}, {1, 1}),
                                               planar({0, 0}, {1, 1}, {0, 1})};

@@ -34,6 +34,26 @@ namespace {
 
 constexpr uint32_t kMaxPadding = 1024;
 
+// What the texel samples of all lightmaps may take: 4 GiB, the core's default memory
+// budget. A sample costs 48 bytes here (position, normal, object id, face normal, texel,
+// weight) and 28 more as a bake point of the job.
+constexpr uint64_t kSampleBudgetBytes = uint64_t(4) << 30;
+constexpr uint64_t kBytesPerSample = 48 + 28;
+
+// Refuses, before anything is allocated, a mesh whose samples could take the lightmaps
+// over the budget (an upper bound, so a refusal names the density, not a crash).
+void check_sample_budget(uint64_t existing, const std::vector<bakegi::LightmapTriangle>& triangles,
+                         uint32_t width, uint32_t height) {
+  const uint64_t bound = existing + bakegi::max_texel_samples(triangles, width, height);
+  if (bound > kSampleBudgetBytes / kBytesPerSample) {
+    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                "the lightmaps could need up to " + std::to_string(bound) + " texel samples (" +
+                    std::to_string(bound * kBytesPerSample >> 20) + " MiB), more than the " +
+                    std::to_string(kSampleBudgetBytes >> 20) +
+                    " MiB budget; lower the texel density or the lightmap size");
+  }
+}
+
 Lightmap& lightmap_at(bakegi::LightmapLayout& layout, uint32_t index) {
   if (index >= layout.lightmaps.size()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap " + std::to_string(index) +
@@ -108,6 +128,7 @@ bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_sce
     }
     const std::vector<bakegi::LightmapTriangle> triangles =
         lightmap_triangles(source, lightmap_uvs);
+    check_sample_budget(lightmaps->layout.total_points(), triangles, width, height);
     Lightmap lightmap;
     lightmap.samples = bakegi::rasterize_texels(triangles, width, height, source.object_id);
     lightmap.seams = bakegi::find_lightmap_seams(source.indices, triangles, width, height);
@@ -133,6 +154,7 @@ bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, uint32_t ligh
     const std::vector<bakegi::LightmapTriangle> triangles =
         lightmap_triangles(source, lightmap_uvs);
     const uint32_t width = target.samples.width, height = target.samples.height;
+    check_sample_budget(lightmaps->layout.total_points(), triangles, width, height);
     bakegi::TexelSamples samples =
         bakegi::rasterize_texels(triangles, width, height, source.object_id);
     const std::vector<bakegi::LightmapSeam> seams =

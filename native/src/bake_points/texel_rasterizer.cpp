@@ -89,6 +89,29 @@ size_t TexelSamples::covered_texels() const {
   return size_t(std::count(covered.begin(), covered.end(), uint8_t(1)));
 }
 
+uint64_t max_texel_samples(const std::vector<LightmapTriangle>& triangles, uint32_t width,
+                           uint32_t height) {
+  double total = 0.0;
+  for (const LightmapTriangle& tri : triangles) {
+    glm::dvec2 t[3];
+    for (int k = 0; k < 3; ++k) {
+      // Parts outside [0,1]^2 are clipped away; clamping keeps the bound an upper bound.
+      t[k] = glm::clamp(glm::dvec2(tri.uv[k]), 0.0, 1.0) * glm::dvec2(width, height);
+    }
+    const double area = 0.5 * std::abs((t[1].x - t[0].x) * (t[2].y - t[0].y) -
+                                       (t[2].x - t[0].x) * (t[1].y - t[0].y));
+    const double perimeter =
+        glm::length(t[1] - t[0]) + glm::length(t[2] - t[1]) + glm::length(t[0] - t[2]);
+    const glm::dvec2 lo = glm::min(t[0], glm::min(t[1], t[2]));
+    const glm::dvec2 hi = glm::max(t[0], glm::max(t[1], t[2]));
+    const double box =
+        (std::floor(hi.x) - std::floor(lo.x) + 1) * (std::floor(hi.y) - std::floor(lo.y) + 1);
+    const double bound = std::min(area + 2.0 * std::sqrt(2.0) * perimeter + 4.0, box);
+    if (std::isfinite(bound)) total += bound;
+  }
+  return uint64_t(std::ceil(total));
+}
+
 TexelSamples rasterize_texels(const std::vector<LightmapTriangle>& triangles, uint32_t width,
                               uint32_t height, uint32_t object_id) {
   if (width == 0 || height == 0) {

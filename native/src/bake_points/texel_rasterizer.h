@@ -51,6 +51,13 @@ struct TexelSamples {
 
 // Rasterizes triangles into a width x height lightmap (both >= 1). Throws
 // Error(INVALID_ARGUMENT) for a zero size or non-finite input, naming the triangle.
+// An upper bound of the samples rasterize_texels makes (without making them), to check a
+// memory budget first: a convex shape of area A and perimeter P (in texels) overlaps at
+// most A + 2*sqrt(2)*P + 4 unit squares (its Minkowski sum with a texel), and never more
+// than the texels of its bounding box.
+uint64_t max_texel_samples(const std::vector<LightmapTriangle>& triangles, uint32_t width,
+                           uint32_t height);
+
 TexelSamples rasterize_texels(const std::vector<LightmapTriangle>& triangles, uint32_t width,
                               uint32_t height, uint32_t object_id = 0);
 
