@@ -20,6 +20,21 @@ struct LightmapsDeleter {
 };
 using LightmapsPtr = std::unique_ptr<bakegi_lightmaps, LightmapsDeleter>;
 
+// Adds a mesh (positions: 3 floats per vertex; indices: 3 per triangle) without normals,
+// UVs or materials; returns its index.
+inline uint32_t add_mesh(bakegi_scene* scene, const std::vector<float>& positions,
+                         const std::vector<uint32_t>& indices, uint32_t object_id) {
+  bakegi_mesh_desc d{};
+  d.positions = positions.data();
+  d.vertex_count = uint32_t(positions.size() / 3);
+  d.indices = indices.data();
+  d.triangle_count = uint32_t(indices.size() / 3);
+  d.object_id = object_id;
+  uint32_t mesh = 0;
+  EXPECT_EQ(bakegi_scene_add_mesh(scene, &d, &mesh), BAKEGI_OK) << bakegi_last_error();
+  return mesh;
+}
+
 // A quad with its positions, indices and lightmap UVs (the UV square, diagonal 0-2).
 struct Quad {
   std::vector<float> positions;
@@ -32,15 +47,7 @@ struct Quad {
     }
   }
   uint32_t add_to(bakegi_scene* scene, uint32_t object_id) const {
-    bakegi_mesh_desc d{};
-    d.positions = positions.data();
-    d.vertex_count = 4;
-    d.indices = indices.data();
-    d.triangle_count = 2;
-    d.object_id = object_id;
-    uint32_t mesh = 0;
-    EXPECT_EQ(bakegi_scene_add_mesh(scene, &d, &mesh), BAKEGI_OK) << bakegi_last_error();
-    return mesh;
+    return add_mesh(scene, positions, indices, object_id);
   }
   // The UVs scaled by `scale` and moved by `offset` (placed in a region of an atlas).
   std::vector<float> placed_uvs(glm::vec2 scale, glm::vec2 offset) const {
@@ -65,15 +72,7 @@ struct Strip {
     }
   }
   uint32_t add_to(bakegi_scene* scene, uint32_t object_id) const {
-    bakegi_mesh_desc d{};
-    d.positions = positions.data();
-    d.vertex_count = 6;
-    d.indices = indices.data();
-    d.triangle_count = 4;
-    d.object_id = object_id;
-    uint32_t mesh = 0;
-    EXPECT_EQ(bakegi_scene_add_mesh(scene, &d, &mesh), BAKEGI_OK) << bakegi_last_error();
-    return mesh;
+    return add_mesh(scene, positions, indices, object_id);
   }
   // Lightmap UVs per corner: each quad is a chart, uv = origin + scale * (x - x0, y) with
   // x0 = 0 on the left quad and 1 on the right one. One chart when the right quad's origin
