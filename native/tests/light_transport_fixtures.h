@@ -162,7 +162,7 @@ class Baker {
     if (options.method == "pathtrace") settings.set("max_bounces", options.max_bounces);
     JobContext context;
     auto solver = make_solver(options.method);
-    auto field = solver->solve(SolveInputs{scene_, tracer_, direct_, settings}, context);
+    auto field = solver->solve(SolveInputs{scene_, tracer_, direct_, settings, &points}, context);
     std::vector<glm::vec3> out(points.size());
     field->evaluate(points, out, context);
     if (rays) *rays = context.report().count("rays");

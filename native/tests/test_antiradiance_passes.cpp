@@ -431,7 +431,8 @@ TEST(AntiradiancePasses, GlobalPassRejectsLinksOutsideTheTables) {
   EXPECT_THROW(global.run(spreading, wrong), Error);
 }
 
-TEST(AntiradiancePasses, DirectInitializationEmitsFromTheFrontWithoutAntiradiance) {
+// Emission is left out of I_ex: emitters reach receivers as direct light already.
+TEST(AntiradiancePasses, DirectInitializationSeedsReflectedDirectLightOnly) {
   SceneDescription desc;
   const glm::vec3 emission(2.0f, 1.0f, 0.5f);
   add_triangle(desc, {0, 0, 0}, {0, 0, 1}, 0.5f, add_material(desc, glm::vec3(0.5f), emission));
@@ -446,7 +447,7 @@ TEST(AntiradiancePasses, DirectInitializationEmitsFromTheFrontWithoutAntiradianc
   for (size_t p = 0; p < h.patch_count(); ++p) {
     const auto& patch = h.patches()[p];
     const float a = h.elements()[patch.element].area;
-    const glm::vec3 radiance = patch.albedo / kPi * e_direct[p] + patch.emission;
+    const glm::vec3 radiance = patch.albedo / kPi * e_direct[p];
     for (int j = 0; j < bins.bin_count(); ++j) {
       const float c = glm::dot(patch.normal, bins.direction(j));
       const glm::vec3 expected = c > 0.0f ? a * c * radiance : glm::vec3(0.0f);

@@ -35,7 +35,11 @@ void check_sizes(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
   }
 }
 
-// The diffuse and emitted light of every patch into its I_ex row.
+// The reflected direct light of every patch into its I_ex row. Emission is left out: the
+// direct light (DirectLight) already samples emissive triangles with shadow rays, so light
+// leaving an emitter reaches every receiver as *direct* light. Seeding it here as well
+// transported it a second time, as indirect light (an emissive quad lighting a room gave
+// 2.9x the path tracer's indirect light).
 void seed_diffuse(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
                   std::span<const glm::vec3> direct_irradiance, RadianceTables& tables) {
   const std::vector<Patch>& patches = hierarchy.patches();
@@ -46,8 +50,7 @@ void seed_diffuse(const ElementHierarchy& hierarchy, const DirectionalBins& bins
                       for (size_t p = block.begin(); p != block.end(); ++p) {
                         const Patch& patch = patches[p];
                         const glm::vec3 radiance =
-                            patch.albedo * std::numbers::inv_pi_v<float> * direct_irradiance[p] +
-                            patch.emission;
+                            patch.albedo * std::numbers::inv_pi_v<float> * direct_irradiance[p];
                         const glm::vec3 intensity = elements[patch.element].area * radiance;
                         const std::span<glm::vec3> exitant = tables.exitant(patch.element);
                         for (int j = 0; j < m; ++j) {

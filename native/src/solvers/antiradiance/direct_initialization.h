@@ -33,7 +33,7 @@
 namespace bakegi::antiradiance {
 
 // Sets I_ex of every element from `direct_irradiance` (W/m², one per patch in
-// ElementHierarchy::patches() order) and the patches' emission, then pulls; zeroes the
+// ElementHierarchy::patches() order) (emission is direct light, not seeded here), then pulls; zeroes the
 // accumulated irradiance. Diffuse only: without the light's directions, lobes get nothing. Throws
 // Error(INVALID_ARGUMENT) on mismatched sizes.
 void initialize_direct(const ElementHierarchy& hierarchy, const DirectionalBins& bins,

@@ -59,7 +59,6 @@ class TriangleSubdivider {
         // Midpoint subdivision splits a triangle into four of exactly a quarter of its area;
         // dividing the source area keeps the patch areas summing to it without rounding drift.
         patch_area_(float(double(triangle_.area) / std::ldexp(1.0, 2 * level))),
-        emission_(scene.material_of(triangle_).emission),
         out_(out) {}
 
   void run() { split({0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, level_); }
@@ -97,7 +96,6 @@ class TriangleSubdivider {
     const float shading_length = glm::length(shading);
     patch.shading_normal = shading_length > 1e-6f ? shading / shading_length : patch.normal;
     patch.albedo = scene_.albedo_at(triangle_, centroid.x, centroid.y);
-    patch.emission = emission_;
     patch.glossy = scene_.material_of(triangle_).glossy;
     patch.glossy_exponent = scene_.material_of(triangle_).glossy_exponent;
     patch.triangle = triangle_index_;
@@ -114,7 +112,6 @@ class TriangleSubdivider {
   uint32_t surface_;
   int level_;
   float patch_area_;
-  glm::vec3 emission_;
   std::vector<PatchSeed>& out_;
 };
 
@@ -344,14 +341,12 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     if (back_side.empty() || !back_side[i]) continue;
     const uint32_t back_surface =
         surfaces.try_emplace({t.mesh, t.material, true}, uint32_t(surfaces.size())).first->second;
-    const bool emits_back = scene.material_of(t).emission_two_sided;
     const size_t last = seeds.size();
     for (size_t s = first; s < last; ++s) {
       PatchSeed twin = seeds[s];  // the same center, bit for bit: link refinement pairs nothing
       std::swap(twin.patch.corners[1], twin.patch.corners[2]);
       twin.patch.normal = -twin.patch.normal;
       twin.patch.shading_normal = -twin.patch.shading_normal;
-      if (!emits_back) twin.patch.emission = glm::vec3(0.0f);
       twin.patch.surface = back_surface;
       twin.patch.back_side = true;
       seeds.push_back(twin);

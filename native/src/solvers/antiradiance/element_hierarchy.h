@@ -40,7 +40,6 @@ struct Patch {
   glm::vec3 normal{0.0f};          // unit face normal of the source triangle
   glm::vec3 shading_normal{0.0f};  // unit mean of the interpolated shading normals
   glm::vec3 albedo{0.0f};          // diffuse albedo at the centroid (texture applied)
-  glm::vec3 emission{0.0f};        // radiance W/(m^2 sr) of the material
   glm::vec3 glossy{0.0f};          // the material's Phong lobe (scene/phong_lobe.h); 0: none
   float glossy_exponent = 0.0f;
   uint32_t element = kNoElement;   // this patch's index in ElementHierarchy::elements()
@@ -48,7 +47,8 @@ struct Patch {
   uint32_t surface = 0;            // see ElementHierarchy::surface_count()
   uint16_t subdivision_level = 0;  // times the source triangle was split 4-way
   // The twin on the back of an open mesh's triangle (back_sides.h): same place, flipped
-  // normal (corners in reverse order), emission only for two-sided emissive materials.
+  // normal (corners in reverse order).
+  // Emission is not a patch's: emitters reach receivers as direct light (DirectLight).
   bool back_side = false;
 };
 
