@@ -188,9 +188,18 @@ class _JsonResult(unittest.TextTestResult):
         self._started[test.id()] = time.perf_counter()
         super().startTest(test)
 
-    def _record(self, test, status, message=""):
+    def _record(self, test, status, message="", name=None):
         seconds = time.perf_counter() - self._started.get(test.id(), time.perf_counter())
-        self.cases.append({"name": test.id(), "status": status, "seconds": round(seconds, 3), "message": message})
+        self.cases.append({"name": name or test.id(), "status": status, "seconds": round(seconds, 3),
+                           "message": message})
+
+    def addSubTest(self, test, subtest, err):
+        # A test whose subtests fail gets neither addSuccess nor addFailure: without this its
+        # failures would vanish from the count.
+        super().addSubTest(test, subtest, err)
+        if err is not None:
+            status = "failed" if issubclass(err[0], test.failureException) else "error"
+            self._record(test, status, self._exc_info_to_string(err, test), name=subtest.id())
 
     def addSuccess(self, test):
         super().addSuccess(test)

@@ -104,5 +104,34 @@ class Scripting(common.SmallCornellCase):
         self.assertEqual(sum(t["count"] for t in result["targets"]), corners)
 
 
+class ScriptBuiltScene(unittest.TestCase):
+    """A script that makes objects with bpy.data and bakes at once: the view layer's object
+    list is not updated until something updates it, and the add-on must do that itself."""
+
+    @classmethod
+    def setUpClass(cls):
+        common.new_empty_scene()
+        cls.bakegi = common.enable_addon()
+
+    def test_visible_objects_made_by_the_script_are_baked(self):
+        common.new_empty_scene()
+        scene = bpy.context.scene
+        import bmesh
+        mesh = bpy.data.meshes.new("Room")
+        bm = bmesh.new()
+        bmesh.ops.create_cube(bm, size=2.0)
+        bmesh.ops.reverse_faces(bm, faces=bm.faces[:])  # normals inwards: a closed room
+        bm.to_mesh(mesh)
+        bm.free()
+        room = bpy.data.objects.new("Room", mesh)
+        scene.collection.objects.link(room)
+        lamp = bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", "POINT"))
+        lamp.data.energy = 100.0
+        scene.collection.objects.link(lamp)
+        report = self.bakegi.bake(method="pathtrace", samples=4, objects="VISIBLE")
+        self.assertEqual(report["bake_points"], len(mesh.loops))
+        self.assertIn(common.ATTRIBUTE, mesh.color_attributes)
+
+
 if __name__ == "__main__":
     common.run_tests(__name__)

@@ -20,7 +20,14 @@ from .native import BakeGIError
 
 
 def _context(context):
-    return context if context is not None else bpy.context
+    """The context a scripted call works in, with its view layer brought up to date: a script
+    that has just made objects would otherwise find them missing from the view layer's list
+    ("nothing to bake: no mesh object is visible") or unevaluated."""
+    context = context if context is not None else bpy.context
+    view_layer = getattr(context, "view_layer", None)
+    if view_layer is not None:
+        view_layer.update()
+    return context
 
 
 def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SELECTED",

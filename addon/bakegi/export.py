@@ -379,11 +379,24 @@ class SceneExporter:
                                "non-finite coordinates")
         return _LocalMesh(positions, tri_vertices, normals, uvs, tri_materials, lightmap_uvs)
 
+    @staticmethod
+    def _mirrored(local):
+        """The same triangles wound the other way round (corners 0, 2, 1). A transform with a
+        negative determinant (negative scale, as a Mirror workflow leaves it) turns the
+        winding around in world space while Blender keeps shading the outside; the core
+        takes the front from the winding, so it must be restored."""
+        def corners(array):
+            return None if array is None else array.reshape(-1, 3, array.shape[-1])[:, (0, 2, 1)].reshape(array.shape)
+        return _LocalMesh(local.positions, local.tri_vertices[:, (0, 2, 1)], corners(local.normals),
+                          corners(local.uvs), local.tri_materials, corners(local.lightmap_uvs))
+
     def add_instance(self, obj, matrix_world, is_instance=False):
         local = self._local_mesh(obj)
         if local is None:
             return
         matrix = _matrix(matrix_world)
+        if np.linalg.det(matrix[:3, :3]) < 0.0:
+            local = self._mirrored(local)
         positions = _positions_to_world(matrix, local.positions)
         normals = _normals_to_world(matrix, local.normals)
         _check_finite(obj.name, positions)

@@ -362,6 +362,13 @@ TEST(ApiErrors, BadBakePoints) {
                BAKEGI_ERROR_INVALID_ARGUMENT, "bake point 1: normal is the zero vector");
   EXPECT_ERROR(bakegi_points_create(good_positions, normals, nullptr, 0, &points),
                BAKEGI_ERROR_INVALID_ARGUMENT, "count is 0");
+  // Finite but absurd: Embree aborts the process on a ray from 1e20 (ray.valid()), so such a
+  // point must never reach a solver. The limit is the vertices' (+-1e12 m).
+  const float far_positions[] = {0, 0, 0, 1e20f, 0, 0};
+  EXPECT_ERROR(bakegi_points_create(far_positions, normals, nullptr, 2, &points),
+               BAKEGI_ERROR_INVALID_ARGUMENT,
+               "bake point 1: position (1e+20, 0, 0) is out of range: coordinates must be within "
+               "+-1e12 m");
 
   // Normals are normalized on input; object ids default to 0.
   const float long_normals[] = {0, 0, 3, 0, 4, 0};
@@ -417,6 +424,20 @@ TEST(ApiErrors, SettingsAreCheckedWhenAJobStarts) {
 
   EXPECT_ERROR(bakegi_settings_set_float(settings.get(), "samples", std::nan("")), A,
                "setting \"samples\": value is NaN");
+}
+
+TEST(ApiErrors, PositionValuedSettingsAreRangeChecked) {
+  // Like bake points, a viewpoint far beyond the scene would start rays Embree aborts on.
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(4);
+  SettingsPtr settings = new_settings();
+  ASSERT_EQ(bakegi_settings_set_string(settings.get(), "method", "meshless"), BAKEGI_OK);
+  ASSERT_EQ(bakegi_settings_set_string(settings.get(), "viewpoint", "1e30,0,0"), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+  JobPtr owned(job);
+  EXPECT_ERROR(bakegi_job_wait(job), BAKEGI_ERROR_INVALID_ARGUMENT,
+               "setting 'viewpoint': position (1e+30, 0, 0) is out of range");
 }
 
 TEST(ApiErrors, InvalidSceneFailsTheJobWithItsMessage) {

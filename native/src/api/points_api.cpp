@@ -4,6 +4,7 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
+#include "scene/scene_validation.h"
 
 using bakegi::Error;
 using bakegi::guarded;
@@ -46,6 +47,10 @@ bakegi_status bakegi_points_create(const float* positions, const float* normals,
       const std::string name = "bake point " + std::to_string(i);
       if (!finite(p)) {
         throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, name + ": position is " + non_finite_word(p));
+      }
+      if (!bakegi::position_in_range({p[0], p[1], p[2]})) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                    name + ": " + bakegi::position_out_of_range_text({p[0], p[1], p[2]}));
       }
       if (!finite(n)) {
         throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, name + ": normal is " + non_finite_word(n));

@@ -52,14 +52,6 @@ bool finite(const glm::vec2& v) {
 // be baked, and Blender stores an infinite coordinate as FLT_MAX (3.4e38), which is finite.
 constexpr float kMaxCoordinate = 1e12f;
 
-bool in_range(const glm::vec3& v) {
-  return std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate &&
-         std::abs(v.z) <= kMaxCoordinate;
-}
-
-std::string out_of_range_text(const glm::vec3& v) {
-  return "position " + vec(v) + " is out of range: coordinates must be within +-1e12 m";
-}
 
 const char* non_finite_word(const glm::vec3& v) {
   return std::isnan(v.x) || std::isnan(v.y) || std::isnan(v.z) ? "NaN" : "infinite";
@@ -169,8 +161,8 @@ void check_mesh(const Mesh& mesh, size_t index) {
       invalid(name + ", vertex " + std::to_string(v) + ": position is " +
               non_finite_word(mesh.positions[v]));
     }
-    if (!in_range(mesh.positions[v])) {
-      invalid(name + ", vertex " + std::to_string(v) + ": " + out_of_range_text(mesh.positions[v]));
+    if (!position_in_range(mesh.positions[v])) {
+      invalid(name + ", vertex " + std::to_string(v) + ": " + position_out_of_range_text(mesh.positions[v]));
     }
   }
   for (size_t i = 0; i < mesh.indices.size(); ++i) {
@@ -228,8 +220,8 @@ void check_light(const Light& light, size_t index) {
   if (light.type != BAKEGI_LIGHT_SUN && !finite(light.position)) {
     invalid(name + ": position is " + non_finite_word(light.position));
   }
-  if (light.type != BAKEGI_LIGHT_SUN && !in_range(light.position)) {
-    invalid(name + ": " + out_of_range_text(light.position));
+  if (light.type != BAKEGI_LIGHT_SUN && !position_in_range(light.position)) {
+    invalid(name + ": " + position_out_of_range_text(light.position));
   }
   if (light.type != BAKEGI_LIGHT_POINT) check_direction(light.direction, name + ": direction");
   if (light.type == BAKEGI_LIGHT_POINT || light.type == BAKEGI_LIGHT_SPOT) {
@@ -466,6 +458,15 @@ void normalize_lights_and_require_one(Scene& scene) {
 
 namespace bakegi {
 
+bool position_in_range(const glm::vec3& v) {
+  return std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate &&
+         std::abs(v.z) <= kMaxCoordinate;
+}
+
+std::string position_out_of_range_text(const glm::vec3& v) {
+  return "position " + vec(v) + " is out of range: coordinates must be within +-1e12 m";
+}
+
 void check_bake_points(const BakePoints& points) {
   const size_t count = points.positions.size();
   if (points.normals.size() != count || points.object_ids.size() != count) {
@@ -479,6 +480,10 @@ void check_bake_points(const BakePoints& points) {
     if (!finite(points.positions[i])) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                   name + ": position is " + non_finite_word(points.positions[i]));
+    }
+    if (!position_in_range(points.positions[i])) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  name + ": " + position_out_of_range_text(points.positions[i]));
     }
     if (!finite(points.normals[i])) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,

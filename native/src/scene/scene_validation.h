@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include "scene/scene.h"
 
@@ -16,6 +17,12 @@ void check_material(const Material& material, size_t index);
 void check_mesh(const Mesh& mesh, size_t index);  // not its material references
 void check_light(const Light& light, size_t index);
 void check_world(const glm::vec3& radiance);
+
+// Every position the core accepts (vertices, lights, bake points, position-valued settings)
+// lies within +-1e12 m on each axis: beyond it float spacing exceeds 60 km, and Embree aborts
+// the process on rays whose origin is huge. position_out_of_range_text says so for `v`.
+bool position_in_range(const glm::vec3& v);
+std::string position_out_of_range_text(const glm::vec3& v);
 
 // Enums arrive as raw integers (C callers, files); a value outside the enum must be refused
 // before it is stored in one. Throw Error(INVALID_ARGUMENT) naming light `index`.
@@ -52,7 +59,7 @@ namespace bakegi {
 
 struct BakePoints;
 
-// Bake points: as many normals and object ids as positions, finite positions, unit
+// Bake points: as many normals and object ids as positions, finite positions in range, unit
 // normals (points are normalized when they enter the core, see api/). Throws
 // Error(INVALID_ARGUMENT) naming the point.
 void check_bake_points(const BakePoints& points);

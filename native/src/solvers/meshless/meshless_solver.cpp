@@ -21,6 +21,7 @@
 #include "direct/surface_point.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
+#include "scene/scene_validation.h"
 #include "solvers/meshless/basis_hierarchy.h"
 #include "solvers/meshless/meshless_precomputation.h"
 #include "solvers/meshless/multi_bounce.h"
@@ -83,6 +84,10 @@ struct MeshlessSettings {
           !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
         throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                     "setting 'viewpoint' must be three numbers \"x,y,z\", got '" + viewpoint + "'");
+      }
+      if (!position_in_range(v)) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                    "setting 'viewpoint': " + position_out_of_range_text(v));
       }
       s.has_viewpoint = true;
       s.viewpoint = v;
