@@ -34,9 +34,11 @@ except ImportError:  # plain Python: tests of the bpy-free modules
 
 __all__ = ["BakeGIError"]
 if bpy is not None:
-    from .api import bake, export_scene_file, live_stop, live_update, remove_bake  # noqa: E402
+    from .api import (bake, export_scene_file, live_stop, live_update, remove_bake,  # noqa: E402
+                      subdivide_copy)
 
-    __all__ += ["bake", "export_scene_file", "live_stop", "live_update", "remove_bake"]
+    __all__ += ["bake", "export_scene_file", "live_stop", "live_update", "remove_bake",
+                "subdivide_copy"]
 
 _MODULES = ("properties", "operators", "panels", "live")
 

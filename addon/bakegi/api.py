@@ -34,7 +34,8 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
          threads=0, hook_materials=True, context=None, method_settings=None, live=False,
          texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
          lightmap_uv_method="SMART", lightmap_padding=4, lightmap_folder="//bakegi_lightmaps",
-         lightmap_full_float=False, lightmap_reject_inside=True):
+         lightmap_full_float=False, lightmap_reject_inside=True, linked_duplicates="SHARED",
+         estimate_error=True):
     """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes
     (target 'CORNER' or 'POINT'), or into a lightmap atlas (target 'LIGHTMAP').
 
@@ -57,9 +58,19 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     method_settings e.g. {"levels": 0, "epsilon": 0.01, "cache_dir": "/path"}).
     live: meshless only: keep the precomputation so that live_update() (or, in the UI, any
     change of a light) relights the bake.
+    linked_duplicates (attribute targets): 'SHARED' bakes the first of the objects that share
+    a mesh (the others show its light); 'SINGLE_USER' gives each its own mesh copy and bakes
+    it.
+    estimate_error: path-trace a few hundred probes after the bake and report the estimated
+    error (report["estimated_error"], a fraction, and report["estimated_error_interval"],
+    90%; report["error_check"] with the error between vertices, per object, and the likely
+    causes, also as warnings when it is above 10%).
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
     scene is changed."""
     context = _context(context)
+    method_settings = dict(method_settings or {})
+    if not estimate_error:
+        method_settings["error_probes"] = 0
     lightmap = export.LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
                                       max_side=lightmap_max_size, padding=lightmap_padding,
                                       uv_method=lightmap_uv_method,
@@ -70,7 +81,8 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
                                  hook_materials=hook_materials,
                                  method_settings=method_settings, live=live,
                                  lightmap=lightmap, lightmap_folder=folder,
-                                 lightmap_full_float=lightmap_full_float).run()
+                                 lightmap_full_float=lightmap_full_float,
+                                 linked_duplicates=linked_duplicates).run()
     scene = context.scene
     if hasattr(scene, "bakegi"):
         operators.store_report(scene, report)
@@ -118,6 +130,22 @@ def export_scene_file(path, target="CORNER", objects="SELECTED", context=None,
             "counts": exported.counts, "warnings": exported.warnings + exported.skipped,
             "targets": [{"object": t.object_name, "domain": t.domain, "start": t.start,
                          "count": t.count} for t in exported.targets]}
+
+
+def subdivide_copy(obj, vertices=4000, context=None):
+    """Makes '<name>_BakeGI', a copy of the mesh object `obj` (or its name) with about
+    `vertices` vertices spread over its surface, for a target whose vertices are too few for
+    its light (report["error_check"]["coarse_objects"] names them); hides `obj`. Returns the
+    copy."""
+    from . import subdivision
+    context = _context(context)
+    target = context.blend_data.objects.get(obj) if isinstance(obj, str) else obj
+    if target is None:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {obj!r}")
+    try:
+        return subdivision.subdivide_copy(target, vertices)
+    except ValueError as error:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", str(error)) from None
 
 
 def remove_bake(objects=None, context=None):

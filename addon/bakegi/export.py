@@ -179,12 +179,57 @@ def resolve_targets(context, objects, shared_meshes=False):
             skipped.append(f"'{obj.name}' skipped: its mesh has no faces")
             continue
         if mesh.name_full in meshes and not shared_meshes:
-            skipped.append(f"'{obj.name}' skipped: shares mesh '{mesh.name}' with "
-                           f"'{meshes[mesh.name_full]}', which is baked")
+            skipped.append(f"'{obj.name}' not baked: it shares mesh '{mesh.name}' with "
+                           f"'{meshes[mesh.name_full]}' and shows that object's light (Linked "
+                           f"Duplicates: Make Single User bakes each)")
             continue
         meshes[mesh.name_full] = obj.name
         targets.append(obj)
     return targets, skipped
+
+
+# What an attribute bake does with linked duplicates (objects sharing one mesh, which holds
+# one color attribute for all of them).
+LINKED_DUPLICATES = ("SHARED", "SINGLE_USER")
+
+
+def linked_duplicates(context, objects):
+    """Target objects that share their mesh with an earlier target: [(object, the target it
+    shares with)]. An attribute bake bakes only the first of each group."""
+    targets, _ = resolve_targets(context, objects, shared_meshes=True)
+    first, shared = {}, []
+    for obj in targets:
+        key = obj.data.name_full
+        if key in first:
+            shared.append((obj, first[key]))
+        else:
+            first[key] = obj
+    return shared
+
+
+def make_single_users(context, objects):
+    """Gives every linked duplicate among the targets its own copy of the mesh (Blender's
+    Make Single User), so that each is baked with its own light. Returns [(object, shared
+    mesh, copy)] for undo_single_users."""
+    made = []
+    for obj, _ in linked_duplicates(context, objects):
+        shared = obj.data
+        copy = shared.copy()
+        obj.data = copy
+        made.append((obj, shared, copy))
+    return made
+
+
+def undo_single_users(data, made):
+    """Puts the shared meshes back and deletes the copies (a bake that failed or was
+    cancelled leaves the scene as it was)."""
+    for obj, shared, copy in reversed(made):
+        try:
+            obj.data = shared
+            if copy.users == 0:
+                data.meshes.remove(copy)
+        except ReferenceError:  # the object or mesh was deleted meanwhile
+            pass
 
 
 # ---- mesh arrays ------------------------------------------------------------------------
@@ -547,9 +592,65 @@ def _mean_face_center_per_vertex(vertices, loop_vertex, loop_face_center):
     return np.where(counts > 0, sums / np.maximum(counts, 1), vertices).astype(np.float32)
 
 
-def target_points(obj, depsgraph, domain, warnings):
-    """World-space (positions, normals) of one target's bake points on its original mesh's
-    domain."""
+# Display probes (points inside faces where the bake checks what a viewer sees between bake
+# points, interpolation included): this many per target object, fewer when there are many
+# targets, so that the check costs about the same on any scene.
+DISPLAY_PROBES_PER_OBJECT = 16
+DISPLAY_PROBES_MIN_PER_OBJECT = 8
+DISPLAY_PROBES_TOTAL = 2048
+
+
+def display_probes_per_object(target_count):
+    if target_count <= 0:
+        return 0
+    return max(DISPLAY_PROBES_MIN_PER_OBJECT,
+               min(DISPLAY_PROBES_PER_OBJECT, DISPLAY_PROBES_TOTAL // target_count))
+
+
+@dataclass
+class DisplayProbes:
+    """Probes of one target in object space: positions, normals, and per probe the target's
+    three bake points (of the face corner triangle it lies in) with barycentric weights."""
+    positions: np.ndarray  # (k, 3)
+    normals: np.ndarray  # (k, 3)
+    points: np.ndarray  # (k, 3) bake point indices within the target
+    weights: np.ndarray  # (k, 3)
+
+
+def _display_probes(source, domain, normals, count, rng):
+    """`count` points spread uniformly over the area of `source`'s faces (loop triangles),
+    each with the corner (or vertex) bake points and weights that interpolate the color
+    attribute there, as the viewport does."""
+    source.calc_loop_triangles()
+    tris = len(source.loop_triangles)
+    if count <= 0 or tris == 0:
+        return None
+    tri_loops = _get(source.loop_triangles, "loops", tris, np.int32, 3)
+    loop_vertex = _get(source.loops, "vertex_index", len(source.loops), np.int32)
+    vertices = _get(source.vertices, "co", len(source.vertices), np.float32, 3).astype(np.float64)
+    corners = vertices[loop_vertex[tri_loops]]  # (T, 3, 3)
+    areas = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
+                                          corners[:, 2] - corners[:, 0]), axis=1)
+    total = areas.sum()
+    if not (total > 0.0):
+        return None
+    chosen = rng.choice(tris, size=count, p=areas / total)
+    # Uniform barycentrics (Osada et al.): sqrt folds the square onto the triangle.
+    r1, r2 = np.sqrt(rng.random(count)), rng.random(count)
+    weights = np.stack([1.0 - r1, r1 * (1.0 - r2), r1 * r2], axis=1)
+    positions = np.einsum("kj,kjc->kc", weights, corners[chosen])
+    loops = tri_loops[chosen]
+    points = loops if domain == "CORNER" else loop_vertex[loops]
+    corner_normals = normals[points].astype(np.float64)
+    probe_normals = np.einsum("kj,kjc->kc", weights, corner_normals)
+    return DisplayProbes(positions.astype(np.float32), probe_normals.astype(np.float32),
+                         points.astype(np.uint32), weights.astype(np.float32))
+
+
+def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0):
+    """World-space (positions, normals, display probes or None) of one target's bake points
+    on its original mesh's domain, and `probe_count` display probes inside its faces
+    (positions and normals in world space, bake point indices within the target)."""
     original = obj.data
     obj_eval = obj.evaluated_get(depsgraph)
     matrix = _matrix(obj_eval.matrix_world)
@@ -577,17 +678,35 @@ def target_points(obj, depsgraph, domain, warnings):
             inward = _mean_face_center_per_vertex(vertices, loop_vertex, face_centers[loop_face])
             normals = _get(source.vertices, "normal", want, np.float32, 3)
         positions = nudge_into_faces(positions, inward)
+        probes = _display_probes(source, domain, normals, probe_count,
+                                 np.random.default_rng(seed)) if probe_count else None
     finally:
         obj_eval.to_mesh_clear()
     _check_finite(obj.name, positions, "vertex" if domain == "POINT" else "face corner")
-    return _positions_to_world(matrix, positions), _normals_to_world(matrix, normals)
+    if probes is not None:
+        probes.positions = _positions_to_world(matrix, probes.positions)
+        probes.normals = _normals_to_world(matrix, probes.normals)
+    return _positions_to_world(matrix, positions), _normals_to_world(matrix, normals), probes
+
+
+def mesh_facts(mesh):
+    """What the error check says about a target (error_check.ObjectFacts): its vertex count
+    and the share of its edges that bound a single face (open, sheet-like geometry)."""
+    from .error_check import ObjectFacts
+    edges = len(mesh.edges)
+    if edges == 0:
+        return ObjectFacts(vertices=len(mesh.vertices))
+    loop_edges = _get(mesh.loops, "edge_index", len(mesh.loops), np.int32)
+    faces_per_edge = np.bincount(loop_edges, minlength=edges)
+    return ObjectFacts(vertices=len(mesh.vertices),
+                       open_edge_share=float(np.count_nonzero(faces_per_edge == 1)) / edges)
 
 
 # ---- the whole export ---------------------------------------------------------------------
 
 
 def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, lightmap=None,
-                 defer_texels=False):
+                 defer_texels=False, display_probes=False):
     """Exports the evaluated scene and the bake points of the target objects.
 
     target 'LIGHTMAP': the bake points are the texels of the targets' lightmap UV maps
@@ -596,6 +715,8 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
     again if it fails).
     defer_texels (LIGHTMAP): leave `points` None and the texels to
     ExportedLightmaps.build(), for a worker thread.
+    display_probes (CORNER, POINT): give the bake points display probes inside the targets'
+    faces, where the core checks the interpolated attribute against the path tracer.
     Raises BakeGIError (with the object and element named) for invalid input; the Blender
     data is left as it was."""
     start = time.perf_counter()
@@ -618,7 +739,7 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
         depsgraph = None  # the new UV maps must be evaluated
     try:
         return _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps,
-                       start, defer_texels)
+                       start, defer_texels, display_probes)
     except BaseException:
         lightmap_uvs.remove(context.blend_data, created_uv_maps,
                             lightmap.uv_map if lightmap else "")
@@ -642,7 +763,7 @@ def _check_lightmap_options(options):
 
 
 def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps, start,
-            defer_texels=False):
+            defer_texels=False, display_probes=False):
     if depsgraph is None:
         depsgraph = context.evaluated_depsgraph_get()
     warnings = []
@@ -669,17 +790,23 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             return _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
                              exported_lightmaps)
 
-        positions, normals, ids, bake_targets = [], [], [], []
+        positions, normals, ids, bake_targets, probes = [], [], [], [], []
         offset = 0
+        per_object = display_probes_per_object(len(targets)) if display_probes else 0
         for index, obj in enumerate(targets):
-            p, n = target_points(obj, depsgraph, target, warnings)
+            p, n, object_probes = target_points(obj, depsgraph, target, warnings, per_object,
+                                                seed=index)
             positions.append(p)
             normals.append(n)
             ids.append(np.full(len(p), index, np.uint32))
+            if object_probes is not None:
+                probes.append((index, offset, object_probes))
             bake_targets.append(BakeTarget(obj.name, obj.data.name_full, target, offset, len(p)))
             offset += len(p)
         points = native.Points(np.concatenate(positions), np.concatenate(normals),
                                np.concatenate(ids))
+        if probes:
+            _set_display_probes(points, probes)
     except BaseException:
         exporter.scene.close()
         if points is not None:
@@ -688,6 +815,25 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             exported_lightmaps.close()
         raise
     return _exported(exporter, points, bake_targets, warnings, skipped, offset, start)
+
+
+def _set_display_probes(points, probes):
+    """Hands the targets' display probes to the core (bake point indices made global, a
+    fourth stencil entry of weight 0)."""
+    count = sum(len(p.positions) for _, _, p in probes)
+    indices = np.zeros((count, 4), np.uint32)
+    weights = np.zeros((count, 4), np.float32)
+    at = 0
+    for _, offset, p in probes:
+        k = len(p.positions)
+        indices[at:at + k, :3] = p.points + offset
+        weights[at:at + k, :3] = p.weights
+        at += k
+    points.set_display_probes(np.concatenate([p.positions for _, _, p in probes]),
+                              np.concatenate([p.normals for _, _, p in probes]),
+                              np.concatenate([np.full(len(p.positions), index, np.uint32)
+                                              for index, _, p in probes]),
+                              indices, weights)
 
 
 def _exported(exporter, points, bake_targets, warnings, skipped, offset, start,

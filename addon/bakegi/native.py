@@ -127,6 +127,9 @@ _SIGNATURES = {
     "bakegi_points_destroy": (None, [_P]),
     "bakegi_points_count": (c_uint64, [_P]),
     "bakegi_points_get": (c_int, [_P, POINTER(c_float), POINTER(c_float), POINTER(c_uint32)]),
+    "bakegi_points_set_display_probes": (c_int, [_P, POINTER(c_float), POINTER(c_float),
+                                                 POINTER(c_uint32), POINTER(c_uint32),
+                                                 POINTER(c_float), c_uint64]),
     "bakegi_file_write": (c_int, [c_char_p, _P, _P]),
     "bakegi_file_read": (c_int, [c_char_p, _PP, _PP]),
     "bakegi_settings_create": (c_int, [_PP]),
@@ -469,6 +472,21 @@ class Points(_Handle):
         _check(load_library().bakegi_points_get(self.handle, _fptr(p), _fptr(nn), _uptr(ids)),
                "bakegi_points_get")
         return p, nn, ids
+
+    def set_display_probes(self, positions, normals, object_ids, indices, weights):
+        """Points inside faces where the job also estimates the error of what a viewer shows:
+        the value shown at probe k is sum_j weights[k, j] * result[indices[k, j]] (j < 4)."""
+        p = _floats(positions, 3, "positions")
+        n = _floats(normals, 3, "normals")
+        ids = _uints(object_ids, "object_ids")
+        idx = np.ascontiguousarray(indices, dtype=np.uint32).reshape(-1, 4)
+        w = np.ascontiguousarray(weights, dtype=np.float32).reshape(-1, 4)
+        count = p.shape[0]
+        if not (n.shape[0] == ids.shape[0] == idx.shape[0] == w.shape[0] == count):
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", "display probe arrays differ in length")
+        _check(load_library().bakegi_points_set_display_probes(
+            self.handle, _fptr(p), _fptr(n), _uptr(ids), _uptr(idx), _fptr(w), count),
+            "bakegi_points_set_display_probes")
 
 
 class LightmapInfo(Structure):

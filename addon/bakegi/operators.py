@@ -12,7 +12,7 @@ import json
 
 import bpy
 
-from . import export, session, writeback
+from . import export, session, subdivision, writeback
 from .native import BakeGIError
 
 # Runtime state shown by the panel (not saved, so a cancel or failure changes no data).
@@ -102,7 +102,8 @@ def _session_from_scene(context):
                                method_settings=s.method_settings(), live=s.live_requested(),
                                lightmap=s.lightmap_options(),
                                lightmap_folder=s.lightmap_directory(),
-                               lightmap_full_float=s.lightmap_float)
+                               lightmap_full_float=s.lightmap_float,
+                               linked_duplicates=s.linked_duplicates)
 
 
 def _report_warnings(operator, report):
@@ -270,7 +271,47 @@ class BAKEGI_OT_remove_bake(bpy.types.Operator):
         return {"FINISHED"}
 
 
-classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake)
+class BAKEGI_OT_subdivide_copy(bpy.types.Operator):
+    """Make a finer copy of a mesh whose vertices are too few for the light on it (the
+    original is hidden, not changed); then bake again"""
+
+    bl_idname = "bakegi.subdivide_copy"
+    bl_label = "Subdivide a Copy"
+    bl_options = {"REGISTER", "UNDO"}
+
+    object_name: bpy.props.StringProperty(name="Object", description="The mesh object to copy")
+    vertices: bpy.props.IntProperty(
+        name="Vertices", default=subdivision.DEFAULT_VERTICES, min=100,
+        max=subdivision.MAX_VERTICES,
+        description="About how many vertices the copy spreads over its surface")
+
+    @classmethod
+    def poll(cls, context):
+        if runtime["running"]:
+            cls.poll_message_set("A bake is running")
+            return False
+        if context.mode != "OBJECT":
+            cls.poll_message_set("Switch to Object Mode")
+            return False
+        return True
+
+    def execute(self, context):
+        obj = context.blend_data.objects.get(self.object_name)
+        if obj is None:
+            self.report({"ERROR"}, f"BakeGI: no object named '{self.object_name}'")
+            return {"CANCELLED"}
+        try:
+            copy = subdivision.subdivide_copy(obj, self.vertices)
+        except ValueError as error:
+            self.report({"ERROR"}, f"BakeGI: {error}")
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"BakeGI: made '{copy.name}' ({len(copy.data.vertices):,} "
+                    f"vertices) from '{obj.name}' ({len(obj.data.vertices):,}), which is now "
+                    "hidden; bake again")
+        return {"FINISHED"}
+
+
+classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake, BAKEGI_OT_subdivide_copy)
 
 
 def register():

@@ -1,11 +1,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The BakeGI panel in the Render properties."""
 
+import json
+import textwrap
+
 import bpy
 
-import json
-
-from . import live, native, operators
+from . import error_check, export, live, native, operators
 
 
 class RENDER_PT_bakegi(bpy.types.Panel):
@@ -54,6 +55,13 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             sub.prop(settings, "lightmap_folder")
             sub.prop(settings, "lightmap_float")
         col.prop(settings, "objects")
+        if settings.target != "LIGHTMAP":
+            col.prop(settings, "linked_duplicates")
+            shared = len(export.linked_duplicates(context, settings.objects))
+            if shared and settings.linked_duplicates == "SHARED":
+                col.label(text=f"{shared} object(s) share a mesh with another: they show its "
+                          "light", icon="INFO")
+        col.prop(settings, "estimate_error")
         col.prop(settings, "threads")
         col.prop(settings, "hook_materials")
 
@@ -67,8 +75,10 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             box.label(text=operators.runtime["text"], icon="TIME")
         elif settings.last_result:
             box.label(text="Last: " + settings.last_result, icon="CHECKMARK")
-            for line in _report_details(settings):
+            report = _last_report(settings)
+            for line in operators.meshless_details(report) + operators.lightmap_details(report):
                 box.label(text=line)
+            _draw_error_check(box, report.get("error_check"))
         else:
             box.label(text="Not baked yet", icon="INFO")
         if method == "meshless" and settings.live_indirect:
@@ -114,14 +124,35 @@ class VIEW3D_PT_bakegi_live(bpy.types.Panel):
             layout.label(text="Bake once to start", icon="INFO")
 
 
-def _report_details(settings):
+def _last_report(settings):
     try:
         report = json.loads(settings.last_report) if settings.last_report else {}
     except ValueError:
-        return []
-    if not isinstance(report, dict):
-        return []
-    return operators.meshless_details(report) + operators.lightmap_details(report)
+        return {}
+    return report if isinstance(report, dict) else {}
+
+
+# Characters per label line before wrapping (a Properties editor of the default width).
+LABEL_WIDTH = 60
+
+
+def _draw_error_check(layout, verdict):
+    """The bake's estimate of its own error; above the threshold, why and what to do, and a
+    Subdivide a Copy button for each target whose vertices cannot hold its light."""
+    if not isinstance(verdict, dict):
+        return
+    flagged = verdict.get("error", 0.0) > error_check.THRESHOLD
+    for line in error_check.summary_lines(verdict):
+        layout.label(text=line, icon="ERROR" if flagged else "INFO")
+    if flagged:
+        for cause in verdict.get("causes") or []:
+            for i, line in enumerate(textwrap.wrap(cause, LABEL_WIDTH)):
+                layout.label(text=line, icon="DOT" if i == 0 else "BLANK1")
+    for name in (verdict.get("coarse_objects") or [])[:5]:
+        row = layout.row()
+        row.label(text=f"'{name}': too few vertices for its light", icon="MESH_GRID")
+        op = row.operator(operators.BAKEGI_OT_subdivide_copy.bl_idname, text="Subdivide a Copy")
+        op.object_name = name
 
 
 classes = (RENDER_PT_bakegi, VIEW3D_PT_bakegi_live)

@@ -37,6 +37,13 @@ LIGHTMAP_UV_METHOD_ITEMS = [
     ("LIGHTMAP_PACK", "Lightmap Pack", "Every face its own box: no stretching, many seams"),
 ]
 
+LINKED_DUPLICATE_ITEMS = [
+    ("SHARED", "Keep Shared Mesh", "Objects that share a mesh share its color attribute: the "
+     "first is baked and the others show its light"),
+    ("SINGLE_USER", "Make Single User", "Give each object that shares a mesh its own copy of "
+     "the mesh and bake each with its own light (more memory; undo restores the sharing)"),
+]
+
 OBJECTS_ITEMS = [
     ("SELECTED", "Selected", "Bake the selected mesh objects"),
     ("VISIBLE", "All Visible", "Bake every visible mesh object"),
@@ -127,6 +134,14 @@ class BakeGISettings(bpy.types.PropertyGroup):
     objects: EnumProperty(name="Objects", items=OBJECTS_ITEMS, default="SELECTED",
                           description="Which objects receive the bake (every visible object "
                           "always takes part in the light transport)")
+    linked_duplicates: EnumProperty(
+        name="Linked Duplicates", items=LINKED_DUPLICATE_ITEMS, default="SHARED",
+        description="Color attributes: what to do with objects that share a mesh (lightmaps "
+        "give each object its own texels anyway)")
+    estimate_error: BoolProperty(
+        name="Check Error", default=True,
+        description="After the bake, path-trace a few hundred probe points and estimate the "
+        "bake's error (also between vertices); a warning names the likely cause above 10%")
     threads: IntProperty(name="Threads", default=0, min=0, max=1024,
                          description="Threads of the bake; 0 uses every core")
     hook_materials: BoolProperty(
@@ -147,14 +162,14 @@ class BakeGISettings(bpy.types.PropertyGroup):
     def method_settings(self):
         """Core settings that only the resolved method reads."""
         method = self.resolved_method()
+        settings = {} if self.estimate_error else {"error_probes": 0}
         if method == "antiradiance":
-            return {"bins": self.bins, "iterations": self.iterations}
-        if method == "meshless":
-            settings = {"levels": self.meshless_levels, "epsilon": self.meshless_epsilon}
+            settings.update(bins=self.bins, iterations=self.iterations)
+        elif method == "meshless":
+            settings.update(levels=self.meshless_levels, epsilon=self.meshless_epsilon)
             if self.use_cache:
                 settings["cache_dir"] = self.cache_directory()
-            return settings
-        return {}
+        return settings
 
     def cache_directory(self):
         """The cache folder as an absolute path."""

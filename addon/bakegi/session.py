@@ -16,7 +16,7 @@ import threading
 import time
 from dataclasses import dataclass
 
-from . import export, live, native, writeback
+from . import error_check, export, live, native, writeback
 from .native import BakeGIError
 
 METHODS = ("pathtrace", "direct", "antiradiance", "meshless")
@@ -67,10 +67,20 @@ def validate_arguments(method, samples, seed, target, threads, live=False):
 class BakeSession:
     def __init__(self, context, method="antiradiance", samples=64, seed=0, target="CORNER",
                  objects="SELECTED", threads=0, hook_materials=True, method_settings=None,
-                 live=False, lightmap=None, lightmap_folder="", lightmap_full_float=False):
+                 live=False, lightmap=None, lightmap_folder="", lightmap_full_float=False,
+                 linked_duplicates="SHARED"):
         """lightmap (target 'LIGHTMAP'): export.LightmapOptions; lightmap_folder: where the
-        atlas is written (absolute); lightmap_full_float: 32-bit floats instead of half."""
+        atlas is written (absolute); lightmap_full_float: 32-bit floats instead of half.
+        linked_duplicates (attribute targets): 'SHARED' bakes the first object of a shared
+        mesh (the others show its light), 'SINGLE_USER' gives each its own copy of the mesh
+        first (taken back if the bake fails or is cancelled)."""
         validate_arguments(method, samples, seed, target, threads, live)
+        if linked_duplicates not in export.LINKED_DUPLICATES:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"linked_duplicates must be one of {export.LINKED_DUPLICATES}, "
+                              f"not {linked_duplicates!r}")
+        self.linked_duplicates = linked_duplicates
+        self._single_users = []  # (object, shared mesh, its copy) made by prepare()
         self.context = context
         self.method = method
         self.samples = samples
@@ -101,6 +111,12 @@ class BakeSession:
         self._created_at = time.perf_counter()
 
     @property
+    def estimates_error(self):
+        """Whether the core will check this bake (every full bake unless error_probes is 0;
+        not the 'direct' method)."""
+        return self.method != "direct" and self.method_settings.get("error_probes", 1) != 0
+
+    @property
     def settings(self):
         return {"method": self.method, "samples": self.samples, "seed": self.seed,
                 "threads": self.threads, **self.method_settings}
@@ -108,8 +124,15 @@ class BakeSession:
     def prepare(self):
         """Exports the scene. The context is used only here (and by finish() when no data
         is given): a modal operator's context does not outlive the call that passed it."""
-        self.exported = export.export_scene(self.context, self.target, self.objects,
-                                            lightmap=self.lightmap, defer_texels=True)
+        if self.linked_duplicates == "SINGLE_USER" and self.target != "LIGHTMAP":
+            self._single_users = export.make_single_users(self.context, self.objects)
+        try:
+            self.exported = export.export_scene(self.context, self.target, self.objects,
+                                                lightmap=self.lightmap, defer_texels=True,
+                                                display_probes=self.estimates_error)
+        except BaseException:
+            self._take_back_changes()
+            raise
         self.seconds["export"] = self.exported.seconds
 
     def start(self):
@@ -127,11 +150,11 @@ class BakeSession:
         try:
             self._start_job()
         except BakeGIError as error:
-            self._remove_created_uv_maps()
+            self._take_back_changes()
             self._release_export()
             raise self._named(error) from None
         except BaseException:
-            self._remove_created_uv_maps()
+            self._take_back_changes()
             self._release_export()
             raise
 
@@ -178,7 +201,7 @@ class BakeSession:
         lets a helper thread wait for the core's threads to wind down (the UI stays
         responsive)."""
         self._cancelled = True
-        self._remove_created_uv_maps()  # bpy: here, on the main thread
+        self._take_back_changes()  # bpy: here, on the main thread
         starter, self._starter = self._starter, None
         if starter is not None and starter.is_alive():
             # The lightmap worker may still start a job: wind both down behind it.
@@ -249,7 +272,7 @@ class BakeSession:
                 self.job = None
             targets = self.exported.targets if self.exported else []
             if not written:
-                self._remove_created_uv_maps()
+                self._take_back_changes()
             exported_lightmaps = self.exported.lightmaps if self.exported else None
             if not adopted:
                 self._release_export()
@@ -284,8 +307,17 @@ class BakeSession:
                 "max_side": lm.options.max_side, "padding": lm.options.padding,
                 "uv_map": lm.options.uv_map}
 
+    def _take_back_changes(self):
+        """A bake that wrote nothing takes back what it changed before baking: the meshes it
+        made single-user and the lightmap UV maps it made."""
+        if self._single_users:
+            import bpy  # (a modal operator's context may be gone by now)
+            export.undo_single_users(bpy.data, self._single_users)
+            self._single_users = []
+        self._remove_created_uv_maps()
+
     def _remove_created_uv_maps(self):
-        """A bake that wrote nothing takes back the lightmap UV maps it made."""
+        """The lightmap UV maps this bake made, removed."""
         lightmaps = self.exported.lightmaps if self.exported is not None else None
         if lightmaps is None or not lightmaps.created_uv_maps:
             return
@@ -336,4 +368,27 @@ class BakeSession:
         names = self.exported.object_names if self.exported is not None else []
         report["warnings"] = (list(self.exported.warnings) + list(self.exported.skipped) +
                               [export.name_objects(w, names) for w in core_warnings])
+        self._check_error(report, targets)
         return report
+
+    def _check_error(self, report, targets):
+        """report["error_check"]: the core's self-check in words (error_check.py), its
+        warnings added to the report's."""
+        if self.exported is None or "error_estimate" not in report:
+            return
+        # The bake points' object ids: the target's index for attributes, the exported
+        # object's index for lightmap texels.
+        by_id = (list(self.exported.object_names) if self.target == "LIGHTMAP"
+                 else [t.object_name for t in targets])
+        named = {entry.get("object") for entry in report["error_estimate"].get("objects") or []}
+        facts = {}
+        import bpy
+        for index in named:
+            if isinstance(index, int) and 0 <= index < len(by_id):
+                obj = bpy.data.objects.get(by_id[index])
+                if obj is not None and obj.type == "MESH":
+                    facts[obj.name] = export.mesh_facts(obj.data)
+        verdict = error_check.assess(report, by_id, facts, self.method, self.samples)
+        if verdict is not None:
+            report["error_check"] = verdict
+            report["warnings"] = report["warnings"] + verdict["warnings"]

@@ -270,6 +270,75 @@ TEST(BakeJob, ProgressIsMonotoneReachesOneAndTheReportIsComplete) {
   EXPECT_EQ(report.members["warnings"].kind, Json::kArray);
 }
 
+TEST(BakeJob, EveryFullBakeEstimatesItsOwnError) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(400);
+  // Display probes: halfway between consecutive floor points.
+  std::vector<float> positions(3 * 400), normals(3 * 400);
+  ASSERT_EQ(bakegi_points_get(points.get(), positions.data(), normals.data(), nullptr), BAKEGI_OK);
+  std::vector<float> probe_positions, probe_normals, weights;
+  std::vector<uint32_t> indices;
+  for (uint32_t i = 0; i + 1 < 400; i += 10) {
+    for (int c = 0; c < 3; ++c) {
+      probe_positions.push_back(0.5f * (positions[3 * i + c] + positions[3 * i + 3 + c]));
+    }
+    probe_normals.insert(probe_normals.end(), {0.0f, 0.0f, 1.0f});
+    indices.insert(indices.end(), {i, i + 1, 0, 0});
+    weights.insert(weights.end(), {0.5f, 0.5f, 0.0f, 0.0f});
+  }
+  const uint64_t display_count = indices.size() / 4;
+  ASSERT_EQ(bakegi_points_set_display_probes(points.get(), probe_positions.data(),
+                                             probe_normals.data(), nullptr, indices.data(),
+                                             weights.data(), display_count),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  auto run = [&](const char* method, int64_t probes) {
+    SettingsPtr settings = new_settings();
+    EXPECT_EQ(bakegi_settings_set_string(settings.get(), "method", method), BAKEGI_OK);
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 16), BAKEGI_OK);
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "error_probe_samples", 64), BAKEGI_OK);
+    if (probes >= 0) {
+      EXPECT_EQ(bakegi_settings_set_int(settings.get(), "error_probes", probes), BAKEGI_OK);
+    }
+    bakegi_job* job = nullptr;
+    EXPECT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK)
+        << bakegi_last_error();
+    JobPtr owned(job);
+    EXPECT_EQ(bakegi_job_wait(job), BAKEGI_OK) << bakegi_last_error();
+    return parse_report(job);
+  };
+
+  Json report = run("pathtrace", -1);  // the default: 256 probes
+  ASSERT_EQ(report.members["estimated_error"].kind, Json::kNumber);
+  const double estimate = report.members["estimated_error"].number;
+  Json& interval = report.members["estimated_error_interval"];
+  ASSERT_EQ(interval.items.size(), 2u);
+  EXPECT_LE(interval.items[0].number, estimate);
+  EXPECT_GE(interval.items[1].number, estimate);
+  // 16 paths per point in a box lit from its centre: noise of some percent, not 0, not 100%.
+  EXPECT_GT(estimate, 0.01);
+  EXPECT_LT(estimate, 0.5);
+  Json& detail = report.members["error_estimate"];
+  EXPECT_EQ(detail.members["at_points"].members["probes"].number, 256);
+  EXPECT_EQ(detail.members["display"].members["probes"].number, double(display_count));
+  EXPECT_EQ(detail.members["samples"].number, 64);
+  EXPECT_GE(report.members["seconds"].members["error_estimate"].number, 0.0);
+  EXPECT_GT(report.members["error_probe_rays"].number, 0);
+
+  EXPECT_EQ(run("pathtrace", 0).members.count("estimated_error"), 0u);  // off
+  EXPECT_EQ(run("direct", -1).members.count("estimated_error"), 0u);    // not indirect light
+
+  // Probes that point past the bake points are refused at the door.
+  indices[0] = 400;
+  EXPECT_EQ(bakegi_points_set_display_probes(points.get(), probe_positions.data(),
+                                             probe_normals.data(), nullptr, indices.data(),
+                                             weights.data(), display_count),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_error().find("display probe 0: bake point 400 is out of range"),
+            std::string::npos)
+      << last_error();
+}
+
 TEST(BakeJob, CancelStopsALongJobPromptly) {
   // Hours of work at full speed: only cancel can end it within the test.
   bakegi_job* job = start_endless_job(256);

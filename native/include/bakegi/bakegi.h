@@ -181,6 +181,18 @@ BAKEGI_API uint64_t bakegi_points_count(const bakegi_points* points);
 /* Copies the points out (any output pointer may be NULL). */
 BAKEGI_API bakegi_status bakegi_points_get(const bakegi_points* points, float* positions,
                                            float* normals, uint32_t* object_ids);
+/* Optional "display probes": points inside the targets' faces where a job also estimates the
+ * error of what a viewer shows between bake points (see "error_probes" below). The value
+ * shown at probe k is sum_j weights[4k+j] * result[indices[4k+j]], j < 4 (the barycentric
+ * weights of the corners of the face it lies in; unused entries weigh 0). object_ids may be
+ * NULL (0 for all). Replaces the probes set before; count 0 removes them. Not stored in
+ * scene files. */
+BAKEGI_API bakegi_status bakegi_points_set_display_probes(bakegi_points* points,
+                                                          const float* positions,
+                                                          const float* normals,
+                                                          const uint32_t* object_ids,
+                                                          const uint32_t* indices,
+                                                          const float* weights, uint64_t count);
 
 /* ---- scene files ------------------------------------------------------------------------ */
 
@@ -209,6 +221,15 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *                          roulette ends most paths far sooner)
  *   "memory_budget_mb" int >= 1 (default 4096): a bake whose estimate exceeds it is refused;
  *                          antiradiance coarsens an automatic patch size to fit it (warning)
+ *   "error_probes" int     0..65536 (default 256): every full bake (not relights, not method
+ *                          "direct") estimates its own error: at this many bake points drawn at
+ *                          random, and at the display probes, the path tracer's estimate is
+ *                          compared with the result. Report: "estimated_error" (the NRMSE at
+ *                          bake points, a fraction; null if no indirect light reached the
+ *                          probes), "estimated_error_interval" ([low, high], 90%),
+ *                          "error_estimate" (both kinds of probes, per object: "object" is the
+ *                          bake points' object id), seconds "error_estimate". 0 = off.
+ *   "error_probe_samples" int  16..2^20 (default 512): paths per probe
  * Antiradiance only ("seed" also picks its direct-light samples):
  *   "bins"         int     directional bins 12..3072 (default 300, rounded to 12*Nside^2)
  *   "iterations"   int     bounces at most, 1..100000 (default 32)

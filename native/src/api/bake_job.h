@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bake/error_probes.h"
 #include "bake_points/bake_points.h"
 #include "field/indirect_field.h"
 #include "scene/scene.h"
@@ -41,7 +42,10 @@ class BakeJob {
  public:
   // Checks the settings (unknown keys, types and ranges of the common ones, the method
   // name) and throws Error(INVALID_ARGUMENT) before anything starts; then starts the thread.
-  BakeJob(SceneDescription description, BakePoints points, Settings settings);
+  // `display_probes` (checked against the points) add probes inside faces to the job's
+  // estimate of its own error (bake/error_estimate.h).
+  BakeJob(SceneDescription description, BakePoints points, Settings settings,
+          ErrorProbes display_probes = {});
   // A relight: bakes `description`, which must have the same geometry and materials as the
   // previous bake's scene (only lights and world may differ; checked when the job runs), at
   // `points` with the previous bake's settings, reusing its precomputation. `overrides` may
@@ -84,10 +88,16 @@ class BakeJob {
   const Scene& build_scene_and_report(Report& report, std::chrono::steady_clock::time_point start);
   std::unique_ptr<IndirectField> solve_full(Report& report);
   std::unique_ptr<IndirectField> solve_relight(Report& report);
+  // Path-traces probes and compares the results there (settings error_probes,
+  // error_probe_samples); writes error_estimate, estimated_error and its interval.
+  void estimate_error(Report& report);
+  // Full bakes of every method but "direct" check themselves; relights stay fast.
+  bool wants_error_estimate() const;
   void finish(bakegi_status status, const std::string& message) noexcept;
 
   SceneDescription description_;
   BakePoints points_;
+  ErrorProbes display_probes_;
   Settings settings_;
   std::unique_ptr<Solver> solver_;
   std::shared_ptr<const JobPrecomputation> previous_;     // relight jobs only
@@ -98,6 +108,8 @@ class BakeJob {
   std::unique_ptr<const DirectLight> direct_;
   std::string method_;
   int threads_ = 0;
+  int64_t error_probes_ = 0;
+  int64_t error_probe_samples_ = 0;
   size_t memory_budget_bytes_ = 0;
 
   JobContext context_;

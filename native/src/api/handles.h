@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "api/bake_job.h"
+#include "bake/error_probes.h"
 #include "bake_points/bake_points.h"
 #include "scene/scene.h"
 #include "util/settings.h"
@@ -14,6 +15,7 @@ struct bakegi_scene {
 
 struct bakegi_points {
   bakegi::BakePoints points;
+  bakegi::ErrorProbes display_probes;  // bakegi_points_set_display_probes; checked there
 };
 
 struct bakegi_settings {

@@ -30,7 +30,8 @@ bakegi_status bakegi_job_start(const bakegi_scene* scene, const bakegi_points* p
     require(points, "points");
     auto handle = std::make_unique<bakegi_job>();
     handle->job = std::make_unique<bakegi::BakeJob>(
-        scene->description, points->points, settings ? settings->settings : bakegi::Settings());
+        scene->description, points->points, settings ? settings->settings : bakegi::Settings(),
+        points->display_probes);
     *out_job = handle.release();
   });
 }

@@ -68,6 +68,34 @@ bakegi_status bakegi_points_create(const float* positions, const float* normals,
   });
 }
 
+bakegi_status bakegi_points_set_display_probes(bakegi_points* points, const float* positions,
+                                               const float* normals, const uint32_t* object_ids,
+                                               const uint32_t* indices, const float* weights,
+                                               uint64_t count) {
+  return guarded(__func__, [&] {
+    require(points, "points");
+    if (count > 0) {
+      require(positions, "positions");
+      require(normals, "normals");
+      require(indices, "indices");
+      require(weights, "weights");
+    }
+    if (count > (uint64_t(1) << 32)) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "count " + std::to_string(count) + " is absurd");
+    }
+    bakegi::ErrorProbes probes;
+    for (uint64_t i = 0; i < count; ++i) {
+      const float* p = positions + 3 * i;
+      const float* n = normals + 3 * i;
+      probes.add({p[0], p[1], p[2]}, {n[0], n[1], n[2]}, object_ids ? object_ids[i] : 0,
+                 {indices[4 * i], indices[4 * i + 1], indices[4 * i + 2], indices[4 * i + 3]},
+                 {weights[4 * i], weights[4 * i + 1], weights[4 * i + 2], weights[4 * i + 3]});
+    }
+    bakegi::check_error_probes(probes, points->points.size());
+    points->display_probes = std::move(probes);
+  });
+}
+
 void bakegi_points_destroy(bakegi_points* points) {
   delete points;
 }
