@@ -391,4 +391,5 @@ class BakeSession:
         verdict = error_check.assess(report, by_id, facts, self.method, self.samples)
         if verdict is not None:
             report["error_check"] = verdict
-            report["warnings"] = report["warnings"] + verdict["warnings"]
+            # First: the operator shows at most 20 warnings, and these matter most.
+            report["warnings"] = verdict["warnings"] + report["warnings"]
