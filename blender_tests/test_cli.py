@@ -48,6 +48,15 @@ class CommandLine(common.SmallCornellCase):
         self.assertTrue(numpy.isfinite(values).all())
         self.assertGreater(float(values.mean()), 0.0)
 
+    def test_bake_states_its_estimated_error(self):
+        """The report's estimate, and a line on stderr; a warning above 10% (4 paths)."""
+        completed = self.run_cli("bake", self.scene, "--method", "pathtrace", "--samples", "4",
+                                 "--out", os.path.join(self.work, "noisy.npy"))
+        report = json.loads(completed.stdout)
+        self.assertGreater(report["estimated_error"], 0.10)
+        self.assertIn(f"estimated error {100 * report['estimated_error']:.1f}%", completed.stderr)
+        self.assertIn("WARNING, above 10%", completed.stderr)
+
     def test_relight_equals_a_full_bake_of_the_moved_lights(self):
         out = os.path.join(self.work, "relit.npy")
         result = json.loads(self.run_cli("relight", self.scene, "--method", "antiradiance", "--set", "bins=48",

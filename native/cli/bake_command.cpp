@@ -15,6 +15,7 @@
 #include "file_error.h"
 #include "lightmap_output.h"
 #include "npy_file.h"
+#include "report_summary.h"
 #include "scene_file.h"
 #include "usage_error.h"
 
@@ -56,6 +57,8 @@ int run_bake_command(const std::vector<std::string>& words) {
   std::fprintf(stderr, "baked %llu points with %s in %.3f s%s%s\n",
                static_cast<unsigned long long>(count), settings.method().c_str(), run.wall_seconds,
                out_path ? " -> " : "", out_path ? out_path->c_str() : "");
+  const std::string estimate = describe_estimated_error(summarize_report(run.report_json));
+  if (!estimate.empty()) std::fprintf(stderr, "%s\n", estimate.c_str());
   if (lightmap_output) write_lightmap_exrs(lightmaps.get(), *lightmap_output, run.values);
   return kExitOk;
 }
