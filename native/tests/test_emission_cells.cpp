@@ -58,10 +58,9 @@ SceneDescription emitter_quad(const glm::vec3& emission, int size, float uv_scal
   SceneDescription d;
   const uint32_t material = test::add_material(d, glm::vec3(0.0f), emission, true);
   if (size > 0) {
-    d.materials[material].emission_texture =
-        test::add_texture(d, uint32_t(size), uint32_t(size), [&](uint32_t i, uint32_t) {
-          return glm::vec3(2 * int(i) >= size ? 1.0f : 0.0f);
-        });
+    d.materials[material].emission_texture = test::add_texture(
+        d, uint32_t(size), uint32_t(size),
+        [&](uint32_t i, uint32_t) { return glm::vec3(2 * int(i) >= size ? 1.0f : 0.0f); });
     test::add_quad_with_uvs(d, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0.5f, 0.5f, material,
                             glm::vec2(0.0f), glm::vec2(uv_scale));
   } else {
@@ -81,9 +80,10 @@ TEST(EmissionCells, UntexturedEmittersAreOneCellOfTheirEmission) {
 
 TEST(EmissionCells, TexturedCellsFollowTheTexture) {
   // A 64 x 64 texture, black then white along u, once across the quad: each triangle
-  // covers 2048 of its 4096 texels, so its level is ceil(sqrt(2048 / 4)) = 23. Cells wholly in one half hold 0 or the emission's sum (3);
-  // cells across an edge something between, and the cells' mean is the texture's mean,
-  // 1.5, up to the quadrature (a few 1e-3: the edges are sampled at 4-8 points per cell).
+  // covers 2048 of its 4096 texels, so its level is ceil(sqrt(2048 / 4)) = 23. Cells wholly in one
+  // half hold 0 or the emission's sum (3); cells across an edge something between, and the cells'
+  // mean is the texture's mean, 1.5, up to the quadrature (a few 1e-3: the edges are sampled at 4-8
+  // points per cell).
   const glm::vec3 emission(1.0f, 1.5f, 0.5f);
   const Scene scene = build_scene(emitter_quad(emission, 64, 1.0f));
   const EmissionCells& cells = scene.emission_cells;

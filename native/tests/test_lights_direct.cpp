@@ -431,8 +431,8 @@ TEST(LightsDirect, TexturedEmitterSamplesItsBrightCellsWithConsistentDensities) 
     const Hit hit = tracer.intersect(Ray{receiver, s.direction, 1e-4f, 1e30f});
     ASSERT_TRUE(hit.hit);
     ASSERT_TRUE(scene.material_of(scene.triangles[hit.triangle]).is_emissive());
-    const float cos_light = std::abs(glm::dot(scene.triangles[hit.triangle].face_normal,
-                                              s.direction));
+    const float cos_light =
+        std::abs(glm::dot(scene.triangles[hit.triangle].face_normal, s.direction));
     const float pdf = emitters.pdf(hit.triangle, hit.b1, hit.b2, hit.t, cos_light);
     if (std::abs(pdf / s.pdf - 1.0f) > 1e-3f) ++mismatched;  // a cell edge, by rounding
   }

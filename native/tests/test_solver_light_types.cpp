@@ -114,7 +114,8 @@ SceneDescription room_with_skylight(LightKind kind) {
       // The skylight's panel again, its emission printed with a pattern: black diagonal
       // stripes over a warm half (u < 0.5, towards -y) and a blue half, so that each wall's
       // share and colour depend on the texture being read where it lies (emission x texture).
-      const uint32_t panel = add_material(d, glm::vec3(0.0f), glm::vec3(16.0f, 14.0f, 12.0f), false);
+      const uint32_t panel =
+          add_material(d, glm::vec3(0.0f), glm::vec3(16.0f, 14.0f, 12.0f), false);
       d.materials[panel].emission_texture = test::add_texture(d, 8, 8, [](uint32_t i, uint32_t j) {
         if ((i + j) % 3 == 0) return glm::vec3(0.0f);
         return i < 4 ? glm::vec3(1.0f, 0.7f, 0.4f) : glm::vec3(0.3f, 0.5f, 1.0f);
@@ -225,10 +226,9 @@ TEST_P(SolverUnderLight, FaceMeansAgreeWithThePathTracer) {
 std::vector<Case> every_case() {
   std::vector<Case> cases;
   for (const char* method : {"antiradiance", "meshless"}) {
-    for (LightKind light :
-         {LightKind::kPoint, LightKind::kSpot, LightKind::kSun, LightKind::kArea,
-          LightKind::kEmissiveOneSided, LightKind::kEmissiveTwoSided,
-          LightKind::kEmissiveTextured, LightKind::kWorld}) {
+    for (LightKind light : {LightKind::kPoint, LightKind::kSpot, LightKind::kSun, LightKind::kArea,
+                            LightKind::kEmissiveOneSided, LightKind::kEmissiveTwoSided,
+                            LightKind::kEmissiveTextured, LightKind::kWorld}) {
       cases.push_back({method, light});
     }
   }

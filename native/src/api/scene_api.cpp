@@ -91,7 +91,7 @@ bakegi_status bakegi_scene_add_material(bakegi_scene* scene, const bakegi_materi
 }
 
 bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene* scene, uint32_t material,
-                                                        uint32_t texture) {
+                                                         uint32_t texture) {
   return guarded(__func__, [&] {
     require(scene, "scene");
     std::vector<bakegi::Material>& materials = scene->description.materials;

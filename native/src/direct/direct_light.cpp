@@ -133,8 +133,7 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
     // Not emissive_triangles_.empty(): emitters whose estimated power is 0 are never light
     // sampled, but any light they do emit must still be found by this ray (MIS weight 1).
     if (scene_.emissive_triangles.empty()) return radiance;
-    const glm::vec3 emitted =
-        emissive_triangles_.emitted(hit.triangle, hit.b1, hit.b2, direction);
+    const glm::vec3 emitted = emissive_triangles_.emitted(hit.triangle, hit.b1, hit.b2, direction);
     if (max_component(emitted) > 0.0f) {
       const Triangle& t = scene_.triangles[hit.triangle];
       const float cos_light = std::abs(glm::dot(t.face_normal, direction));

@@ -32,7 +32,9 @@ EmissiveTriangles::EmissiveTriangles(const Scene& scene) : scene_(scene) {
   }
   if (emitters_.empty()) return;
   emitter_of_triangle_.assign(scene.triangles.size(), kNotSampled);
-  for (size_t e = 0; e < emitters_.size(); ++e) emitter_of_triangle_[emitters_[e].triangle] = uint32_t(e);
+  for (size_t e = 0; e < emitters_.size(); ++e) {
+    emitter_of_triangle_[emitters_[e].triangle] = uint32_t(e);
+  }
   cdf_.reserve(weights.size());
   cell_pdf_over_area_.reserve(weights.size());
   double running = 0.0;
@@ -50,9 +52,9 @@ bool EmissiveTriangles::sample(const glm::vec3& p, float u_pick, float u1, float
   const size_t cell = std::min<size_t>(
       size_t(std::upper_bound(cdf_.begin(), cdf_.end(), double(u_pick)) - cdf_.begin()),
       cdf_.size() - 1);
-  const auto after = std::upper_bound(
-      emitters_.begin(), emitters_.end(), uint64_t(cell),
-      [](uint64_t c, const Emitter& emitter) { return c < emitter.first_cell; });
+  const auto after =
+      std::upper_bound(emitters_.begin(), emitters_.end(), uint64_t(cell),
+                       [](uint64_t c, const Emitter& emitter) { return c < emitter.first_cell; });
   const Emitter& emitter = *(after - 1);
   const Triangle& t = scene_.triangles[emitter.triangle];
   const auto corners = triangle_cell_corners(emitter.level, uint32_t(cell - emitter.first_cell));

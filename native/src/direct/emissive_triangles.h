@@ -42,10 +42,10 @@ class EmissiveTriangles {
   static constexpr uint32_t kNotSampled = 0xFFFFFFFFu;
 
   const Scene& scene_;
-  std::vector<Emitter> emitters_;               // those with power, in scene order
-  std::vector<double> cdf_;                     // over their cells, normalized, back() == 1
-  std::vector<float> cell_pdf_over_area_;       // probability of a cell / its area
-  std::vector<uint32_t> emitter_of_triangle_;   // per scene triangle: into emitters_ or kNotSampled
+  std::vector<Emitter> emitters_;              // those with power, in scene order
+  std::vector<double> cdf_;                    // over their cells, normalized, back() == 1
+  std::vector<float> cell_pdf_over_area_;      // probability of a cell / its area
+  std::vector<uint32_t> emitter_of_triangle_;  // per scene triangle: into emitters_ or kNotSampled
 };
 
 }  // namespace bakegi

@@ -21,8 +21,7 @@ float channel_sum(const glm::vec3& c) {
 double texel_footprint(const Triangle& t, const Texture& texture) {
   const glm::dvec2 e1 = glm::dvec2(t.uv[1]) - glm::dvec2(t.uv[0]);
   const glm::dvec2 e2 = glm::dvec2(t.uv[2]) - glm::dvec2(t.uv[0]);
-  return 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x) * double(texture.width) *
-         double(texture.height);
+  return 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x) * double(texture.width) * double(texture.height);
 }
 
 // Quadrature points of a cell: the centroids of its own level-s cells (equal areas, so the
@@ -43,8 +42,9 @@ EmissionCells build_emission_cells(const Scene& scene, const EmissionCellLimits&
   const size_t n = emitters.size();
   auto texture_of = [&](size_t e) -> const Texture* {
     const Material& m = scene.material_of(scene.triangles[emitters[e]]);
-    return m.emission_texture == BAKEGI_NO_TEXTURE ? nullptr
-                                                   : &scene.description.textures[m.emission_texture];
+    return m.emission_texture == BAKEGI_NO_TEXTURE
+               ? nullptr
+               : &scene.description.textures[m.emission_texture];
   };
 
   // Levels: cells of about kTexelsPerCell texels, shrunk evenly to fit the cell limit.

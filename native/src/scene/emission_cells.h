@@ -35,8 +35,8 @@ struct EmissionCells {
 };
 
 struct EmissionCellLimits {
-  uint64_t max_cells = 1u << 20;     // 4 MB here, 12 MB more for sampling
-  uint64_t max_lookups = 1u << 24;   // about 0.2 s on one core
+  uint64_t max_cells = 1u << 20;    // 4 MB here, 12 MB more for sampling
+  uint64_t max_lookups = 1u << 24;  // about 0.2 s on one core
 };
 
 // Needs scene.triangles, scene.emissive_triangles and scene.description's materials and

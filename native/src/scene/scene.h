@@ -40,7 +40,7 @@ struct Texture {
 struct Material {
   glm::vec3 albedo{0.8f};
   uint32_t albedo_texture = BAKEGI_NO_TEXTURE;
-  glm::vec3 emission{0.0f};  // radiance W/(m^2 sr)
+  glm::vec3 emission{0.0f};                       // radiance W/(m^2 sr)
   uint32_t emission_texture = BAKEGI_NO_TEXTURE;  // multiplies emission where set
   bool emission_two_sided = true;
   // Optional modified Phong lobe (see bakegi_material_desc and scene/phong_lobe.h):

@@ -21,7 +21,9 @@
 
 namespace bakegi {
 
-inline uint32_t triangle_cell_count(uint32_t level) { return level * level; }
+inline uint32_t triangle_cell_count(uint32_t level) {
+  return level * level;
+}
 
 // The index of the cell that holds barycentrics (b1, b2). Points outside the triangle by
 // rounding (Embree's barycentrics can be off by an ulp) go to the nearest cell.
