@@ -214,6 +214,43 @@ class Materials(unittest.TestCase):
         self.assertTrue(any("different UV maps ('Albedo', 'Glow'); both are sampled with the "
                             "emission's" in w for w in info.warnings), info.warnings)
 
+    def test_export_shares_plain_images_and_scales_hdr_ones(self):
+        # One image as both base colour and emission of a material: one core texture. A float
+        # image brighter than 1 on an emission: a second texture, scaled into [0,1] (the core
+        # refuses texels above 1; the scale goes into the emission, see export.py).
+        import tempfile
+
+        import cornell_box
+
+        common.new_empty_scene()
+        plain = bpy.data.images.new("plain", 2, 2, float_buffer=True)
+        plain.pixels.foreach_set([0.5, 0.25, 1.0, 1.0] * 4)
+        hdr = bpy.data.images.new("hdr", 2, 2, float_buffer=True)
+        hdr.pixels.foreach_set([4.0, 2.0, 1.0, 1.0] * 4)
+        both, node = node_material("both", "ShaderNodeBsdfPrincipled")
+        tree = both.node_tree
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = plain
+        tree.links.new(texture.outputs["Color"], node.inputs["Base Color"])
+        tree.links.new(texture.outputs["Color"], node.inputs.get("Emission Color") or node.inputs["Emission"])
+        node.inputs["Emission Strength"].default_value = 2.0
+        bright, node = node_material("bright", "ShaderNodeEmission")
+        texture = bright.node_tree.nodes.new("ShaderNodeTexImage")
+        texture.image = hdr
+        bright.node_tree.links.new(texture.outputs["Color"], node.inputs["Color"])
+        objects = []
+        for k, material in enumerate((both, bright)):
+            vertices, faces = [], []
+            cornell_box.grid_faces((k * 2.0, 0, 0), (1, 0, 0), (0, 1, 0), 1, 1, vertices, faces)
+            obj = cornell_box.mesh_object(f"Panel{k}", vertices, faces, material, bpy.context.scene.collection)
+            obj.data.uv_layers.new(name="UVMap")
+            objects.append(obj)
+        bpy.context.view_layer.update()
+        with tempfile.TemporaryDirectory() as folder:
+            result = self.bakegi.export_scene_file(os.path.join(folder, "s.bgs"), objects=objects)
+        self.assertEqual(result["counts"]["textures"], 2)
+        self.assertEqual([w for w in result["warnings"] if "texture" in w or "image" in w], [])
+
 
 if __name__ == "__main__":
     common.run_tests(__name__)

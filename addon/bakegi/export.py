@@ -346,15 +346,19 @@ class SceneExporter:
             rgb = materials.image_linear_rgb(image, self.warnings)
             entry = (None, 1.0)
             if rgb is not None:
-                if (rgb < 0.0).any():
+                negative = bool((rgb < 0.0).any())
+                if negative:
                     self.warnings.append(f"image '{image.name}' has negative pixels; as an "
                                          "emission texture they are read as 0")
                     rgb = np.maximum(rgb, 0.0)
                 peak = float(rgb.max()) if rgb.size else 0.0
-                if peak <= 1.0:
-                    entry = (self._texture(image), 1.0)
+                if peak <= 1.0 and not negative:  # the same texture as a base color's
+                    if key not in self.texture_ids:
+                        self.texture_ids[key] = self.scene.add_texture(rgb)
+                    entry = (self.texture_ids[key], 1.0)
                 else:
-                    entry = (self.scene.add_texture(rgb / np.float32(peak)), peak)
+                    scale = max(peak, 1.0)
+                    entry = (self.scene.add_texture(rgb / np.float32(scale)), scale)
             self.emission_texture_ids[key] = entry
         return self.emission_texture_ids[key]
 
