@@ -1,7 +1,8 @@
 """Make the Cycles references that the in-Blender tests compare bakegi against.
 
     blender -b --factory-startup --python blender_tests/make_references.py -- \
-        [--only cornell|lights] [--cornell-samples 65536] [--light-samples 16384] [--chunk 8192]
+        [--only cornell|lights|textured] [--cornell-samples 65536] [--light-samples 16384] \
+        [--textured-samples 8192] [--chunk 8192]
     blender -b --factory-startup --python blender_tests/make_references.py -- --bounce-study
 
 Writes into blender_tests/data/:
@@ -10,6 +11,8 @@ Writes into blender_tests/data/:
   (scenes/cornell_box.py, TEST_SUBDIVISIONS), float32 (n, 3);
 - light_<KIND>.npy: Cycles' direct light per face corner of the receivers of
   each one-light scene of scenes/light_units.py;
+- light_EMISSIVE_TEXTURED.npy: the same for the emissive quad with an image
+  texture on its emission colour (blender_tests/textured_emitter.py);
 and a .json sidecar for each: samples, seed, bounces, Blender version, bake
 seconds, object order with point counts, scene parameters and the noise of
 the reference itself, estimated from two independent halves of its samples
@@ -32,6 +35,7 @@ import cornell_box  # noqa: E402
 import cycles_bake  # noqa: E402
 import light_units  # noqa: E402
 import metrics  # noqa: E402
+import textured_emitter  # noqa: E402
 
 DATA = os.path.join(HERE, "data")
 CORNELL_OBJECTS = ("Floor", "Ceiling", "BackWall", "LeftWall", "RightWall", "ShortBox", "TallBox")
@@ -109,6 +113,18 @@ def make_lights(samples, chunk, seed):
         log(f"{kind} direct: {seconds:.1f} s, noise {100 * noise:.3f}%")
 
 
+def make_textured_emitter(samples, chunk, seed):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    built = textured_emitter.build_textured_emitter_scene("EMISSION")
+    objects = [built[name] for name in light_units.RECEIVERS]
+    values, seconds, noise = chunked_with_halves(cycles_bake.cycles_direct, objects, samples, chunk, seed)
+    sidecar = common_sidecar(objects, samples, chunk, seed, seconds, noise)
+    sidecar["light"] = "direct"
+    sidecar["scene"] = textured_emitter.scene_parameters()
+    save(f"light_{textured_emitter.KIND}", values, sidecar)
+    log(f"{textured_emitter.KIND} direct: {seconds:.1f} s, noise {100 * noise:.3f}%")
+
+
 def bounce_study(samples=4096):
     """Mean luminance of the Cornell indirect against the bounce cap (same seed, so differences are the cap's)."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -124,9 +140,10 @@ def main():
 
     argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--only", choices=("cornell", "lights"))
+    parser.add_argument("--only", choices=("cornell", "lights", "textured"))
     parser.add_argument("--cornell-samples", type=int, default=65536)
     parser.add_argument("--light-samples", type=int, default=16384)
+    parser.add_argument("--textured-samples", type=int, default=8192)
     parser.add_argument("--chunk", type=int, default=8192)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--bounce-study", action="store_true")
@@ -137,6 +154,9 @@ def main():
         return
     if arguments.only in (None, "lights"):
         make_lights(arguments.light_samples, min(arguments.chunk, arguments.light_samples // 2), arguments.seed)
+    if arguments.only in (None, "textured"):
+        make_textured_emitter(arguments.textured_samples,
+                              min(arguments.chunk, arguments.textured_samples // 2), arguments.seed)
     if arguments.only in (None, "cornell"):
         make_cornell(arguments.cornell_samples, arguments.chunk, arguments.seed)
     log(f"done in {time.perf_counter() - start:.0f} s")

@@ -102,5 +102,155 @@ class Materials(unittest.TestCase):
             self.assertLessEqual(a + g, 1.0 + 1e-9)
 
 
+    # ---- textured emission -------------------------------------------------------------
+
+    def image(self, name="pattern"):
+        image = bpy.data.images.new(name, 4, 4, float_buffer=True)
+        return image
+
+    def test_image_into_emission_shader_is_an_emission_texture(self):
+        material, node = node_material("screen", "ShaderNodeEmission")
+        node.inputs["Strength"].default_value = 5.0
+        tree = material.node_tree
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = self.image()
+        tree.links.new(texture.outputs["Color"], node.inputs["Color"])
+        info = self.materials.read_material(material)
+        self.assertEqual(info.warnings, [])
+        self.assertIsNotNone(info.emission_texture)
+        self.assertEqual(info.emission_texture.image, texture.image)
+        self.assertEqual(info.emission_texture.uv_map, "")
+        self.assertIsNone(info.texture)
+        # White times the strength: the texture carries the colour.
+        for got in info.emission:
+            self.assertAlmostEqual(got, 5.0, places=6)
+        self.assertEqual(self.materials.sampled_uv_map(info), "")
+
+    def test_image_through_reroute_into_principled_emission_with_its_uv_map(self):
+        material, node = node_material("sign", "ShaderNodeBsdfPrincipled")
+        tree = material.node_tree
+        emission = node.inputs.get("Emission Color") or node.inputs["Emission"]
+        node.inputs["Emission Strength"].default_value = 3.0
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = self.image()
+        uv = tree.nodes.new("ShaderNodeUVMap")
+        uv.uv_map = "Printed"
+        tree.links.new(uv.outputs["UV"], texture.inputs["Vector"])
+        reroute = tree.nodes.new("NodeReroute")
+        tree.links.new(texture.outputs["Color"], reroute.inputs[0])
+        tree.links.new(reroute.outputs[0], emission)
+        info = self.materials.read_material(material)
+        self.assertEqual([w for w in info.warnings if "emission" in w or "texture" in w], [])
+        self.assertIsNotNone(info.emission_texture)
+        self.assertEqual(info.emission_texture.uv_map, "Printed")
+        for got in info.emission:
+            self.assertAlmostEqual(got, 3.0, places=6)
+        self.assertEqual(self.materials.sampled_uv_map(info), "Printed")
+
+    def test_unsupported_emission_inputs_warn_precisely(self):
+        # A colour node between image and emission is not evaluated: its default colour, and
+        # a warning that names the node and the input.
+        material, node = node_material("mixed", "ShaderNodeEmission")
+        tree = material.node_tree
+        node.inputs["Color"].default_value = (0.2, 0.3, 0.4, 1.0)
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = self.image()
+        invert = tree.nodes.new("ShaderNodeInvert")
+        invert.name = "Invert Screen"
+        tree.links.new(texture.outputs["Color"], invert.inputs["Color"])
+        tree.links.new(invert.outputs["Color"], node.inputs["Color"])
+        info = self.materials.read_material(material)
+        self.assertIsNone(info.emission_texture)
+        self.assertEqual(len(info.warnings), 1, info.warnings)
+        self.assertIn("'Invert Screen' node feeding 'Color' of 'Emission' is not evaluated",
+                      info.warnings[0])
+        for got, expected in zip(info.emission, (0.2, 0.3, 0.4)):
+            self.assertAlmostEqual(got, expected, places=6)
+
+        # Sampling the core does not do is named (Closest, Extend).
+        material, node = node_material("pixelated", "ShaderNodeEmission")
+        tree = material.node_tree
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = self.image()
+        texture.interpolation = "Closest"
+        texture.extension = "EXTEND"
+        tree.links.new(texture.outputs["Color"], node.inputs["Color"])
+        info = self.materials.read_material(material)
+        self.assertIsNotNone(info.emission_texture)
+        self.assertEqual(len(info.warnings), 2, info.warnings)
+        self.assertIn("'Closest' interpolation; it is read as Linear", info.warnings[0])
+        self.assertIn("extension 'EXTEND'; it is read as Repeat", info.warnings[1])
+
+        # A textured emission mixed with another emission cannot be one texture x one colour.
+        material, mix = node_material("two lights", "ShaderNodeMixShader")
+        tree = material.node_tree
+        textured = tree.nodes.new("ShaderNodeEmission")
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = self.image()
+        tree.links.new(texture.outputs["Color"], textured.inputs["Color"])
+        plain = tree.nodes.new("ShaderNodeEmission")
+        tree.links.new(textured.outputs[0], mix.inputs[1])
+        tree.links.new(plain.outputs[0], mix.inputs[2])
+        info = self.materials.read_material(material)
+        self.assertIsNone(info.emission_texture)
+        self.assertTrue(any("textured emission mixed with another emission is read with its "
+                            "texture as white" in w for w in info.warnings), info.warnings)
+
+    def test_base_color_and_emission_textures_on_different_uv_maps(self):
+        material, node = node_material("both", "ShaderNodeBsdfPrincipled")
+        tree = material.node_tree
+        emission = node.inputs.get("Emission Color") or node.inputs["Emission"]
+        for socket, uv_map in ((node.inputs["Base Color"], "Albedo"), (emission, "Glow")):
+            texture = tree.nodes.new("ShaderNodeTexImage")
+            texture.image = self.image()
+            uv = tree.nodes.new("ShaderNodeUVMap")
+            uv.uv_map = uv_map
+            tree.links.new(uv.outputs["UV"], texture.inputs["Vector"])
+            tree.links.new(texture.outputs["Color"], socket)
+        info = self.materials.read_material(material)
+        self.assertEqual(info.texture.uv_map, "Albedo")
+        self.assertEqual(info.emission_texture.uv_map, "Glow")
+        self.assertEqual(self.materials.sampled_uv_map(info), "Glow")
+        self.assertTrue(any("different UV maps ('Albedo', 'Glow'); both are sampled with the "
+                            "emission's" in w for w in info.warnings), info.warnings)
+
+    def test_export_shares_plain_images_and_scales_hdr_ones(self):
+        # One image as both base colour and emission of a material: one core texture. A float
+        # image brighter than 1 on an emission: a second texture, scaled into [0,1] (the core
+        # refuses texels above 1; the scale goes into the emission, see export.py).
+        import tempfile
+
+        import cornell_box
+
+        common.new_empty_scene()
+        plain = bpy.data.images.new("plain", 2, 2, float_buffer=True)
+        plain.pixels.foreach_set([0.5, 0.25, 1.0, 1.0] * 4)
+        hdr = bpy.data.images.new("hdr", 2, 2, float_buffer=True)
+        hdr.pixels.foreach_set([4.0, 2.0, 1.0, 1.0] * 4)
+        both, node = node_material("both", "ShaderNodeBsdfPrincipled")
+        tree = both.node_tree
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = plain
+        tree.links.new(texture.outputs["Color"], node.inputs["Base Color"])
+        tree.links.new(texture.outputs["Color"], node.inputs.get("Emission Color") or node.inputs["Emission"])
+        node.inputs["Emission Strength"].default_value = 2.0
+        bright, node = node_material("bright", "ShaderNodeEmission")
+        texture = bright.node_tree.nodes.new("ShaderNodeTexImage")
+        texture.image = hdr
+        bright.node_tree.links.new(texture.outputs["Color"], node.inputs["Color"])
+        objects = []
+        for k, material in enumerate((both, bright)):
+            vertices, faces = [], []
+            cornell_box.grid_faces((k * 2.0, 0, 0), (1, 0, 0), (0, 1, 0), 1, 1, vertices, faces)
+            obj = cornell_box.mesh_object(f"Panel{k}", vertices, faces, material, bpy.context.scene.collection)
+            obj.data.uv_layers.new(name="UVMap")
+            objects.append(obj)
+        bpy.context.view_layer.update()
+        with tempfile.TemporaryDirectory() as folder:
+            result = self.bakegi.export_scene_file(os.path.join(folder, "s.bgs"), objects=objects)
+        self.assertEqual(result["counts"]["textures"], 2)
+        self.assertEqual([w for w in result["warnings"] if "texture" in w or "image" in w], [])
+
+
 if __name__ == "__main__":
     common.run_tests(__name__)

@@ -317,6 +317,7 @@ class SceneExporter:
         self.material_ids = {}  # original material name_full (or None) -> core id
         self.material_infos = {}  # original material name_full -> MaterialInfo
         self.texture_ids = {}  # (image name_full) -> core texture id
+        self.emission_texture_ids = {}  # image name_full -> (core texture id, emission scale)
         self.local_meshes = {}
         self.triangles = 0
         self.meshes = 0
@@ -331,6 +332,36 @@ class SceneExporter:
             self.texture_ids[key] = None if rgb is None else self.scene.add_texture(rgb)
         return self.texture_ids[key]
 
+    def texture_count(self):
+        ids = {v for v in self.texture_ids.values() if v is not None}
+        ids.update(v[0] for v in self.emission_texture_ids.values() if v[0] is not None)
+        return len(ids)
+
+    def _emission_texture(self, image):
+        """(core texture id or None, scale) of an image that multiplies emission. The core's
+        textures hold values in [0,1]: an HDR image (a float image brighter than 1) is passed
+        divided by its maximum, which then multiplies the material's emission instead."""
+        key = image.name_full
+        if key not in self.emission_texture_ids:
+            rgb = materials.image_linear_rgb(image, self.warnings)
+            entry = (None, 1.0)
+            if rgb is not None:
+                negative = bool((rgb < 0.0).any())
+                if negative:
+                    self.warnings.append(f"image '{image.name}' has negative pixels; as an "
+                                         "emission texture they are read as 0")
+                    rgb = np.maximum(rgb, 0.0)
+                peak = float(rgb.max()) if rgb.size else 0.0
+                if peak <= 1.0 and not negative:  # the same texture as a base color's
+                    if key not in self.texture_ids:
+                        self.texture_ids[key] = self.scene.add_texture(rgb)
+                    entry = (self.texture_ids[key], 1.0)
+                else:
+                    scale = max(peak, 1.0)
+                    entry = (self.scene.add_texture(rgb / np.float32(scale)), scale)
+            self.emission_texture_ids[key] = entry
+        return self.emission_texture_ids[key]
+
     def material(self, material):
         """(core material id, MaterialInfo) of an (evaluated or original) material."""
         original = material.original if material is not None else None
@@ -341,9 +372,15 @@ class SceneExporter:
             texture = self._texture(info.texture.image) if info.texture is not None else None
             if info.texture is not None and texture is None:
                 info.texture = None
+            emission_texture, scale = None, 1.0
+            if info.emission_texture is not None:
+                emission_texture, scale = self._emission_texture(info.emission_texture.image)
+                if emission_texture is None:  # no pixels (warned): emission as read, untextured
+                    info.emission_texture = None
             self.material_ids[key] = self.scene.add_material(
-                info.albedo, info.emission, texture, emission_two_sided=True,
-                glossy=info.glossy, glossy_exponent=info.glossy_exponent)
+                info.albedo, tuple(scale * e for e in info.emission), texture,
+                emission_two_sided=True, glossy=info.glossy,
+                glossy_exponent=info.glossy_exponent, emission_texture=emission_texture)
             if original is not None:
                 self.material_infos[key] = info
         info = self.material_infos[key] if key is not None else materials.MaterialInfo()
@@ -394,13 +431,13 @@ class SceneExporter:
         tri_materials = np.asarray(ids, np.uint32)[slot_index]
 
         uvs = None
-        textured = [i for i, info in enumerate(infos) if info.texture is not None]
+        textured = [i for i, info in enumerate(infos) if materials.sampled_uv_map(info) is not None]
         if textured:
             uvs = np.zeros((t * 3, 2), np.float32)
             layers = mesh.uv_layers
             active = next((l for l in layers if l.active_render), None)
             for i in textured:
-                wanted = infos[i].texture.uv_map
+                wanted = materials.sampled_uv_map(infos[i])
                 layer = layers.get(wanted) if wanted else active
                 if layer is None:
                     self.warnings.append(
@@ -840,7 +877,7 @@ def _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
               exported_lightmaps=None):
     counts = {"meshes": exporter.meshes, "triangles": exporter.triangles,
               "lights": exporter.lights, "materials": len(exporter.material_ids),
-              "textures": sum(1 for v in exporter.texture_ids.values() if v is not None),
+              "textures": exporter.texture_count(),
               "bake_points": offset, "targets": len(bake_targets)}
     if exported_lightmaps is not None:
         counts.update(lightmap_width=exported_lightmaps.width,

@@ -3,16 +3,21 @@
 
 read_material(material) -> MaterialInfo: diffuse albedo (a constant times an optional
 image texture sampled at a UV map), an optional glossy lobe (see "glossy lobes" below for the
-mapping and its approximations) and emitted radiance, from the node tree:
+mapping and its approximations) and emitted radiance (a constant times an optional image
+texture), from the node tree:
   - Principled BSDF: diffuse base color x (1 - metallic) x (1 - transmission) (x (1 - F_avg)
     in Blender 4.x, whose Principled v2 layers the specular over the base);
     glossy metallic x base color + dielectric F_avg; emission color x emission strength;
   - Diffuse BSDF: its color, no glossy lobe (exported exactly as before glossy lobes);
   - Glossy BSDF (and Blender 3.x's Anisotropic BSDF): a glossy lobe of its color;
-  - Emission shader: an emitter with black albedo;
+  - Emission shader: an emitter with black albedo, color x strength;
   - Mix / Add Shader: mixed best-effort, with a warning;
-  - an Image Texture linked (directly or through reroutes) into the color is sampled,
-    with the UV map of its vector input (default: the mesh's active render UV map);
+  - an Image Texture linked (directly or through reroutes) into a base color or an emission
+    color (the Emission shader's Color, the Principled BSDF's Emission / Emission Color) is
+    sampled, with the UV map of its vector input (default: the mesh's active render UV
+    map), bilinearly with repeat (other interpolations and extensions are read so, with a
+    warning); the core takes one UV map per material, so a material whose base color and
+    emission textures use different UV maps samples both with the emission's (warning);
   - anything else: the node's unlinked (default) color, with a warning.
 
 hook(material, info) / unhook(material): the non-destructive Material Preview hook. The
@@ -72,6 +77,7 @@ class MaterialInfo:
     albedo: Tuple[float, float, float] = DEFAULT_ALBEDO
     texture: Optional[TextureRef] = None  # multiplies albedo
     emission: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    emission_texture: Optional[TextureRef] = None  # multiplies emission
     warnings: List[str] = field(default_factory=list)
     # For the hook: (node name, output index) of the socket that gives the base color
     # (None: the constant albedo). Names, not references: the hook is made after the bake,
@@ -184,6 +190,19 @@ def _texture_uv_map(tex_node, info, what):
     return ""
 
 
+def _texture_sampling(tex_node, info, what):
+    """Warns where Cycles samples the image otherwise than the core (bilinear, repeat)."""
+    if getattr(tex_node, "interpolation", "Linear") != "Linear":
+        info.warnings.append(f"{what}: image texture '{tex_node.name}' uses "
+                             f"'{tex_node.interpolation}' interpolation; it is read as Linear")
+    if getattr(tex_node, "extension", "REPEAT") != "REPEAT":
+        info.warnings.append(f"{what}: image texture '{tex_node.name}' uses extension "
+                             f"'{tex_node.extension}'; it is read as Repeat")
+    if getattr(tex_node, "projection", "FLAT") != "FLAT":
+        info.warnings.append(f"{what}: image texture '{tex_node.name}' uses "
+                             f"'{tex_node.projection}' projection; it is read as Flat")
+
+
 def _read_color(socket, info, what):
     """(constant rgb, TextureRef or None, socket giving the colour or None)."""
     source = _linked_from(socket)
@@ -191,16 +210,27 @@ def _read_color(socket, info, what):
         return _color_value(socket), None, None
     node = source.node
     if node.type == "TEX_IMAGE" and node.image is not None:
+        _texture_sampling(node, info, what)
         return (1.0, 1.0, 1.0), TextureRef(node.image, _texture_uv_map(node, info, what)), source
     if node.type == "RGB":
         return _color_value(source), None, source
-    info.warnings.append(f"{what}: the '{node.name}' node feeding '{socket.name}' is not "
-                         "evaluated; its default color is used")
+    info.warnings.append(f"{what}: the '{node.name}' node feeding '{socket.name}' of "
+                         f"'{socket.node.name}' is not evaluated; its default color is used")
     return _color_value(socket), None, None
 
 
 def _scaled(c, s):
     return (c[0] * s, c[1] * s, c[2] * s)
+
+
+def sampled_uv_map(info):
+    """The UV map the core samples a material's textures with ("" = the active render UV
+    map), or None if it has no texture. One per material: the emission texture's wins."""
+    if info.emission_texture is not None:
+        return info.emission_texture.uv_map
+    if info.texture is not None:
+        return info.texture.uv_map
+    return None
 
 
 # ---- glossy lobes ------------------------------------------------------------------------
@@ -256,15 +286,33 @@ def _glossy_lobe(reflectance, roughness):
     return (tuple(min(max(float(c), 0.0), 1.0) for c in reflectance), phong_exponent(roughness))
 
 
+@dataclass
+class _Shader:
+    """What _read_shader finds behind one shader socket."""
+
+    albedo: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    texture: Optional[TextureRef] = None  # multiplies albedo
+    emission: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    color_socket: object = None  # the socket giving the base colour (for the hook)
+    albedo_factor: float = 1.0
+    glossy: Optional[tuple] = None  # (reflectance rgb, exponent)
+    emission_texture: Optional[TextureRef] = None  # multiplies emission
+
+
+def _read_emission(socket, strength, info, what):
+    """(emitted radiance, TextureRef or None) of an emission colour socket x strength: an
+    image texture linked into it (directly or through reroutes) multiplies a white colour."""
+    color, texture, _ = _read_color(socket, info, what)
+    return light_units.emission_radiance(color, strength), texture
+
+
 def _read_shader(socket_out, info, what, depth=0):
-    """Reads the shader behind output socket `socket_out`; returns
-    (albedo, texture, emission, color_socket, albedo_factor)."""
-    black = (0.0, 0.0, 0.0)
+    """Reads the shader behind output socket `socket_out` into a _Shader."""
     node = socket_out.node
     kind = node.type
     if depth > 16:
         info.warnings.append(f"{what}: shader tree too deep; read as black")
-        return black, None, black, None, 1.0, None
+        return _Shader()
     if kind == "BSDF_PRINCIPLED":
         base, texture, color_socket = _read_color(_input(node, "Base Color"), info, what)
         metallic = _float_input(node, ("Metallic",), 0.0, info, what)
@@ -284,37 +332,34 @@ def _read_shader(socket_out, info, what, depth=0):
         # each version is matched as rendered (the glossy part is clamped to 1 - albedo below).
         layered = _input(node, "Specular IOR Level") is not None
         factor = dielectric * (1.0 - f_avg) if layered else dielectric
-        emission = black
+        emission, emission_texture = (0.0, 0.0, 0.0), None
         em_socket = _input(node, "Emission Color", "Emission")
         if em_socket is not None:
-            if _linked_from(em_socket) is not None:
-                info.warnings.append(f"{what}: a linked emission color is read as its default")
             strength = _float_input(node, ("Emission Strength",), 1.0, info, what)
-            emission = light_units.emission_radiance(_color_value(em_socket), strength)
-        return _scaled(base, factor), texture, emission, color_socket, factor, glossy
+            emission, emission_texture = _read_emission(em_socket, strength, info, what)
+        return _Shader(_scaled(base, factor), texture, emission, color_socket, factor, glossy,
+                       emission_texture)
     if kind == "BSDF_DIFFUSE":
         base, texture, color_socket = _read_color(node.inputs["Color"], info, what)
-        return base, texture, black, color_socket, 1.0, None
+        return _Shader(base, texture, color_socket=color_socket)
     if kind in ("BSDF_GLOSSY", "BSDF_ANISOTROPIC"):
         color, texture, _ = _read_color(node.inputs["Color"], info, what)
         if texture is not None:
             info.warnings.append(f"{what}: a textured glossy color is read as its default value")
             color = _color_value(node.inputs["Color"])
         roughness = _float_input(node, ("Roughness",), 0.5, info, what)
-        return black, None, black, None, 1.0, _glossy_lobe(color, roughness)
+        return _Shader(glossy=_glossy_lobe(color, roughness))
     if kind == "EMISSION":
-        color, texture, _ = _read_color(node.inputs["Color"], info, what)
-        if texture is not None:
-            info.warnings.append(f"{what}: a textured emission color is read as white")
         strength = _float_input(node, ("Strength",), 1.0, info, what)
-        return black, None, light_units.emission_radiance(color, strength), None, 1.0, None
+        emission, emission_texture = _read_emission(node.inputs["Color"], strength, info, what)
+        return _Shader(emission=emission, emission_texture=emission_texture)
     if kind in ("MIX_SHADER", "ADD_SHADER"):
         shader_inputs = [s for s in node.inputs if s.type == "SHADER"]
         parts = []
         for s in shader_inputs:
             src = _linked_from(s)
             parts.append(_read_shader(src, info, what, depth + 1) if src is not None
-                         else (black, None, black, None, 1.0, None))
+                         else _Shader())
         if kind == "MIX_SHADER":
             fac = min(max(_float_input(node, ("Fac",), 0.5, info, what), 0.0), 1.0)
             weights = (1.0 - fac, fac)
@@ -326,25 +371,43 @@ def _read_shader(socket_out, info, what, depth=0):
         emission = [0.0, 0.0, 0.0]
         for w, part in zip(weights, parts):
             for k in range(3):
-                albedo[k] += w * part[0][k]
-                emission[k] += w * part[2][k]
+                albedo[k] += w * part.albedo[k]
+                emission[k] += w * part.emission[k]
         albedo = tuple(min(a, 1.0) for a in albedo)
         glossy = _mixed_glossy(weights, parts)
+        emission_texture = _mixed_emission_texture(weights, parts, info, what)
         # Keep the texture of the part that weighs most, scaled by its weight.
-        best = max(range(len(parts)), key=lambda i: weights[i] * max(parts[i][0]), default=None)
-        if best is not None and parts[best][1] is not None:
+        best = max(range(len(parts)), key=lambda i: weights[i] * max(parts[i].albedo),
+                   default=None)
+        if best is not None and parts[best].texture is not None:
             w = weights[best]
-            return (_scaled(parts[best][0], w), parts[best][1], tuple(emission), parts[best][3],
-                    parts[best][4] * w, glossy)
-        return albedo, None, tuple(emission), None, 1.0, glossy
+            return _Shader(_scaled(parts[best].albedo, w), parts[best].texture, tuple(emission),
+                           parts[best].color_socket, parts[best].albedo_factor * w, glossy,
+                           emission_texture)
+        return _Shader(albedo, None, tuple(emission), None, 1.0, glossy, emission_texture)
     # Any other shader: its colour input's default value, as diffuse.
     color = _input(node, "Color", "Base Color")
     info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) is approximated as a diffuse "
                          "surface")
     if color is None or not hasattr(color.default_value, "__len__"):
-        return DEFAULT_ALBEDO, None, black, None, 1.0, None
+        return _Shader(DEFAULT_ALBEDO)
     base, texture, color_socket = _read_color(color, info, what)
-    return base, texture, black, color_socket, 1.0, None
+    return _Shader(base, texture, color_socket=color_socket)
+
+
+def _mixed_emission_texture(weights, parts, info, what):
+    """The emission texture of a mix: kept where exactly one part emits (its emission is
+    weighted like any other); a textured emission mixed with another emission cannot be one
+    texture times one colour, so the texture is then dropped (read as white), with a warning."""
+    emitting = [i for i, part in enumerate(parts) if weights[i] > 0.0 and max(part.emission) > 0.0]
+    textured = [i for i in emitting if parts[i].emission_texture is not None]
+    if not textured:
+        return None
+    if len(emitting) == 1:
+        return parts[textured[0]].emission_texture
+    info.warnings.append(f"{what}: a textured emission mixed with another emission is read "
+                         "with its texture as white")
+    return None
 
 
 def _mixed_glossy(weights, parts):
@@ -354,9 +417,9 @@ def _mixed_glossy(weights, parts):
     exponent_sum = 0.0
     weight_sum = 0.0
     for w, part in zip(weights, parts):
-        if part[5] is None:
+        if part.glossy is None:
             continue
-        rgb, exponent = part[5]
+        rgb, exponent = part.glossy
         for k in range(3):
             reflectance[k] += w * rgb[k]
         strength = w * max(rgb)
@@ -402,7 +465,9 @@ def read_material(material):
     if surface is None:
         info.albedo = (0.0, 0.0, 0.0)  # Cycles renders an unconnected surface black
         return info
-    albedo, texture, emission, color_socket, factor, glossy = _read_shader(surface, info, what)
+    shader = _read_shader(surface, info, what)
+    albedo, texture, emission = shader.albedo, shader.texture, shader.emission
+    color_socket, factor, glossy = shader.color_socket, shader.albedo_factor, shader.glossy
     info.albedo = tuple(min(max(float(a), 0.0), 1.0) for a in albedo)
     if glossy is not None:
         # The core refuses albedo + glossy > 1 per channel: a mix can exceed it, so the glossy
@@ -411,6 +476,14 @@ def read_material(material):
         info.glossy_exponent = float(glossy[1]) if max(info.glossy) > 0.0 else 0.0
     info.texture = texture
     info.emission = tuple(max(float(e), 0.0) for e in emission)
+    info.emission_texture = shader.emission_texture if max(info.emission) > 0.0 else None
+    if (info.texture is not None and info.emission_texture is not None
+            and info.texture.uv_map != info.emission_texture.uv_map):
+        info.warnings.append(
+            f"{what}: its base color and emission textures use different UV maps "
+            f"('{info.texture.uv_map or '(active)'}', "
+            f"'{info.emission_texture.uv_map or '(active)'}'); both are sampled with the "
+            "emission's")
     if color_socket is not None:
         node = color_socket.node
         info.color_source = (node.name, list(node.outputs).index(color_socket))

@@ -116,6 +116,7 @@ _SIGNATURES = {
     "bakegi_scene_add_texture": (c_int, [_P, c_uint32, c_uint32, POINTER(c_float),
                                          POINTER(c_uint32)]),
     "bakegi_scene_add_material": (c_int, [_P, POINTER(MaterialDesc), POINTER(c_uint32)]),
+    "bakegi_scene_set_material_emission_texture": (c_int, [_P, c_uint32, c_uint32]),
     "bakegi_scene_add_mesh": (c_int, [_P, POINTER(MeshDesc), POINTER(c_uint32)]),
     "bakegi_scene_add_light": (c_int, [_P, POINTER(LightDesc), POINTER(c_uint32)]),
     "bakegi_scene_set_world": (c_int, [_P, POINTER(c_float)]),
@@ -338,9 +339,11 @@ class Scene(_Handle):
         return out.value
 
     def add_material(self, albedo, emission=(0.0, 0.0, 0.0), albedo_texture=None,
-                     emission_two_sided=True, glossy=(0.0, 0.0, 0.0), glossy_exponent=0.0):
+                     emission_two_sided=True, glossy=(0.0, 0.0, 0.0), glossy_exponent=0.0,
+                     emission_texture=None):
         """glossy, glossy_exponent: the optional modified Phong lobe (bakegi.h);
-        albedo + glossy must not exceed 1 per channel."""
+        albedo + glossy must not exceed 1 per channel. emission_texture: a texture id that
+        multiplies emission (set_material_emission_texture)."""
         desc = MaterialDesc()
         desc.albedo = _triple(albedo, "albedo")
         desc.albedo_texture = NO_TEXTURE if albedo_texture is None else int(albedo_texture)
@@ -351,7 +354,15 @@ class Scene(_Handle):
         out = c_uint32()
         _check(load_library().bakegi_scene_add_material(self.handle, byref(desc), byref(out)),
                "bakegi_scene_add_material")
+        if emission_texture is not None:
+            self.set_material_emission_texture(out.value, emission_texture)
         return out.value
+
+    def set_material_emission_texture(self, material, texture):
+        """Material `material` emits emission x texture(uv); texture None removes it."""
+        _check(load_library().bakegi_scene_set_material_emission_texture(
+            self.handle, int(material), NO_TEXTURE if texture is None else int(texture)),
+            "bakegi_scene_set_material_emission_texture")
 
     def add_mesh(self, positions, indices, corner_normals=None, corner_uvs=None,
                  triangle_materials=None, material=0, object_id=0):

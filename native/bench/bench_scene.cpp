@@ -32,6 +32,10 @@ bakegi_scene* to_c_api(const SceneDescription& d) {
                               m.emission_two_sided ? 1u : 0u};
     uint32_t id = 0;
     check(bakegi_scene_add_material(scene, &desc, &id), "material");
+    if (m.emission_texture != BAKEGI_NO_TEXTURE) {
+      check(bakegi_scene_set_material_emission_texture(scene, id, m.emission_texture),
+            "emission texture");
+    }
   }
   for (const Mesh& m : d.meshes) {
     bakegi_mesh_desc desc{};

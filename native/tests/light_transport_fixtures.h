@@ -44,6 +44,32 @@ inline void add_quad(SceneDescription& d, glm::vec3 center, glm::vec3 u, glm::ve
   d.meshes.push_back(std::move(mesh));
 }
 
+// add_quad with UVs: the quad's corner centre - half_u u - half_v v gets uv_lo and the
+// opposite corner uv_hi, linear in between (so u runs along `u` and v along `v`).
+inline void add_quad_with_uvs(SceneDescription& d, glm::vec3 center, glm::vec3 u, glm::vec3 v,
+                              float half_u, float half_v, uint32_t material, glm::vec2 uv_lo,
+                              glm::vec2 uv_hi) {
+  add_quad(d, center, u, v, half_u, half_v, material);
+  const glm::vec2 corner[4] = {uv_lo, {uv_hi.x, uv_lo.y}, uv_hi, {uv_lo.x, uv_hi.y}};
+  for (uint32_t i : d.meshes.back().indices) d.meshes.back().corner_uvs.push_back(corner[i]);
+}
+
+// A width x height texture whose texel (i, j) (row j at v = (j + 0.5) / height) is
+// texel(i, j); returns its index.
+template <typename TexelOf>
+uint32_t add_texture(SceneDescription& d, uint32_t width, uint32_t height, TexelOf texel) {
+  Texture texture;
+  texture.width = width;
+  texture.height = height;
+  std::vector<glm::vec3> texels;
+  for (uint32_t j = 0; j < height; ++j) {
+    for (uint32_t i = 0; i < width; ++i) texels.push_back(texel(i, j));
+  }
+  texture.set_texels(std::move(texels));
+  d.textures.push_back(std::move(texture));
+  return uint32_t(d.textures.size() - 1);
+}
+
 enum class Facing { kInward, kOutward };
 
 // The cube [lo, hi] as 12 triangles facing inwards (a room) or outwards (a solid block).

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "api/handles.h"
 #include "capi_test_scene.h"
 
 namespace bakegi::test {
@@ -171,6 +172,31 @@ TEST(ApiErrors, MaterialAndTextureReferencesOutOfRange) {
   EXPECT_EQ(bakegi_scene_add_material(scene.get(), &textured, nullptr), BAKEGI_OK);
   EXPECT_ERROR(bakegi_scene_validate(scene.get()), BAKEGI_ERROR_INVALID_SCENE,
                "material 1: texture index 3 out of range (0 textures)");
+}
+
+TEST(ApiErrors, EmissionTextureReferences) {
+  const auto A = BAKEGI_ERROR_INVALID_ARGUMENT;
+  ScenePtr scene = new_box_scene();  // material 0, no textures
+  EXPECT_ERROR(bakegi_scene_set_material_emission_texture(nullptr, 0, 0), A, "scene is NULL");
+  EXPECT_ERROR(bakegi_scene_set_material_emission_texture(scene.get(), 1, BAKEGI_NO_TEXTURE), A,
+               "material index 1 is not below the material count 1");
+  EXPECT_ERROR(bakegi_scene_set_material_emission_texture(scene.get(), 0, 0), A,
+               "material 0: emission texture index 0 is not below the texture count 0");
+  EXPECT_EQ(scene->description.materials[0].emission_texture, BAKEGI_NO_TEXTURE);  // unchanged
+
+  const float white[3] = {1.0f, 1.0f, 1.0f};
+  uint32_t texture = 7;
+  ASSERT_EQ(bakegi_scene_add_texture(scene.get(), 1, 1, white, &texture), BAKEGI_OK);
+  EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), 0, texture), BAKEGI_OK);
+  EXPECT_EQ(scene->description.materials[0].emission_texture, texture);
+  EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), 0, BAKEGI_NO_TEXTURE),
+            BAKEGI_OK);
+  EXPECT_EQ(scene->description.materials[0].emission_texture, BAKEGI_NO_TEXTURE);
+
+  // A scene file can hold any index; the scene build names it.
+  scene->description.materials[0].emission_texture = 4;
+  EXPECT_ERROR(bakegi_scene_validate(scene.get()), BAKEGI_ERROR_INVALID_SCENE,
+               "material 0: emission texture index 4 out of range (1 textures)");
 }
 
 TEST(ApiErrors, BadMaterialsAndTextures) {

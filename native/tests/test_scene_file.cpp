@@ -23,7 +23,8 @@ std::string temp_path(const std::string& name) {
       .string();
 }
 
-// A scene that uses every field: a texture, two materials (one textured, one emissive),
+// A scene that uses every field: a texture, two materials (one textured, one emissive with
+// the same texture on its emission),
 // a mesh with every optional array, a mesh with none, one light of each type and a world.
 ScenePtr new_full_scene() {
   ScenePtr scene = new_scene();
@@ -38,7 +39,9 @@ ScenePtr new_full_scene() {
   glowing.emission_two_sided = 0;
   glowing.glossy[0] = 0.5f, glowing.glossy[1] = 0.25f, glowing.glossy[2] = 0.7f;
   glowing.glossy_exponent = 1234.5f;
-  EXPECT_EQ(bakegi_scene_add_material(scene.get(), &glowing, nullptr), BAKEGI_OK);
+  uint32_t glowing_id = 0;
+  EXPECT_EQ(bakegi_scene_add_material(scene.get(), &glowing, &glowing_id), BAKEGI_OK);
+  EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), glowing_id, 0), BAKEGI_OK);
 
   const BoxMesh box;
   std::vector<float> normals(9 * 12), uvs(6 * 12);
@@ -131,11 +134,14 @@ TEST(SceneFile, RoundTripIsExact) {
     EXPECT_EQ(a.materials[i].albedo_texture, b.materials[i].albedo_texture);
     EXPECT_EQ(a.materials[i].emission, b.materials[i].emission);
     EXPECT_EQ(a.materials[i].emission_two_sided, b.materials[i].emission_two_sided);
+    EXPECT_EQ(a.materials[i].emission_texture, b.materials[i].emission_texture);
     EXPECT_EQ(a.materials[i].glossy, b.materials[i].glossy);
     EXPECT_TRUE(same_bits(a.materials[i].glossy_exponent, b.materials[i].glossy_exponent));
   }
   EXPECT_TRUE(b.materials[1].has_glossy());
   EXPECT_FALSE(b.materials[1].emission_two_sided);
+  EXPECT_EQ(b.materials[0].emission_texture, BAKEGI_NO_TEXTURE);
+  EXPECT_EQ(b.materials[1].emission_texture, 0u);
   ASSERT_EQ(b.meshes.size(), 2u);
   for (size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions);
@@ -250,9 +256,9 @@ void reseal(std::vector<uint8_t>& bytes) {
 TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   ScenePtr scene = new_box_scene();
   const std::vector<uint8_t> bytes = encode_scene_file(scene->description, nullptr);
-  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 48), then MESH: 16-byte
+  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 52), then MESH: 16-byte
   // section header, u32 mesh count, then object_id, material, vertex count.
-  const size_t vertex_count_at = 24 + 20 + 68 + 16 + 4 + 8;
+  const size_t vertex_count_at = 24 + 20 + 72 + 16 + 4 + 8;
   ASSERT_EQ(bytes[vertex_count_at], 8u);  // the box has 8 vertices
   std::vector<uint8_t> forged = bytes;
   for (int i = 0; i < 4; ++i) forged[vertex_count_at + i] = 0xFF;  // 4 billion vertices
@@ -282,36 +288,79 @@ TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   }
 }
 
-// Rewrites a version-2 encoding of a scene with one material as version 1 (32-byte
-// materials without the glossy lobe), as older builds wrote it.
-std::vector<uint8_t> as_version_1(const std::vector<uint8_t>& v2) {
-  const size_t materials_at = 24 + 20;  // MATL section header
-  const size_t glossy_at = materials_at + 16 + 4 + 32;
-  std::vector<uint8_t> v1(v2.begin(), v2.begin() + std::ptrdiff_t(glossy_at));
-  v1.insert(v1.end(), v2.begin() + std::ptrdiff_t(glossy_at + 16), v2.end());
-  auto put_u64 = [&](size_t at, uint64_t value) {
-    for (int i = 0; i < 8; ++i) v1[at + i] = uint8_t(value >> (8 * i));
+// Rewrites the current encoding (version 3) of a scene with one material as an older build
+// wrote it: version 2 materials end before the emission texture (48 bytes instead of 52),
+// version 1 ones before the glossy lobe too (32 bytes).
+std::vector<uint8_t> as_version(const std::vector<uint8_t>& current, uint32_t version) {
+  auto get_u64 = [&](size_t at) {
+    uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);
+    return value;
   };
-  v1[8] = 1;                          // format version
-  put_u64(materials_at + 8, 4 + 32);  // MATL section bytes
-  put_u64(16, v1.size() - 24 - 8);    // payload bytes
-  reseal(v1);
-  return v1;
+  const size_t textures_at = 24;  // after the file header
+  const size_t materials_at = textures_at + 16 + size_t(get_u64(textures_at + 8));
+  EXPECT_EQ(get_u64(materials_at + 8), 4u + 52u) << "one material of 52 bytes";
+  const size_t material_at = materials_at + 16 + 4;
+  const size_t kept = version == 1 ? 32 : 48;
+  std::vector<uint8_t> old(current.begin(), current.begin() + std::ptrdiff_t(material_at + kept));
+  old.insert(old.end(), current.begin() + std::ptrdiff_t(material_at + 52), current.end());
+  auto put_u64 = [&](size_t at, uint64_t value) {
+    for (int i = 0; i < 8; ++i) old[at + i] = uint8_t(value >> (8 * i));
+  };
+  old[8] = uint8_t(version);            // format version
+  put_u64(materials_at + 8, 4 + kept);  // MATL section bytes
+  put_u64(16, old.size() - 24 - 8);     // payload bytes
+  reseal(old);
+  return old;
 }
 
-TEST(SceneFile, VersionOneFilesAreReadAsDiffuse) {
-  ScenePtr scene = new_box_scene();
-  ASSERT_EQ(scene->description.materials.size(), 1u);
-  const std::vector<uint8_t> v2 = encode_scene_file(scene->description, nullptr);
-  EXPECT_EQ(v2[8], kSceneFileVersion);
-  const SceneFile read = decode_scene_file(as_version_1(v2), "v1");
-  ASSERT_EQ(read.scene.materials.size(), 1u);
-  EXPECT_EQ(read.scene.materials[0].albedo, scene->description.materials[0].albedo);
-  EXPECT_FALSE(read.scene.materials[0].has_glossy());
-  EXPECT_EQ(read.scene.meshes.size(), scene->description.meshes.size());
-  EXPECT_EQ(read.scene.meshes[0].positions, scene->description.meshes[0].positions);
+// One emissive material with a glossy lobe and an emission texture, on the box.
+ScenePtr new_textured_emitter_scene() {
+  ScenePtr scene = new_scene();
+  const float texel[3] = {0.25f, 0.5f, 1.0f};
+  EXPECT_EQ(bakegi_scene_add_texture(scene.get(), 1, 1, texel, nullptr), BAKEGI_OK);
+  bakegi_material_desc material = grey_material(0.25f);
+  material.emission[0] = material.emission[1] = material.emission[2] = 3.0f;
+  material.glossy[0] = material.glossy[1] = material.glossy[2] = 0.5f;
+  material.glossy_exponent = 20.0f;
+  EXPECT_EQ(bakegi_scene_add_material(scene.get(), &material, nullptr), BAKEGI_OK);
+  EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), 0, 0), BAKEGI_OK);
+  const BoxMesh box;
+  const bakegi_mesh_desc mesh = box.desc();
+  EXPECT_EQ(bakegi_scene_add_mesh(scene.get(), &mesh, nullptr), BAKEGI_OK);
+  return scene;
+}
 
-  std::vector<uint8_t> future = v2;
+TEST(SceneFile, OlderVersionsAreStillRead) {
+  ScenePtr scene = new_textured_emitter_scene();
+  const std::vector<uint8_t> v3 = encode_scene_file(scene->description, nullptr);
+  EXPECT_EQ(v3[8], kSceneFileVersion);
+  const Material& written = scene->description.materials[0];
+
+  // Version 2: glossy lobes, no emission textures.
+  const SceneFile v2 = decode_scene_file(as_version(v3, 2), "v2");
+  ASSERT_EQ(v2.scene.materials.size(), 1u);
+  EXPECT_EQ(v2.scene.materials[0].emission, written.emission);
+  EXPECT_EQ(v2.scene.materials[0].glossy, written.glossy);
+  EXPECT_EQ(v2.scene.materials[0].glossy_exponent, written.glossy_exponent);
+  EXPECT_EQ(v2.scene.materials[0].emission_texture, BAKEGI_NO_TEXTURE);
+  EXPECT_EQ(v2.scene.textures.size(), 1u);
+  EXPECT_EQ(v2.scene.meshes[0].positions, scene->description.meshes[0].positions);
+
+  // Version 1: diffuse materials.
+  const SceneFile v1 = decode_scene_file(as_version(v3, 1), "v1");
+  ASSERT_EQ(v1.scene.materials.size(), 1u);
+  EXPECT_EQ(v1.scene.materials[0].albedo, written.albedo);
+  EXPECT_EQ(v1.scene.materials[0].emission, written.emission);
+  EXPECT_FALSE(v1.scene.materials[0].has_glossy());
+  EXPECT_EQ(v1.scene.materials[0].emission_texture, BAKEGI_NO_TEXTURE);
+  EXPECT_EQ(v1.scene.meshes.size(), scene->description.meshes.size());
+  EXPECT_EQ(v1.scene.meshes[0].positions, scene->description.meshes[0].positions);
+
+  // The current version keeps it.
+  EXPECT_EQ(decode_scene_file(v3, "v3").scene.materials[0].emission_texture, 0u);
+
+  std::vector<uint8_t> future = v3;
   future[8] = uint8_t(kSceneFileVersion + 1);
   reseal(future);
   try {
@@ -319,8 +368,9 @@ TEST(SceneFile, VersionOneFilesAreReadAsDiffuse) {
     ADD_FAILURE() << "a future format version was accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE);
-    EXPECT_NE(std::string(e.what()).find("format version 3 is not supported"), std::string::npos)
-        << e.what();
+    const std::string expected =
+        "format version " + std::to_string(kSceneFileVersion + 1) + " is not supported";
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
   }
 }
 

@@ -4,7 +4,9 @@
 // and returned 2.9x the indirect light of a room lit by an emissive quad.)
 //
 // The scene: a closed-looking 2 m room of open quads with a 0.6 m skylight in the ceiling
-// and a block on the floor, lit in turn by each light type. Per face of the room (floor,
+// and a block on the floor, lit in turn by each light type (an emissive panel in the
+// skylight plain or with an emission texture, a panel inside the room, the lamps, the sun
+// and the world through the skylight). Per face of the room (floor,
 // ceiling, four walls, block top) the mean indirect luminance of every solver must agree
 // with the path tracer's.
 #include <cmath>
@@ -31,6 +33,7 @@ enum class LightKind {
   kArea,
   kEmissiveOneSided,
   kEmissiveTwoSided,
+  kEmissiveTextured,
   kWorld,
 };
 
@@ -42,6 +45,7 @@ const char* name_of(LightKind kind) {
     case LightKind::kArea: return "area";
     case LightKind::kEmissiveOneSided: return "emissive_one_sided";
     case LightKind::kEmissiveTwoSided: return "emissive_two_sided";
+    case LightKind::kEmissiveTextured: return "emissive_textured";
     case LightKind::kWorld: return "world";
   }
   return "?";
@@ -106,6 +110,20 @@ SceneDescription room_with_skylight(LightKind kind) {
       add_quad(d, {0.5f, 0.3f, 1.0f}, y, z, 0.2f, 0.3f,
                add_material(d, glm::vec3(0.0f), glm::vec3(10.0f, 9.0f, 8.0f), true));
       break;
+    case LightKind::kEmissiveTextured: {
+      // The skylight's panel again, its emission printed with a pattern: black diagonal
+      // stripes over a warm half (u < 0.5, towards -y) and a blue half, so that each wall's
+      // share and colour depend on the texture being read where it lies (emission x texture).
+      const uint32_t panel =
+          add_material(d, glm::vec3(0.0f), glm::vec3(16.0f, 14.0f, 12.0f), false);
+      d.materials[panel].emission_texture = test::add_texture(d, 8, 8, [](uint32_t i, uint32_t j) {
+        if ((i + j) % 3 == 0) return glm::vec3(0.0f);
+        return i < 4 ? glm::vec3(1.0f, 0.7f, 0.4f) : glm::vec3(0.3f, 0.5f, 1.0f);
+      });
+      test::add_quad_with_uvs(d, {0, 0, 2}, y, x, kHole, kHole, panel, glm::vec2(0.0f),
+                              glm::vec2(1.0f));
+      break;
+    }
     case LightKind::kWorld:
       d.world_radiance = glm::vec3(3.0f, 3.5f, 4.0f);
       break;
@@ -208,9 +226,9 @@ TEST_P(SolverUnderLight, FaceMeansAgreeWithThePathTracer) {
 std::vector<Case> every_case() {
   std::vector<Case> cases;
   for (const char* method : {"antiradiance", "meshless"}) {
-    for (LightKind light :
-         {LightKind::kPoint, LightKind::kSpot, LightKind::kSun, LightKind::kArea,
-          LightKind::kEmissiveOneSided, LightKind::kEmissiveTwoSided, LightKind::kWorld}) {
+    for (LightKind light : {LightKind::kPoint, LightKind::kSpot, LightKind::kSun, LightKind::kArea,
+                            LightKind::kEmissiveOneSided, LightKind::kEmissiveTwoSided,
+                            LightKind::kEmissiveTextured, LightKind::kWorld}) {
       cases.push_back({method, light});
     }
   }

@@ -71,8 +71,11 @@ typedef struct bakegi_scene bakegi_scene;
 BAKEGI_API bakegi_status bakegi_scene_create(bakegi_scene** out_scene);
 BAKEGI_API void bakegi_scene_destroy(bakegi_scene* scene);
 
-/* Texture: linear (not sRGB) RGB float pixels, row-major, row 0 at v = 0 (bottom, as in
- * Blender), sampled bilinearly with repeat wrapping. */
+/* Texture: linear (not sRGB) RGB float pixels in [0,1], row-major, row 0 at v = 0 (bottom,
+ * as in Blender), sampled bilinearly with repeat wrapping (texel centres at (i + 0.5) / width)
+ * at the UVs a mesh gives its triangles' corners. A texture multiplies a material's albedo
+ * (albedo_texture) or its emission (bakegi_scene_set_material_emission_texture); the same
+ * texture may do both. */
 BAKEGI_API bakegi_status bakegi_scene_add_texture(bakegi_scene* scene, uint32_t width,
                                                   uint32_t height, const float* rgb_pixels,
                                                   uint32_t* out_texture);
@@ -82,7 +85,8 @@ BAKEGI_API bakegi_status bakegi_scene_add_texture(bakegi_scene* scene, uint32_t 
 typedef struct bakegi_material_desc {
   float albedo[3];             /* diffuse reflectance in [0,1], linear RGB */
   uint32_t albedo_texture;     /* BAKEGI_NO_TEXTURE, or a texture that multiplies albedo */
-  float emission[3];           /* emitted radiance W/(m^2 sr), linear RGB; 0 = not emissive */
+  float emission[3];           /* emitted radiance W/(m^2 sr), linear RGB; 0 = not emissive;
+                                  x an emission texture where one is set (below) */
   uint32_t emission_two_sided; /* 1: emits from both sides (Cycles 3.4 mesh emission) */
   /* Optional glossy lobe, added to the diffuse one: the normalized modified Phong BRDF
    * (Lafortune & Willems 1994) f_g = glossy * (n + 2) / (2 pi) * cos^n(alpha), alpha the
@@ -99,6 +103,21 @@ typedef struct bakegi_material_desc {
 BAKEGI_API bakegi_status bakegi_scene_add_material(bakegi_scene* scene,
                                                    const bakegi_material_desc* material,
                                                    uint32_t* out_material);
+
+/* Textured emission (an emissive screen, a printed lamp shade, a sign): material `material`
+ * (its index as returned by bakegi_scene_add_material) then emits emission x texture(uv), in
+ * W/(m^2 sr), at each point of its triangles, with the texture sampled as described above (a
+ * mesh without UVs samples it at (0, 0), with a warning). Light sampling picks the brighter
+ * parts of the texture more often (textured emitters are split into cells of a few texels,
+ * their mean emission estimated once per bake), so a mostly black texture does not waste
+ * samples. A texture whose values exceed 1 (an HDR image) is passed scaled into [0,1], its
+ * scale moved into the material's emission. texture: an index returned by
+ * bakegi_scene_add_texture, or BAKEGI_NO_TEXTURE to remove it (the default). Kept apart from
+ * bakegi_material_desc so that its layout, which callers zero-initialize, stays as it was.
+ * Errors (INVALID_ARGUMENT): NULL scene, a material or texture index not yet added. */
+BAKEGI_API bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene* scene,
+                                                                    uint32_t material,
+                                                                    uint32_t texture);
 
 /* A triangle mesh in world space. Per-corner data has 3 entries per triangle, in the
  * order of indices. Optional arrays may be NULL. */
@@ -197,7 +216,9 @@ BAKEGI_API bakegi_status bakegi_points_set_display_probes(bakegi_points* points,
 /* ---- scene files ------------------------------------------------------------------------ */
 
 /* A .bgs file holds exactly what the API received: the scene and, optionally, a set of
- * bake points. Little-endian binary, versioned, with a checksum. */
+ * bake points. Little-endian binary, versioned, with a checksum. Files of older format
+ * versions are still read (version 1: no glossy lobes; versions 1-2: no emission
+ * textures). */
 BAKEGI_API bakegi_status bakegi_file_write(const char* path, const bakegi_scene* scene,
                                            const bakegi_points* points /* may be NULL */);
 /* out_points may be NULL; *out_points is NULL if the file holds none. */

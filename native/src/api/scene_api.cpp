@@ -90,6 +90,27 @@ bakegi_status bakegi_scene_add_material(bakegi_scene* scene, const bakegi_materi
   });
 }
 
+bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene* scene, uint32_t material,
+                                                         uint32_t texture) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    std::vector<bakegi::Material>& materials = scene->description.materials;
+    if (material >= materials.size()) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "material index " + std::to_string(material) +
+                                                     " is not below the material count " +
+                                                     std::to_string(materials.size()));
+    }
+    const size_t textures = scene->description.textures.size();
+    if (texture != BAKEGI_NO_TEXTURE && texture >= textures) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "material " + std::to_string(material) + ": emission texture index " +
+                      std::to_string(texture) + " is not below the texture count " +
+                      std::to_string(textures) + " (add the texture first)");
+    }
+    materials[material].emission_texture = texture;
+  });
+}
+
 bakegi_status bakegi_scene_add_mesh(bakegi_scene* scene, const bakegi_mesh_desc* mesh,
                                     uint32_t* out_mesh) {
   return guarded(__func__, [&] {

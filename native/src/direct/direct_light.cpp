@@ -130,13 +130,16 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
     }
   }
   if (hit.hit) {
-    if (emissive_triangles_.empty()) return radiance;
-    const glm::vec3 emitted = emissive_triangles_.emitted(hit.triangle, direction);
+    // Not emissive_triangles_.empty(): emitters whose estimated power is 0 are never light
+    // sampled, but any light they do emit must still be found by this ray (MIS weight 1).
+    if (scene_.emissive_triangles.empty()) return radiance;
+    const glm::vec3 emitted = emissive_triangles_.emitted(hit.triangle, hit.b1, hit.b2, direction);
     if (max_component(emitted) > 0.0f) {
       const Triangle& t = scene_.triangles[hit.triangle];
       const float cos_light = std::abs(glm::dot(t.face_normal, direction));
-      radiance += emitted * power_heuristic(
-                                bsdf_pdf, emissive_triangles_.pdf(hit.triangle, hit.t, cos_light));
+      const float light_pdf =
+          emissive_triangles_.pdf(hit.triangle, hit.b1, hit.b2, hit.t, cos_light);
+      radiance += emitted * power_heuristic(bsdf_pdf, light_pdf);
     }
     return radiance;
   }

@@ -41,4 +41,12 @@ glm::vec3 Scene::albedo_at(const Triangle& t, float b1, float b2) const {
   return glm::clamp(material.albedo * sample_bilinear(texture, uv), 0.0f, 1.0f);
 }
 
+glm::vec3 Scene::emission_at(const Triangle& t, float b1, float b2) const {
+  const Material& material = material_of(t);
+  if (material.emission_texture == BAKEGI_NO_TEXTURE) return material.emission;
+  const Texture& texture = description.textures[material.emission_texture];
+  const glm::vec2 uv = (1.0f - b1 - b2) * t.uv[0] + b1 * t.uv[1] + b2 * t.uv[2];
+  return material.emission * sample_bilinear(texture, uv);
+}
+
 }  // namespace bakegi

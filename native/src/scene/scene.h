@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "bakegi/bakegi.h"
+#include "scene/emission_cells.h"
 #include "scene/mesh_topology.h"
 
 namespace bakegi {
@@ -39,7 +40,8 @@ struct Texture {
 struct Material {
   glm::vec3 albedo{0.8f};
   uint32_t albedo_texture = BAKEGI_NO_TEXTURE;
-  glm::vec3 emission{0.0f};  // radiance W/(m^2 sr)
+  glm::vec3 emission{0.0f};                       // radiance W/(m^2 sr)
+  uint32_t emission_texture = BAKEGI_NO_TEXTURE;  // multiplies emission where set
   bool emission_two_sided = true;
   // Optional modified Phong lobe (see bakegi_material_desc and scene/phong_lobe.h):
   // reflectance rho_g and exponent n; rho_g = 0 means a purely diffuse material.
@@ -106,6 +108,7 @@ struct Scene {
   SceneDescription description;
   std::vector<Triangle> triangles;
   std::vector<uint32_t> emissive_triangles;  // indices into triangles
+  EmissionCells emission_cells;              // per emissive triangle (emission_cells.h)
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
   std::vector<std::string> warnings;
   std::vector<MeshTopology> mesh_topology;  // per description.meshes entry (mesh_topology.h)
@@ -114,6 +117,9 @@ struct Scene {
   float extent() const { return glm::length(bounds_max - bounds_min); }
   // Diffuse albedo at a point of a triangle (texture applied), barycentrics (b1, b2).
   glm::vec3 albedo_at(const Triangle& t, float b1, float b2) const;
+  // Emitted radiance at a point of a triangle (emission texture applied), on its emitting
+  // side(s); W/(m^2 sr).
+  glm::vec3 emission_at(const Triangle& t, float b1, float b2) const;
 };
 
 }  // namespace bakegi

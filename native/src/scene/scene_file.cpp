@@ -45,6 +45,7 @@ void write_scene(Writer& w, const SceneDescription& scene) {
     w.u32(m.emission_two_sided ? 1 : 0);
     w.vec3(m.glossy);
     w.f32(m.glossy_exponent);
+    w.u32(m.emission_texture);
   }
   w.end_section(at);
 
@@ -112,8 +113,9 @@ void read_textures(Reader& r, SceneDescription& scene) {
 
 void read_materials(Reader& r, SceneDescription& scene, uint32_t version) {
   const uint32_t count = r.u32();
-  const bool has_glossy = version >= 2;
-  r.array(scene.materials, count, has_glossy ? 48 : 32, "materials", [&] {
+  const bool has_glossy = version >= 2, has_emission_texture = version >= 3;
+  const uint64_t bytes = has_emission_texture ? 52 : has_glossy ? 48 : 32;
+  r.array(scene.materials, count, bytes, "materials", [&] {
     Material m;
     m.albedo = r.vec3();
     m.albedo_texture = r.u32();
@@ -125,6 +127,7 @@ void read_materials(Reader& r, SceneDescription& scene, uint32_t version) {
       m.glossy = r.vec3();
       m.glossy_exponent = r.f32();
     }
+    if (has_emission_texture) m.emission_texture = r.u32();
     return m;
   });
 }

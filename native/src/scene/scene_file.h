@@ -23,9 +23,10 @@
 
 namespace bakegi {
 
-// Version 2 added the glossy lobe to materials (48 bytes each instead of 32). Version 1
-// files are still read: their materials are diffuse.
-inline constexpr uint32_t kSceneFileVersion = 2;
+// Version 2 added the glossy lobe to materials (48 bytes each instead of 32), version 3
+// their emission texture (52 bytes). Older files are still read: version 1 materials are
+// diffuse, and neither has emission textures.
+inline constexpr uint32_t kSceneFileVersion = 3;
 inline constexpr uint32_t kOldestSceneFileVersion = 1;
 
 struct SceneFile {

@@ -14,7 +14,8 @@ namespace bakegi {
 
 namespace {
 
-// Texture values are reflectances; a little above 1 is float rounding of a 1.
+// Texture values are factors in [0,1] (of albedo or emission); a little above 1 is float
+// rounding of a 1.
 constexpr float kTextureTolerance = 1e-4f;
 // albedo + glossy <= 1: the same rounding slack for sums made by callers in single precision.
 constexpr float kReflectanceTolerance = 1e-4f;
@@ -115,7 +116,8 @@ void check_texture(const Texture& texture, size_t index) {
     if (p.x < 0 || p.y < 0 || p.z < 0 || p.x > 1 + kTextureTolerance ||
         p.y > 1 + kTextureTolerance || p.z > 1 + kTextureTolerance) {
       invalid(where + ": value " + vec(p) +
-              " is outside [0,1] (an albedo texture holds linear reflectances)");
+              " is outside [0,1] (textures hold linear factors of a material's albedo or "
+              "emission)");
     }
   }
 }
@@ -313,6 +315,12 @@ Scene build_scene(const SceneDescription& description) {
               std::to_string(material.albedo_texture) + " out of range (" +
               std::to_string(description.textures.size()) + " textures)");
     }
+    if (material.emission_texture != BAKEGI_NO_TEXTURE &&
+        material.emission_texture >= description.textures.size()) {
+      invalid("material " + std::to_string(i) + ": emission texture index " +
+              std::to_string(material.emission_texture) + " out of range (" +
+              std::to_string(description.textures.size()) + " textures)");
+    }
   }
   for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
   check_world(description.world_radiance);
@@ -381,7 +389,8 @@ Scene build_scene(const SceneDescription& description) {
       tri.mesh = uint32_t(m);
       tri.mesh_triangle = uint32_t(t);
       if (mesh.corner_uvs.empty() &&
-          description.materials[tri.material].albedo_texture != BAKEGI_NO_TEXTURE) {
+          (description.materials[tri.material].albedo_texture != BAKEGI_NO_TEXTURE ||
+           description.materials[tri.material].emission_texture != BAKEGI_NO_TEXTURE)) {
         textured_without_uvs = true;
       }
       if (description.materials[tri.material].is_emissive()) {
@@ -411,6 +420,7 @@ Scene build_scene(const SceneDescription& description) {
   }
 
   normalize_lights_and_require_one(scene);
+  scene.emission_cells = build_emission_cells(scene);
 
   scene.bounds_min = scene.bounds_max = scene.triangles[0].p[0];
   for (const Triangle& tri : scene.triangles) {

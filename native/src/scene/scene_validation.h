@@ -34,6 +34,8 @@ bakegi_area_shape area_shape_from(uint32_t raw, size_t index);
 //    mesh/triangle -> material) are in range;
 //  - degenerate triangles (zero or negligible area) are dropped with one warning per mesh;
 //  - shading normals are normalized (zero ones replaced by the face normal);
+//  - emissive triangles are listed, with the cells light sampling picks on textured ones
+//    (emission_cells.h);
 //  - in the returned Scene::description, light directions are unit vectors, an area
 //    light's axis_u is a unit vector orthogonal to its direction, and size_y equals
 //    size_x for SQUARE and DISK lights;
