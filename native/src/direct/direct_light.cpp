@@ -116,6 +116,11 @@ glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, const SurfaceBsdf& b
 
 glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3& direction,
                                       const Hit& hit, float bsdf_pdf) const {
+  return emission_along(position, direction, hit, bsdf_pdf, World::kIncluded);
+}
+
+glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3& direction,
+                                      const Hit& hit, float bsdf_pdf, World world) const {
   glm::vec3 radiance(0.0f);
   const float t_max = hit.hit ? hit.t : 1e30f;
   LightHit light_hit;
@@ -148,11 +153,12 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
       radiance += light_hit.radiance * power_heuristic(bsdf_pdf, light_hit.pdf);
     }
   }
-  return radiance + world_radiance_;  // no light sampling for the world: weight 1
+  // No light sampling for the world: weight 1.
+  return world == World::kIncluded ? radiance + world_radiance_ : radiance;
 }
 
 glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
-                                             glm::vec3& direction) const {
+                                             glm::vec3& direction, World world) const {
   const float u1 = rng.next_float(), u2 = rng.next_float();
   const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
   direction = Frame(x.shading_normal).to_world(local);
@@ -164,13 +170,14 @@ glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, 
   ++rays;
   const Hit hit = tracer_.intersect(Ray{origin, direction, 0.0f, 1e30f});
   // E = integral of L cos; with density cos / pi, one sample estimates pi * L.
-  return kPi * emission_along(x.position, direction, hit, bsdf_pdf);
+  return kPi * emission_along(x.position, direction, hit, bsdf_pdf, world);
 }
 
-glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                                         World world) const {
   const glm::vec3 irradiance = sample_lights(x, rng, rays);
   glm::vec3 direction;
-  return irradiance + cosine_ray_irradiance(x, rng, rays, direction);
+  return irradiance + cosine_ray_irradiance(x, rng, rays, direction, world);
 }
 
 glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,

@@ -58,8 +58,14 @@ class DirectLight {
   glm::vec3 emission_along(const glm::vec3& position, const glm::vec3& direction, const Hit& hit,
                            float bsdf_pdf) const;
 
+  // Whether an irradiance sample includes the world's light. A caller that integrates the
+  // world (a uniform colour) exactly from sky visibility excludes it here: one cosine ray per
+  // sample finds a small skylight too rarely.
+  enum class World { kIncluded, kExcluded };
+
   // One sample of the direct irradiance E at x: sample_lights plus one cosine-weighted ray.
-  glm::vec3 irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const;
+  glm::vec3 irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+                              World world = World::kIncluded) const;
 
   // Receives one term of an irradiance sample: the unit direction from x towards where the
   // light comes from and the MIS-weighted irradiance (W/m², receiver cosine included) it adds.
@@ -75,6 +81,8 @@ class DirectLight {
 
   const Scene& scene() const { return scene_; }
   const RayTracer& tracer() const { return tracer_; }
+  // The world's radiance, the same from every direction (W/(m² sr)).
+  const glm::vec3& world_radiance() const { return world_radiance_; }
 
  private:
   // Calls visit(sample) for one sample of every lamp and one of the emissive triangles.
@@ -83,7 +91,10 @@ class DirectLight {
   // The BSDF-sampling half of irradiance_sample: one cosine-weighted ray (its direction into
   // `direction`) and π times the MIS-weighted emission it picks up; 0 below the surface.
   glm::vec3 cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
-                                  glm::vec3& direction) const;
+                                  glm::vec3& direction, World world = World::kIncluded) const;
+  // emission_along, with or without the world on a miss.
+  glm::vec3 emission_along(const glm::vec3& position, const glm::vec3& direction, const Hit& hit,
+                           float bsdf_pdf, World world) const;
   // The light-sampling half of the irradiance: Σ MIS-weighted unoccluded samples, each
   // term also handed to visit(direction, term).
   template <typename Visit>

@@ -45,6 +45,9 @@ struct MeshlessPrecomputation : Precomputation,
   meshless::BasisHierarchy all;      // every receiver level
   meshless::BasisHierarchy senders;  // the first sender levels of the same points (same indices)
   meshless::DirectToIndirect transfer;
+  // Per sender: the cosine-weighted fraction of its hemisphere open to the world
+  // (sky_visibility.h), so that the world's direct light is exact for any world colour.
+  std::vector<float> sender_sky_visibility;
   MeshlessStatistics statistics;
 
   // The evaluation weights of the last bake points evaluated, so that relighting the same
@@ -79,6 +82,7 @@ struct MeshlessPrecomputation : Precomputation,
   size_t memory_bytes() const override {
     std::lock_guard<std::mutex> lock(weights_mutex_);
     return all.memory_bytes() + senders.memory_bytes() + transfer.memory_bytes() +
+           sender_sky_visibility.size() * sizeof(float) +
            (weights_ ? weights_->memory_bytes() : 0) +
            (relations_ ? relations_->memory_bytes() : 0);
   }

@@ -28,6 +28,7 @@
 #include "solvers/meshless/multilevel_approximation.h"
 #include "solvers/meshless/point_placement.h"
 #include "solvers/meshless/precomputation_cache.h"
+#include "solvers/meshless/sky_visibility.h"
 #include "solvers/meshless/transfer_refinement.h"
 #include "solvers/meshless/visible_basis.h"
 #include "solvers/meshless/visible_evaluation.h"
@@ -377,8 +378,19 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   const double refine_seconds = seconds_since(start);
   report.add_seconds("meshless_refinement", refine_seconds);
 
+  // The world's share of the senders' direct light, from geometry (sky_visibility.h).
+  context.set_stage("meshless: sky visibility", 0.85, 0.87);
+  start = std::chrono::steady_clock::now();
+  SkyVisibilitySettings sky;
+  sky.ray_epsilon = inputs.direct.ray_epsilon();
+  sky.seed = uint64_t(settings.seed) ^ 0x736b79ull;
+  uint64_t sky_rays = 0;
+  system->sender_sky_visibility =
+      sky_visibility(system->senders, inputs.tracer, sky, context, sky_rays);
+  report.add_seconds("meshless_sky_visibility", seconds_since(start));
+
   // §3.1: S = T + T² + … on the coarsest receivers.
-  context.set_stage("meshless: bounces", 0.85, 0.95);
+  context.set_stage("meshless: bounces", 0.87, 0.95);
   start = std::chrono::steady_clock::now();
   BounceSettings bounces;
   bounces.max_bounces = uint32_t(settings.bounces);
@@ -402,7 +414,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
       placement_stats.levels.empty() ? 0.0 : placement_stats.levels[0].spacing;
   statistics.link_bytes = single.memory_bytes();
   statistics.placement_rays = placement_stats.particle_rays + placement_stats.harmonic_mean_rays;
-  statistics.refinement_rays = refinement_stats.rays;
+  statistics.refinement_rays = refinement_stats.rays + sky_rays;
   statistics.precompute_seconds = seconds_since(precompute_start);
   report.add_count("rays", statistics.placement_rays + statistics.refinement_rays);
   report.add_count("meshless_refinement_rays", statistics.refinement_rays);
@@ -416,10 +428,16 @@ std::unique_ptr<IndirectField> MeshlessSolver::light(
   const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
   Report& report = context.report();
 
-  // §3.3: direct irradiance at the sender points, projected with P†.
+  // §3.3: direct irradiance at the sender points, projected with P†. The lamps and emitters
+  // are sampled; the world is π L V from the stored sky visibility (sky_visibility.h).
   context.set_stage("meshless: direct light", 0.95, 0.98);
   auto start = std::chrono::steady_clock::now();
   const BasisHierarchy& senders = system->senders;
+  if (system->sender_sky_visibility.size() != senders.size()) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "meshless: sky visibility and senders disagree");
+  }
+  const glm::dvec3 world_irradiance =
+      std::numbers::pi * glm::dvec3(inputs.direct.world_radiance());
   std::vector<float> direct(senders.size() * 3, 0.0f);
   std::atomic<uint64_t> rays{0};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, senders.size(), 64),
@@ -432,9 +450,12 @@ std::unique_ptr<IndirectField> MeshlessSolver::light(
                         glm::dvec3 sum(0.0);
                         for (int64_t s = 0; s < settings.direct_samples; ++s) {
                           Pcg32 rng = sample_stream(uint64_t(settings.seed), j, uint64_t(s));
-                          sum += glm::dvec3(inputs.direct.irradiance_sample(x, rng, local_rays));
+                          sum += glm::dvec3(inputs.direct.irradiance_sample(
+                              x, rng, local_rays, DirectLight::World::kExcluded));
                         }
-                        const glm::dvec3 mean = sum / double(settings.direct_samples);
+                        const glm::dvec3 mean =
+                            sum / double(settings.direct_samples) +
+                            world_irradiance * double(system->sender_sky_visibility[j]);
                         for (int c = 0; c < 3; ++c) direct[3 * j + c] = float(mean[c]);
                       }
                       rays += local_rays;

@@ -20,7 +20,7 @@ constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'M'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
 constexpr size_t kTrailerBytes = 8;
 constexpr uint32_t kStatistics = section_tag("STAT"), kPoints = section_tag("PNTS"),
-                   kTransfer = section_tag("XFER");
+                   kTransfer = section_tag("XFER"), kSkyVisibility = section_tag("SKYV");
 constexpr size_t kPointBytes = 3 * 4 + 3 * 4 + 4 + 4;
 
 // The serializers below write every member; a member added to these types must be added
@@ -126,6 +126,26 @@ void write_transfer(ByteWriter& w, const DirectToIndirect& transfer) {
     for (int64_t k = 0; k < nonzeros; ++k) w.f32(m->valuePtr()[k]);
   }
   w.end_section(at);
+}
+
+void write_sky_visibility(ByteWriter& w, const std::vector<float>& visibility) {
+  const size_t at = w.begin_section(kSkyVisibility);
+  w.u64(visibility.size());
+  for (float v : visibility) w.f32(v);
+  w.end_section(at);
+}
+
+std::vector<float> read_sky_visibility(ByteReader& r, size_t expected) {
+  std::vector<float> visibility;
+  r.array(visibility, r.u64(), 4, "sky visibility", [&] { return r.f32(); });
+  if (visibility.size() != expected) {
+    r.fail("corrupt: sky visibility for " + std::to_string(visibility.size()) + " of " +
+           std::to_string(expected) + " senders");
+  }
+  for (float v : visibility) {
+    if (!(v >= 0.0f && v <= 1.0f)) r.fail("corrupt: sky visibility outside [0, 1]");
+  }
+  return visibility;
 }
 
 std::vector<uint64_t> read_u64s(ByteReader& r, const char* what) {
@@ -279,6 +299,7 @@ std::vector<uint8_t> encode_precomputation(const MeshlessPrecomputation& precomp
   write_statistics(w, precomputation.statistics);
   write_points(w, precomputation.all);
   write_transfer(w, precomputation.transfer);
+  write_sky_visibility(w, precomputation.sender_sky_visibility);
   w.patch_u64(payload_size_at, w.bytes.size() - kHeaderBytes);
   w.u64(fnv1a64(w.bytes));
   return std::move(w.bytes);
@@ -352,6 +373,9 @@ std::shared_ptr<MeshlessPrecomputation> decode_precomputation(std::span<const ui
     read_operator(r, 3 * receiver_count, sender_count, channel);
   }
   close_section(r, end, "transfer");
+  end = open_section(r, kSkyVisibility, "sky visibility");
+  precomputation->sender_sky_visibility = read_sky_visibility(r, sender_count);
+  close_section(r, end, "sky visibility");
   if (r.left() != 0) fail("corrupt: unexpected bytes after the last section");
   precomputation->statistics = std::move(statistics);
   return precomputation;
