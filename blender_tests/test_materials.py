@@ -108,6 +108,25 @@ class Materials(unittest.TestCase):
         image = bpy.data.images.new(name, 4, 4, float_buffer=True)
         return image
 
+    def test_surfaces_that_let_light_through_warn(self):
+        """Glass, transparent and cut-out surfaces block light in the bake: each warns, an
+        opaque Principled does not."""
+        opaque, _ = node_material("opaque", "ShaderNodeBsdfPrincipled")
+        self.assertFalse([w for w in self.materials.read_material(opaque).warnings
+                          if "light through" in w or "opaque" in w])
+        window, node = node_material("window", "ShaderNodeBsdfPrincipled")
+        (node.inputs.get("Transmission Weight") or node.inputs["Transmission"]).default_value = 1.0
+        leaf, node = node_material("leaf", "ShaderNodeBsdfPrincipled")
+        image = leaf.node_tree.nodes.new("ShaderNodeTexImage")
+        leaf.node_tree.links.new(image.outputs["Alpha"], node.inputs["Alpha"])
+        glass, _ = node_material("glass", "ShaderNodeBsdfGlass")
+        clear, _ = node_material("clear", "ShaderNodeBsdfTransparent")
+        for material, words in ((window, "transmission 1"), (leaf, "alpha"),
+                                (glass, "Glass BSDF"), (clear, "Transparent BSDF")):
+            warnings = self.materials.read_material(material).warnings
+            self.assertTrue(any(words in w and "blocks light" in w for w in warnings),
+                            f"{material.name}: {warnings}")
+
     def test_image_into_emission_shader_is_an_emission_texture(self):
         material, node = node_material("screen", "ShaderNodeEmission")
         node.inputs["Strength"].default_value = 5.0

@@ -306,6 +306,22 @@ def _read_emission(socket, strength, info, what):
     return light_units.emission_radiance(color, strength), texture
 
 
+_PASSING_LIGHT_ADVICE = ("the bake does not simulate light passing through a surface, so it "
+                         "blocks light like an opaque one (glass in a window darkens the room "
+                         "behind it); hide such objects while baking")
+
+
+def _warn_light_passing(node, transmission, info, what):
+    """Warns where a Principled BSDF lets light through in Cycles (transmission, alpha): the
+    core's surfaces are opaque, so a window pane or a cut-out leaf blocks light instead."""
+    if transmission > 0.0:
+        info.warnings.append(f"{what}: transmission {transmission:g}: {_PASSING_LIGHT_ADVICE}")
+    alpha = _input(node, "Alpha")
+    if alpha is not None and (alpha.is_linked or float(alpha.default_value) < 1.0):
+        info.warnings.append(f"{what}: its alpha (transparency or a cut-out mask such as "
+                             f"leaves) is read as opaque; {_PASSING_LIGHT_ADVICE}")
+
+
 def _read_shader(socket_out, info, what, depth=0):
     """Reads the shader behind output socket `socket_out` into a _Shader."""
     node = socket_out.node
@@ -319,6 +335,7 @@ def _read_shader(socket_out, info, what, depth=0):
         transmission = _float_input(node, ("Transmission Weight", "Transmission"), 0.0, info,
                                     what)
         dielectric = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
+        _warn_light_passing(node, transmission, info, what)
         roughness = _float_input(node, ("Roughness",), 0.5, info, what)
         f_avg = fresnel_hemispherical_average(_principled_f0(node, info, what))
         if texture is not None and metallic > 0.0:
@@ -385,6 +402,9 @@ def _read_shader(socket_out, info, what, depth=0):
                            parts[best].color_socket, parts[best].albedo_factor * w, glossy,
                            emission_texture)
         return _Shader(albedo, None, tuple(emission), None, 1.0, glossy, emission_texture)
+    if kind in ("BSDF_GLASS", "BSDF_REFRACTION", "BSDF_TRANSPARENT"):
+        info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) lets light through in "
+                             f"Cycles; {_PASSING_LIGHT_ADVICE}")
     # Any other shader: its colour input's default value, as diffuse.
     color = _input(node, "Color", "Base Color")
     info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) is approximated as a diffuse "
