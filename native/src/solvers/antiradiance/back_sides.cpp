@@ -1,5 +1,7 @@
 #include "solvers/antiradiance/back_sides.h"
 
+#include "solvers/antiradiance/coincident_faces.h"
+
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -91,12 +93,14 @@ std::vector<uint8_t> exposed_back_sides(const Scene& scene, const RayTracer& tra
   std::vector<uint8_t> exposed(scene.triangles.size(), 0);
   const float offset = kRelativeOffset * std::max(scene.extent(), 1e-3f);
   const bool lit_world = is_positive(scene.description.world_radiance);
+  // A face modelled back to back with another already has its back side.
+  const std::vector<uint8_t> backed = backed_by_coincident_face(scene);
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, scene.triangles.size(), 64),
       [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
           const Triangle& tri = scene.triangles[i];
-          if (!on_open_mesh(scene, tri)) continue;
+          if (!on_open_mesh(scene, tri) || backed[i]) continue;
           const glm::vec3 back = -tri.face_normal;
           glm::vec3 t, b;
           frame(back, t, b);
