@@ -52,8 +52,8 @@ def bake_points(bakegi, method, **settings):
 
 
 class MirroredObjects(unittest.TestCase):
-    """Each method on the small Cornell box (open walls, solid boxes) and on the closed two
-    rooms, original against mirrored."""
+    """Each method on the small Cornell box (open walls, solid boxes), the office (closed
+    solids, sun and sky) and the closed two rooms, original against mirrored."""
 
     @classmethod
     def setUpClass(cls):
@@ -111,6 +111,17 @@ class MirroredObjects(unittest.TestCase):
         self.assertGreater(original["rejected_samples"], 0)
         self.assertLess(abs(mirrored["rejected_samples"] - original["rejected_samples"]),
                         0.25 * original["rejected_samples"])
+
+    def test_office(self):
+        """The office: closed solids with a window, sun and sky, at a coarse grid (0.5 m cells)
+        to keep the three bakes per method short."""
+        def office():
+            import office as office_scene
+            common.new_empty_scene()
+            office_scene.build_office(cell=0.5, resolution=64)
+        for method in ("antiradiance", "meshless"):
+            with self.subTest(method=method):
+                self.compare(office, method)
 
     def test_closed_room(self):
         def two_rooms():
