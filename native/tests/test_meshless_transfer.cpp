@@ -359,16 +359,17 @@ TEST(MeshlessVisibleEvaluation, FunctionsBehindAWallAreLeftOutAndLevelsRenormali
   EXPECT_EQ(stats.rays, 6u);  // 2 level-0 candidates and 1 level-1 candidate each
   EXPECT_EQ(stats.blocked, 3u);
   EXPECT_EQ(stats.levels_skipped, 1u);
-  EXPECT_EQ(stats.points_unblocked, 0u);
+  EXPECT_EQ(stats.points_blind, 0u);
 
-  // A point that sees no function at all keeps the unblocked value.
+  // A point that sees no function at all (a gap narrower than the basis) gets nothing, not
+  // the value from behind the wall.
   const BasisHierarchy left_only({floor_point(-0.5f, 2.0f, 0)});
   const std::vector<float> one = {1.0f};
   std::vector<float> right(1);
   const auto blind = meshless::evaluate_visible_many(left_only, one, 1, tracer, {&positions[1], 1},
                                                      {&normals[1], 1}, right);
-  EXPECT_FLOAT_EQ(right[0], 1.0f);
-  EXPECT_EQ(blind.points_unblocked, 1u);
+  EXPECT_FLOAT_EQ(right[0], 0.0f);
+  EXPECT_EQ(blind.points_blind, 1u);
 }
 
 }  // namespace

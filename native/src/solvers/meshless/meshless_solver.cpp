@@ -189,7 +189,7 @@ void MeshlessField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
     context.report().add_count("meshless_visibility_rays", stats.rays);
     context.report().add_count("meshless_visibility_blocked", stats.blocked);
     context.report().add_count("meshless_visibility_skipped_levels", stats.levels_skipped);
-    context.report().add_count("meshless_visibility_unblocked_points", stats.points_unblocked);
+    context.report().add_count("meshless_visibility_blind_points", stats.points_blind);
     system_->keep_weights(key, computed);
     weights = std::move(computed);
   }

@@ -62,23 +62,22 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
   // thread count.
   std::vector<std::vector<BasisValue>> block_entries(blocks);
   std::vector<uint64_t> row_sizes(positions.size(), 0);
-  std::atomic<uint64_t> rays{0}, blocked{0}, skipped{0}, unblocked{0}, uncovered{0};
+  std::atomic<uint64_t> rays{0}, blocked{0}, skipped{0}, blind{0}, uncovered{0};
   std::atomic<size_t> done{0};
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& block_range) {
         for (size_t block = block_range.begin(); block < block_range.end(); ++block) {
           if (job != nullptr && job->is_cancelled()) return;
           std::vector<BasisValue>& rows = block_entries[block];
-          std::vector<BasisValue> candidates, seen_row, all_row;
+          std::vector<BasisValue> candidates, seen_row;
           std::vector<char> visible;
-          uint64_t local_rays = 0, local_blocked = 0, local_skipped = 0, local_unblocked = 0,
+          uint64_t local_rays = 0, local_blocked = 0, local_skipped = 0, local_blind = 0,
                    local_uncovered = 0;
           const size_t end = std::min(positions.size(), (block + 1) * kBlock);
           for (size_t q = block * kBlock; q < end; ++q) {
             const glm::vec3& x = positions[q];
             const glm::vec3& n = normals[q];
             seen_row.clear();
-            all_row.clear();
             bool covered = false, sees_any = false;
             uint64_t blind_levels = 0;
             for (uint32_t level = 0; level < basis.level_count(); ++level) {
@@ -113,28 +112,26 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
               for (size_t k = 0; k < candidates.size(); ++k) {
                 const BasisValue& c = candidates[k];
                 if (!(c.value > 0.0f)) continue;
-                all_row.push_back({c.index, float(double(c.value) / all_weight)});
                 if (visible[k])
                   seen_row.push_back({c.index, float(double(c.value) / visible_weight)});
               }
             }
             if (!covered) ++local_uncovered;
-            // A level none of whose functions the point sees adds nothing (its light does not reach
-            // the point); a point that sees no function of any level gets the unblocked weights (no
-            // better information).
-            const std::vector<BasisValue>& row = sees_any ? seen_row : all_row;
+            // A level none of whose functions the point sees adds nothing (its light does not
+            // reach the point); a point that sees no function of any level lies in a gap
+            // narrower than the finest spacing and gets nothing at all (see the header).
             if (sees_any) {
               local_skipped += blind_levels;
             } else if (covered) {
-              ++local_unblocked;
+              ++local_blind;
             }
-            rows.insert(rows.end(), row.begin(), row.end());
-            row_sizes[q] = row.size();
+            rows.insert(rows.end(), seen_row.begin(), seen_row.end());
+            row_sizes[q] = seen_row.size();
           }
           rays += local_rays;
           blocked += local_blocked;
           skipped += local_skipped;
-          unblocked += local_unblocked;
+          blind += local_blind;
           uncovered += local_uncovered;
           const size_t finished = done.fetch_add(end - block * kBlock) + (end - block * kBlock);
           if (job != nullptr) job->set_stage_progress(double(finished) / double(positions.size()));
@@ -154,7 +151,7 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
   stats.rays = rays.load();
   stats.blocked = blocked.load();
   stats.levels_skipped = skipped.load();
-  stats.points_unblocked = unblocked.load();
+  stats.points_blind = blind.load();
   stats.uncovered = size_t(uncovered.load());
   return stats;
 }

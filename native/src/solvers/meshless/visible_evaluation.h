@@ -15,8 +15,12 @@
 // box these are the floor corners under the boxes: every coarse function there sits on the
 // lit floor outside, and using their unblocked value instead, as the antiradiance splat does
 // for its single level, left those corners at 55% of the floor's mean; measured 13.5% against
-// 12.4% error at levels=4). Only a point that sees no candidate of any level (a gap narrower
-// than the finest spacing) gets the unblocked value of every level.
+// 12.4% error at levels=4). A point that sees no candidate of any level lies in a gap
+// narrower than the finest spacing (the 1 cm behind a bookshelf standing off a wall, the
+// underside of a board resting on another) and gets nothing: light reaches it only through
+// the gap's opening. It once got the unblocked value of every level instead, which carried
+// the lit side's light through the surface: the office's bookshelf back and sides held 88% of
+// the luminance-weighted squared error (weighted relative RMSE 83% -> 36%, NRMSE 26% -> 22%).
 //
 // The coefficients α were computed (Eq. 7, Eq. 17) with unblocked basis functions; leaving
 // functions out at evaluation changes only how a level's coefficients are interpolated, not
@@ -45,7 +49,7 @@ struct VisibleEvaluationStats {
   uint64_t rays = 0;
   uint64_t blocked = 0;           // candidates left out
   uint64_t levels_skipped = 0;    // (point, level) pairs left out: every candidate blocked
-  uint64_t points_unblocked = 0;  // points that see no candidate at all: unblocked values
+  uint64_t points_blind = 0;      // points that see no candidate at all: value 0
   size_t uncovered = 0;           // queries no level covers (their values are 0)
 };
 
