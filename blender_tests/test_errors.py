@@ -16,6 +16,7 @@ import common  # noqa: E402
 import unittest  # noqa: E402
 
 import bpy  # noqa: E402
+import numpy  # noqa: E402
 
 
 
@@ -44,6 +45,24 @@ class ErrorPaths(common.SmallCornellCase):
             self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects=[self.objects["Ceiling"]])
         self.assertIn("Floor", str(caught.exception))
         self.assertSceneUnchanged(before)
+
+    def test_bake_points_without_a_normal_get_their_faces(self):
+        """Imported meshes carry corners whose normal is zero (a real living-room scene: a
+        face without area holding custom normals; the whole export failed with "bake point
+        15150: normal is the zero vector"). Such a point takes its face's normal, and where
+        the face has none either, +z with a warning naming the object."""
+        from bakegi import export
+        normals = numpy.array([(0, 0, 2), (0, 0, 0), (numpy.nan, 0, 0), (0, 0, 0)], numpy.float32)
+        fallback = numpy.array([(1, 0, 0), (0, 3, 0), (0, 0, -1), (0, 0, 0)], numpy.float64)
+        warnings = []
+        repaired = export.repair_normals(normals, fallback, "Sliver", warnings)
+        numpy.testing.assert_allclose(repaired, [(0, 0, 2), (0, 1, 0), (0, 0, -1), (0, 0, 1)])
+        self.assertEqual(len(warnings), 1)
+        self.assertIn("Sliver", warnings[0])
+        self.assertIn("1 bake points", warnings[0])
+        untouched = export.repair_normals(normals[:1], fallback[:1], "Sliver", warnings)
+        numpy.testing.assert_array_equal(untouched, normals[:1])
+        self.assertEqual(len(warnings), 1)
 
     def test_no_light_gives_a_clear_message(self):
         bpy.data.objects.remove(self.objects["CeilingLight"])

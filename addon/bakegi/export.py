@@ -684,6 +684,30 @@ def _display_probes(source, domain, normals, count, rng):
                          points.astype(np.uint32), weights.astype(np.float32))
 
 
+def repair_normals(normals, fallback, name, warnings):
+    """Bake points need a direction: a zero or non-finite normal (imported meshes carry them
+    on degenerate faces and in broken custom normals) takes its face's normal (`fallback`, the
+    summed face normals for vertices), and where that is zero too, +z, with a warning."""
+    normals = np.asarray(normals, np.float32)
+    length = np.linalg.norm(normals, axis=1)
+    bad = ~(np.isfinite(length) & (length > 1e-12))
+    if not bad.any():
+        return normals
+    repaired = normals.copy()
+    replacement = np.nan_to_num(np.asarray(fallback, np.float64)[bad], nan=0.0, posinf=0.0,
+                                neginf=0.0)
+    replacement_length = np.linalg.norm(replacement, axis=1)
+    arbitrary = ~(replacement_length > 1e-12)
+    replacement[arbitrary] = (0.0, 0.0, 1.0)
+    replacement_length[arbitrary] = 1.0
+    repaired[bad] = (replacement / replacement_length[:, None]).astype(np.float32)
+    if arbitrary.any():
+        warnings.append(f"'{name}': {int(arbitrary.sum())} bake points lie on faces without "
+                        "area (no normal); they are baked facing +z (merge or delete the "
+                        "degenerate faces)")
+    return repaired
+
+
 def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0):
     """World-space (positions, normals, display probes or None) of one target's bake points
     on its original mesh's domain, and `probe_count` display probes inside its faces
@@ -706,14 +730,19 @@ def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0):
         face_centers = _get(source.polygons, "center", polys, np.float32, 3)
         loop_face = np.repeat(np.arange(polys),
                               _get(source.polygons, "loop_total", polys, np.int32))
+        face_normals = _get(source.polygons, "normal", polys, np.float32, 3)
         if domain == "CORNER":
             positions = vertices[loop_vertex]
             inward = face_centers[loop_face]
             normals = corner_normals(source) if same else _original_corner_normals(source)
+            fallback = face_normals[loop_face]
         else:
             positions = vertices
             inward = _mean_face_center_per_vertex(vertices, loop_vertex, face_centers[loop_face])
             normals = _get(source.vertices, "normal", want, np.float32, 3)
+            fallback = np.zeros((len(vertices), 3), np.float64)
+            np.add.at(fallback, loop_vertex, face_normals[loop_face])
+        normals = repair_normals(normals, fallback, obj.name, warnings)
         positions = nudge_into_faces(positions, inward)
         probes = _display_probes(source, domain, normals, probe_count,
                                  np.random.default_rng(seed)) if probe_count else None
