@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@
 #include "scene/ray_tracer.h"
 #include "util/error.h"
 #include "util/job_context.h"
+#include "util/random.h"
+#include "util/sampling.h"
 
 namespace bakegi::meshless {
 
@@ -22,6 +25,26 @@ namespace {
 bool sees(const RayTracer& tracer, const glm::vec3& x, const glm::vec3& n, const BasisPoint& p) {
   return lifted_points_see_each_other(tracer, x, n, p.position, p.normal, kLiftOfRadius * p.radius,
                                       kLiftPerDistance);
+}
+
+// The fraction of the cosine-weighted hemisphere at x whose rays travel farther than
+// `distance` (or escape): about 0 in a gap narrower than that, about 1 on an open surface.
+// kOpennessRays jittered strata, the same for a point every time (seeded by its index).
+float openness(const RayTracer& tracer, const glm::vec3& x, const glm::vec3& n, float distance,
+               uint64_t point, uint64_t& rays) {
+  constexpr uint32_t kSide = 4;
+  const Frame frame(n);
+  const glm::vec3 origin = x + n * (1e-4f * distance);
+  Pcg32 rng = sample_stream(0x6f70656eull, point, 0);
+  uint32_t open = 0;
+  for (uint32_t k = 0; k < kSide * kSide; ++k) {
+    const float u1 = (float(k % kSide) + rng.next_float()) / float(kSide);
+    const float u2 = (float(k / kSide) + rng.next_float()) / float(kSide);
+    const glm::vec3 direction = frame.to_world(sample_cosine_hemisphere(u1, u2));
+    open += tracer.occluded(Ray{origin, direction, 0.0f, distance}) ? 0 : 1;
+  }
+  rays += kSide * kSide;
+  return float(open) / float(kSide * kSide);
 }
 
 }  // namespace
@@ -69,7 +92,7 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
         for (size_t block = block_range.begin(); block < block_range.end(); ++block) {
           if (job != nullptr && job->is_cancelled()) return;
           std::vector<BasisValue>& rows = block_entries[block];
-          std::vector<BasisValue> candidates, seen_row;
+          std::vector<BasisValue> candidates, seen_row, all_row;
           std::vector<char> visible;
           uint64_t local_rays = 0, local_blocked = 0, local_skipped = 0, local_blind = 0,
                    local_uncovered = 0;
@@ -78,7 +101,9 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
             const glm::vec3& x = positions[q];
             const glm::vec3& n = normals[q];
             seen_row.clear();
+            all_row.clear();
             bool covered = false, sees_any = false;
+            float smallest_radius = std::numeric_limits<float>::max();
             uint64_t blind_levels = 0;
             for (uint32_t level = 0; level < basis.level_count(); ++level) {
               candidates.clear();
@@ -89,6 +114,7 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
                 const BasisValue& c = candidates[k];
                 if (!(c.value > 0.0f)) continue;
                 all_weight += c.value;
+                smallest_radius = std::min(smallest_radius, basis.point(c.index).radius);
                 if (tracer == nullptr) {
                   visible[k] = 1;
                   visible_weight += c.value;
@@ -112,18 +138,27 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
               for (size_t k = 0; k < candidates.size(); ++k) {
                 const BasisValue& c = candidates[k];
                 if (!(c.value > 0.0f)) continue;
+                all_row.push_back({c.index, float(double(c.value) / all_weight)});
                 if (visible[k])
                   seen_row.push_back({c.index, float(double(c.value) / visible_weight)});
               }
             }
             if (!covered) ++local_uncovered;
             // A level none of whose functions the point sees adds nothing (its light does not
-            // reach the point); a point that sees no function of any level lies in a gap
-            // narrower than the finest spacing and gets nothing at all (see the header).
+            // reach the point). A point that sees no function of any level gets the unblocked
+            // value scaled by how open its surroundings are (see the header).
             if (sees_any) {
               local_skipped += blind_levels;
             } else if (covered) {
               ++local_blind;
+              const float open =
+                  tracer == nullptr
+                      ? 1.0f
+                      : openness(*tracer, x, n, smallest_radius, uint64_t(q), local_rays);
+              seen_row.clear();
+              if (open > 0.0f) {
+                for (const BasisValue& b : all_row) seen_row.push_back({b.index, b.value * open});
+              }
             }
             rows.insert(rows.end(), seen_row.begin(), seen_row.end());
             row_sizes[q] = seen_row.size();
