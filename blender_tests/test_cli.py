@@ -57,6 +57,27 @@ class CommandLine(common.SmallCornellCase):
         self.assertIn(f"estimated error {100 * report['estimated_error']:.1f}%", completed.stderr)
         self.assertIn("WARNING, above 10%", completed.stderr)
 
+    def test_subset_keeps_the_chosen_points_of_the_scene(self):
+        """subset writes K distinct points of the file, in file order, the same for a seed."""
+        subset = os.path.join(self.work, "subset.bgs")
+        indices_path = os.path.join(self.work, "indices.npy")
+        self.run_cli("subset", self.scene, "--count", "50", "--seed", "3", "--out", subset,
+                     "--indices", indices_path)
+        indices = numpy.load(indices_path).astype(numpy.int64)
+        self.assertEqual(len(indices), 50)
+        self.assertTrue((numpy.diff(indices) > 0).all())
+        every, chosen = (os.path.join(self.work, name) for name in ("all.npy", "chosen.npy"))
+        self.run_cli("points", self.scene, "--positions", every)
+        self.run_cli("points", subset, "--positions", chosen)
+        numpy.testing.assert_array_equal(numpy.load(chosen), numpy.load(every)[indices])
+        again = os.path.join(self.work, "again.npy")
+        self.run_cli("subset", self.scene, "--count", "50", "--seed", "3", "--out", subset,
+                     "--indices", again)
+        numpy.testing.assert_array_equal(numpy.load(again), numpy.load(indices_path))
+        self.run_cli("subset", self.scene, "--count", "50", "--seed", "4", "--out", subset,
+                     "--indices", again)
+        self.assertFalse(numpy.array_equal(numpy.load(again), numpy.load(indices_path)))
+
     def test_relight_equals_a_full_bake_of_the_moved_lights(self):
         out = os.path.join(self.work, "relit.npy")
         result = json.loads(self.run_cli("relight", self.scene, "--method", "antiradiance", "--set", "bins=48",

@@ -40,6 +40,9 @@ commands:
       Prints the error of values against reference.
   points scene.bgs [--positions p.npy] [--normals n.npy] [--object-ids ids.npy]
       Writes the file's bake points as float32 arrays.
+  subset scene.bgs --count K --out subset.bgs [--indices idx.npy] [--seed S]
+      Writes the scene with K of its bake points chosen at random (seeded; in file order)
+      and their indices in the file as float32, for references on large scenes.
   relight scene.bgs --out values.npy [--move x,y,z] [--scale k] [--repeat R] [--check]
           [settings]
       Bakes once, moves every light by (x,y,z) metres and scales its power by k, then
@@ -93,6 +96,7 @@ int main(int argc, char** argv) {
     if (command == "points") return run_points_command(args);
     if (command == "relight") return run_relight_command(args);
     if (command == "converge") return run_converge_command(args);
+    if (command == "subset") return run_subset_command(args);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "bakegi: %s\n(run 'bakegi --help' for usage)\n", e.what());
