@@ -13,6 +13,7 @@ import bpy  # noqa: E402
 import numpy  # noqa: E402
 
 import box_solids  # noqa: E402
+import cornell_box  # noqa: E402
 import office  # noqa: E402
 import two_rooms  # noqa: E402
 
@@ -27,6 +28,37 @@ VOLUME_TOLERANCE = 1e-4
 
 def mesh_objects(objects):
     return [o for o in objects.values() if o.type == "MESH"]
+
+
+class CornellBoxEmissive(unittest.TestCase):
+    """The emissive-quad variant: the panel fills the ceiling's hole exactly, faces down, and
+    is the only light (the area light is gone)."""
+
+    @classmethod
+    def setUpClass(cls):
+        common.new_empty_scene()
+        cls.bakegi = common.enable_addon()
+
+    def test_panel_fills_the_hole_and_lights_the_room(self):
+        for subdivisions in (cornell_box.TEST_SUBDIVISIONS, cornell_box.DEFAULT_SUBDIVISIONS):
+            with self.subTest(subdivisions=subdivisions):
+                common.new_empty_scene()
+                objects = cornell_box.build_cornell_box(subdivisions, light="EMISSIVE")
+                self.assertNotIn("CeilingLight", objects)
+                self.assertFalse([o for o in bpy.context.scene.objects if o.type == "LIGHT"])
+                ceiling, panel = objects["Ceiling"].data, objects["CeilingPanel"].data
+                full = 4.0  # the 2 x 2 m ceiling
+                ceiling_area = sum(p.area for p in ceiling.polygons)
+                panel_area = sum(p.area for p in panel.polygons)
+                self.assertAlmostEqual(ceiling_area + panel_area, full, places=4)
+                self.assertGreater(panel_area, 0.1)
+                self.assertAlmostEqual(panel.polygons[0].normal.z, -1.0, places=6)
+                self.assertEqual(len(ceiling.vertices),
+                                 len({v for p in ceiling.polygons for v in p.vertices}))  # no loose vertices
+                report = self.bakegi.bake(method="pathtrace", samples=4, target="CORNER",
+                                          objects=[objects["Floor"]])
+                self.assertGreater(report["emissive_triangles"], 0)
+                self.assertGreater(float(common.read_color_attribute(["Floor"]).mean()), 0.0)
 
 
 class Office(unittest.TestCase):

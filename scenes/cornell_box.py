@@ -140,7 +140,28 @@ def mesh_object(name, vertices, faces, material, collection):
     return obj
 
 
-def add_wall(name, origin, edge_u, edge_v, material, subdivisions, collection):
+def hole_extent(length, light_size, subdivisions):
+    """(lo, hi) of the grid cells across a centred edge of `length` whose centres lie within
+    the light's half size: the hole the emissive panel fills."""
+    cells = cells_for(length, subdivisions)
+    size = length / cells
+    centres = [-length / 2 + (i + 0.5) * size for i in range(cells)]
+    inside = [c for c in centres if abs(c) < light_size / 2]
+    if not inside:
+        raise ValueError(f"{subdivisions} subdivisions leave no ceiling cell under the light")
+    return min(inside) - size / 2, max(inside) + size / 2
+
+
+def without_faces(vertices, faces, drop):
+    """The faces for which drop(face centre) is false, and only the vertices they use."""
+    kept = [f for f in faces if not drop([sum(vertices[i][k] for i in f) / len(f) for k in range(3)])]
+    used = sorted({i for f in kept for i in f})
+    index = {old: new for new, old in enumerate(used)}
+    return [vertices[i] for i in used], [tuple(index[i] for i in f) for f in kept]
+
+
+def add_wall(name, origin, edge_u, edge_v, material, subdivisions, collection, hole=None):
+    """A grid-subdivided wall; `hole(centre)` true leaves that cell out."""
     vertices, faces = [], []
     length_u = math.sqrt(sum(c * c for c in edge_u))
     length_v = math.sqrt(sum(c * c for c in edge_v))
@@ -153,6 +174,8 @@ def add_wall(name, origin, edge_u, edge_v, material, subdivisions, collection):
         vertices,
         faces,
     )
+    if hole is not None:
+        vertices, faces = without_faces(vertices, faces, hole)
     return mesh_object(name, vertices, faces, material, collection)
 
 
@@ -233,11 +256,15 @@ def add_camera(scene, location, rotation_degrees, fov_degrees, collection):
     return camera
 
 
-def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER, clear=True, resolution=512):
+def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER, clear=True, resolution=512,
+                      light="AREA"):
     """Build the Cornell box into the current scene and return {name: object}.
 
     subdivisions: grid cells along a 2 m edge of a wall; box faces get cells in
     proportion to their size (32 gives about 26k face corners, 8 about 1.7k).
+    light: "AREA" (a rectangle area light) or "EMISSIVE" (a mesh quad of the same size and
+    place with an Emission shader of the same radiance, the way most Blender scenes are lit;
+    mesh emission is two-sided in Cycles 3.4, so its back lights the ceiling 2 cm above too).
     """
     if subdivisions < 1:
         raise ValueError("subdivisions must be at least 1")
@@ -253,13 +280,31 @@ def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER
     objects = {}
     # Each wall: origin, edge_u, edge_v with edge_u x edge_v pointing into the room.
     objects["Floor"] = add_wall("Floor", (-w, -d, 0), (2 * w, 0, 0), (0, 2 * d, 0), white, subdivisions, collection)
-    objects["Ceiling"] = add_wall("Ceiling", (-w, -d, top), (0, 2 * d, 0), (2 * w, 0, 0), white, subdivisions, collection)
+    def under_the_light(centre):
+        return abs(centre[0]) < LIGHT_SIZE_X / 2 and abs(centre[1]) < LIGHT_SIZE_Y / 2
+
+    hole = under_the_light if light == "EMISSIVE" else None
+    objects["Ceiling"] = add_wall("Ceiling", (-w, -d, top), (0, 2 * d, 0), (2 * w, 0, 0), white, subdivisions,
+                                  collection, hole)
     objects["BackWall"] = add_wall("BackWall", (-w, d, 0), (2 * w, 0, 0), (0, 0, top), white, subdivisions, collection)
     objects["LeftWall"] = add_wall("LeftWall", (-w, -d, 0), (0, 2 * d, 0), (0, 0, top), red, subdivisions, collection)
     objects["RightWall"] = add_wall("RightWall", (w, -d, 0), (0, 0, top), (0, 2 * d, 0), green, subdivisions, collection)
     for name, x, y, height, rotation in BOXES:
         objects[name] = add_box(name, x, y, height, rotation, white, subdivisions, collection)
 
+    if light == "EMISSIVE":
+        # The panel fills the ceiling's hole (the grid cells whose centres lie under the area
+        # light's rectangle) flush with the ceiling, its back to the black world above.
+        radiance = light_power / (4.0 * LIGHT_SIZE_X * LIGHT_SIZE_Y)  # the area light's, CYCLES_FACTS.md
+        panel_material = emission_material("CeilingPanelEmission", LIGHT_COLOR, radiance)
+        (x0, x1), (y0, y1) = (hole_extent(2 * w, LIGHT_SIZE_X, subdivisions),
+                              hole_extent(2 * d, LIGHT_SIZE_Y, subdivisions))
+        # Wound clockwise seen from above: the face normal points down into the room.
+        vertices = [(x0, y0, top), (x0, y1, top), (x1, y1, top), (x1, y0, top)]
+        objects["CeilingPanel"] = mesh_object("CeilingPanel", vertices, [(0, 1, 2, 3)], panel_material, collection)
+        return _finish(scene, objects, collection, resolution)
+    if light != "AREA":
+        raise ValueError(f"light must be AREA or EMISSIVE, not {light!r}")
     light_data = bpy.data.lights.new("CeilingLight", "AREA")
     light_data.shape = "RECTANGLE"
     light_data.size = LIGHT_SIZE_X
@@ -270,7 +315,11 @@ def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER
     light.location = (0.0, 0.0, LIGHT_HEIGHT)  # an area light emits along its local -Z: down
     collection.objects.link(light)
     objects["CeilingLight"] = light
+    return _finish(scene, objects, collection, resolution)
 
+
+def _finish(scene, objects, collection, resolution):
+    """Camera, world and render settings common to both lights."""
     objects["Camera"] = add_camera(scene, CAMERA_LOCATION, (90.0, 0.0, 0.0), CAMERA_FOV_DEGREES, collection)
     set_black_world(scene)
     configure_cycles_reference(scene)
@@ -310,6 +359,8 @@ def parse_arguments(argv):
     parser.add_argument("--subdivisions", type=int, default=DEFAULT_SUBDIVISIONS, help="grid cells per 2 m edge")
     parser.add_argument("--light-power", type=float, default=LIGHT_POWER, help="area light power in W")
     parser.add_argument("--resolution", type=int, default=512, help="render resolution (square)")
+    parser.add_argument("--light", choices=("area", "emissive"), default="area",
+                        help="an area light, or an emissive mesh quad of the same radiance in its place")
     return parser.parse_args(argv)
 
 
@@ -317,7 +368,8 @@ def main():
     argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     arguments = parse_arguments(argv)
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    objects = build_cornell_box(arguments.subdivisions, arguments.light_power, resolution=arguments.resolution)
+    objects = build_cornell_box(arguments.subdivisions, arguments.light_power, resolution=arguments.resolution,
+                                light=arguments.light.upper())
     corners = sum(len(o.data.loops) for o in objects.values() if o.type == "MESH")
     import os
 

@@ -91,10 +91,10 @@ def addon_environment(work, build):
     return env
 
 
-def build_scene(work, subdivisions):
+def build_scene(work, subdivisions, light="area"):
     blend = os.path.join(work, "cornell.blend")
     run(["blender", "-b", "--factory-startup", "--python", os.path.join(ROOT, "scenes", "cornell_box.py"),
-         "--", "--out", blend, "--subdivisions", str(subdivisions)])
+         "--", "--out", blend, "--subdivisions", str(subdivisions), "--light", light])
     return blend
 
 
@@ -433,6 +433,9 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder with bakegi and libbakegi.so")
     parser.add_argument("--work", default="/tmp/bakegi_cornell_sweep", help="folder for scene, reference and raw results")
     parser.add_argument("--subdivisions", type=int, default=16, help="Cornell box grid cells per 2 m edge")
+    parser.add_argument("--light", choices=("area", "emissive"), default="area",
+                        help="the area light, or an emissive quad filling a hole in the ceiling (writes "
+                             "cornell_emissive_* files, leaves the benchmarks table alone)")
     parser.add_argument("--reference-samples", type=int, default=32768, help="samples per corner of the reference")
     parser.add_argument("--reference-chunk", type=int, default=4096, help="samples per CLI run while making the reference")
     parser.add_argument("--pathtrace-samples", default="1,2,4,8,16,32,64,128,256,512,1024")
@@ -475,7 +478,7 @@ def main():
             reference_info = json.load(f)
         export_info = read_export_info(export_path)
     else:
-        build_scene(work, arguments.subdivisions)
+        build_scene(work, arguments.subdivisions, arguments.light)
         bgs, export_info = export_scene(work, build, blend)
         reference, reference_info = make_reference(cli, bgs, work, arguments.reference_samples,
                                                    arguments.reference_chunk, arguments.threads)
@@ -487,7 +490,8 @@ def main():
     object_ids_path = os.path.join(work, "bake_object_ids.npy")
     run([cli, "points", bgs, "--positions", positions, "--object-ids", object_ids_path], quiet=True)
 
-    sweep_json = os.path.join(DOCS if arguments.docs else work, "cornell_sweep.json")
+    stem = "cornell" if arguments.light == "area" else "cornell_emissive"
+    sweep_json = os.path.join(DOCS if arguments.docs else work, f"{stem}_sweep.json")
     bins_list = [int(b) for b in arguments.antiradiance_bins.split(",") if b.strip()]
     meshless_configurations = parse_setting_list(arguments.meshless_settings)
     if arguments.only_meshless:
@@ -564,14 +568,17 @@ def main():
 
 
 def write_results(sweep, sweep_json, work, docs, started):
-    """The sweep JSON, the chart next to it, and (with --docs) the table in benchmarks.md."""
+    """The sweep JSON, the chart next to it, and (with --docs, for the area light) the table in
+    benchmarks.md."""
     table = markdown_table(sweep)
     print(table)
-    chart = os.path.join(DOCS if docs else work, "cornell_speed_accuracy.png")
+    emissive = os.path.basename(sweep_json).startswith("cornell_emissive")
+    chart = os.path.join(DOCS if docs else work,
+                         "cornell_emissive_speed_accuracy.png" if emissive else "cornell_speed_accuracy.png")
     with open(sweep_json, "w") as f:
         json.dump(sweep, f, indent=1)
     run([sys.executable, os.path.join(ROOT, "tools", "plot_sweep.py"), sweep_json, "--out", chart])
-    if docs:
+    if docs and not emissive:
         update_benchmarks_page(table, sweep)
     log(f"wrote {sweep_json} and {chart} in {time.perf_counter() - started:.0f} s")
 
