@@ -1,4 +1,4 @@
-"""Crytek Sponza (262,087 triangles) lit by one spot light: the large scene of the meshless
+"""Crytek Sponza (262,087 triangles) lit by one spot light (or, --light sun, a sun and a sky): the large scene of the meshless
 benchmark (issue 4; the meshless paper's Sponza, §5, Fig. 8), imported from
 ../shared/scenes/crytek-sponza (not copied into the project; see its SOURCE.md).
 
@@ -34,13 +34,25 @@ SPOT_BLEND = 0.15
 SPOT_RADIUS = 0.25
 SPOT_POWER = 30000.0  # W, Blender's spot power
 
+# The sun variant: a sun 30 degrees off the zenith across the atrium's long axis, so a strip
+# of the floor and the lower arcade of one side is sunlit, and a blue sky of a tenth of its
+# strength's order (W/m^2 irradiance of a sun vs radiance of a sky: the usual outdoor ratio).
+SUN_STRENGTH = 5.0  # W/m^2, Blender's sun strength
+SUN_ANGLE_DEGREES = 0.53
+SUN_ELEVATION_TILT_DEGREES = 30.0  # rotation about x: 0 is straight down
+SUN_AZIMUTH_DEGREES = 20.0
+SKY_COLOR = (0.45, 0.6, 1.0)
+SKY_STRENGTH = 0.3
+
 
 def sponza_path(folder=None):
     return os.path.join(folder or os.environ.get("BAKEGI_SPONZA", DEFAULT_SPONZA), "Sponza.gltf")
 
 
-def build_sponza(folder=None, spot_power=SPOT_POWER):
-    """Imports Sponza into an empty file and adds the spot light. Returns the spot object.
+def build_sponza(folder=None, spot_power=SPOT_POWER, light="SPOT"):
+    """Imports Sponza into an empty file and adds the light: "SPOT" (the spot in the atrium,
+    black world) or "SUN" (a sun through the open roof onto the floor and the lower arcade
+    plus a blue sky as the world colour). Returns the light object.
     Raises FileNotFoundError (with the path) when the scene data is absent."""
     path = sponza_path(folder)
     if not os.path.isfile(path):
@@ -61,6 +73,18 @@ def build_sponza(folder=None, spot_power=SPOT_POWER):
     background = world.node_tree.nodes.get("Background")
     background.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
     scene.world = world
+    if light == "SUN":
+        background.inputs["Color"].default_value = (*SKY_COLOR, 1.0)
+        background.inputs["Strength"].default_value = SKY_STRENGTH
+        data = bpy.data.lights.new("Sun", "SUN")
+        data.energy = SUN_STRENGTH
+        data.angle = math.radians(SUN_ANGLE_DEGREES)
+        sun = bpy.data.objects.new("Sun", data)
+        sun.rotation_euler = (math.radians(SUN_ELEVATION_TILT_DEGREES), 0.0, math.radians(SUN_AZIMUTH_DEGREES))
+        scene.collection.objects.link(sun)
+        return sun
+    if light != "SPOT":
+        raise ValueError(f"light must be SPOT or SUN, not {light!r}")
 
     data = bpy.data.lights.new("Spot", "SPOT")
     data.energy = spot_power
@@ -84,8 +108,10 @@ def main():
     parser.add_argument("--out", required=True, help="the .blend to write")
     parser.add_argument("--sponza", default=None, help="folder holding Sponza.gltf")
     parser.add_argument("--spot-power", type=float, default=SPOT_POWER)
+    parser.add_argument("--light", choices=("spot", "sun"), default="spot",
+                        help="the spot in the atrium (black world), or a sun and a blue sky")
     args = parser.parse_args(argv)
-    build_sponza(args.sponza, args.spot_power)
+    build_sponza(args.sponza, args.spot_power, args.light.upper())
     bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.out))
     triangles = 0
     for obj in bpy.context.scene.objects:

@@ -1,0 +1,130 @@
+"""A maze lit only through a skylight: deep indirect light. A closed 6 x 6 x 2 m room whose
+ceiling has one 1 x 1 m opening above the maze's first cell; a sun shines through it onto
+that cell's floor and a sky fills it; every other corridor is reached only after two to
+eight bounces. A scene of the real-scene suite (tools/real_scenes.py), built from code.
+
+Run:
+    blender -b --factory-startup --python scenes/maze.py -- --out maze.blend
+
+The maze is a fixed 5 x 5 grid of 1.2 m cells (LAYOUT below); its walls are 0.1 m thick
+solid boxes standing on the floor, 2 m tall up to the ceiling, each face a grid of at most
+0.25 m cells so that corners carry the light's gradients.
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import cornell_box  # noqa: E402  (grid faces, materials, camera)
+
+CELL = 1.2
+SIZE = 5  # cells per side: the maze spans [-3, 3]^2
+HEIGHT = 2.0
+THICKNESS = 0.1
+MAX_FACE_CELL = 0.25
+# Walls between cells: "h r c" a wall under row r (between rows r and r+1) across column c,
+# "v r c" a wall right of column c (between columns c and c+1) along row r. The path runs from
+# cell (0, 0), under the skylight, through every cell.
+LAYOUT = """
+v 0 0, v 1 0, v 2 0, v 3 0, h 0 1, h 0 2, h 0 3, v 0 3, h 1 1, v 1 2, h 1 3, h 1 4,
+v 2 1, h 2 2, v 2 3, h 3 0, h 3 1, v 3 2, h 3 3, v 3 3, h 2 4, v 4 0, v 4 2
+"""
+SUN_STRENGTH = 8.0  # W/m^2
+SKY = ((0.45, 0.6, 1.0), 0.5)  # colour, strength
+
+
+def _box(name, lo, hi, material, collection):
+    """A closed box [lo, hi] facing outwards, each face a grid of at most MAX_FACE_CELL."""
+    vertices, faces = [], []
+    x0, y0, z0 = lo
+    x1, y1, z1 = hi
+    sides = (  # origin, edge_u, edge_v with u x v outwards
+        ((x0, y0, z0), (0, y1 - y0, 0), (x1 - x0, 0, 0)),  # bottom, -z
+        ((x0, y0, z1), (x1 - x0, 0, 0), (0, y1 - y0, 0)),  # top, +z
+        ((x0, y0, z0), (x1 - x0, 0, 0), (0, 0, z1 - z0)),  # -y
+        ((x0, y1, z0), (0, 0, z1 - z0), (x1 - x0, 0, 0)),  # +y
+        ((x0, y0, z0), (0, 0, z1 - z0), (0, y1 - y0, 0)),  # -x
+        ((x1, y0, z0), (0, y1 - y0, 0), (0, 0, z1 - z0)),  # +x
+    )
+    for origin, u, v in sides:
+        lu, lv = math.sqrt(sum(c * c for c in u)), math.sqrt(sum(c * c for c in v))
+        cornell_box.grid_faces(origin, u, v, max(1, math.ceil(lu / MAX_FACE_CELL - 1e-9)),
+                               max(1, math.ceil(lv / MAX_FACE_CELL - 1e-9)), vertices, faces)
+    obj = cornell_box.mesh_object(name, vertices, faces, material, collection)
+    return obj
+
+
+def _walls(layout):
+    half = SIZE * CELL / 2
+    t = THICKNESS / 2
+    for i, item in enumerate(w.split() for w in layout.replace("\n", " ").split(",") if w.strip()):
+        kind, row, column = item[0], int(item[1]), int(item[2])
+        if kind == "h":  # between rows row and row + 1, across column
+            y = half - (row + 1) * CELL
+            x0 = -half + column * CELL
+            yield f"Wall{i:02d}", (x0 - t, y - t, 0.0), (x0 + CELL + t, y + t, HEIGHT)
+        else:  # right of column, along row
+            x = -half + (column + 1) * CELL
+            y1 = half - row * CELL
+            yield f"Wall{i:02d}", (x - t, y1 - CELL - t, 0.0), (x + t, y1 + t, HEIGHT)
+
+
+def build_maze():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    collection = scene.collection
+    white = cornell_box.diffuse_material("Plaster", (0.75, 0.73, 0.7))
+    floor_material = cornell_box.diffuse_material("Stone", (0.5, 0.45, 0.4))
+    half = SIZE * CELL / 2
+    n = 16  # cells per 2 m of the shell (cornell_box.cells_for): 0.125 m
+    objects = {
+        "Floor": cornell_box.add_wall("Floor", (-half, -half, 0), (2 * half, 0, 0), (0, 2 * half, 0),
+                                      floor_material, n, collection),
+        "North": cornell_box.add_wall("North", (-half, half, 0), (2 * half, 0, 0), (0, 0, HEIGHT), white, n, collection),
+        "South": cornell_box.add_wall("South", (-half, -half, 0), (0, 0, HEIGHT), (2 * half, 0, 0), white, n, collection),
+        "West": cornell_box.add_wall("West", (-half, -half, 0), (0, 2 * half, 0), (0, 0, HEIGHT), white, n, collection),
+        "East": cornell_box.add_wall("East", (half, -half, 0), (0, 0, HEIGHT), (0, 2 * half, 0), white, n, collection),
+    }
+    # The skylight: the ceiling's cells above the maze's first cell (row 0, column 0) left out.
+    sky_lo, sky_hi = (-half + 0.1, half - CELL + 0.1), (-half + CELL - 0.1, half - 0.1)
+
+    def skylight(centre):
+        return sky_lo[0] < centre[0] < sky_hi[0] and sky_lo[1] < centre[1] < sky_hi[1]
+
+    objects["Ceiling"] = cornell_box.add_wall("Ceiling", (-half, -half, HEIGHT), (0, 2 * half, 0), (2 * half, 0, 0),
+                                              white, n, collection, hole=skylight)
+    for name, lo, hi in _walls(LAYOUT):
+        objects[name] = _box(name, lo, hi, white, collection)
+
+    sun = bpy.data.lights.new("Sun", "SUN")
+    sun.energy = SUN_STRENGTH
+    sun.angle = math.radians(0.53)
+    sun_object = bpy.data.objects.new("Sun", sun)
+    sun_object.rotation_euler = (math.radians(15.0), math.radians(-10.0), 0.0)
+    collection.objects.link(sun_object)
+    objects["Sun"] = sun_object
+    cornell_box.set_black_world(scene, SKY[0], SKY[1])
+    objects["Camera"] = cornell_box.add_camera(scene, (0.0, 0.0, HEIGHT - 0.05), (0.0, 0.0, 0.0), 100.0, collection)
+    scene.render.resolution_x, scene.render.resolution_y = 512, 512
+    bpy.context.view_layer.update()
+    return objects
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", required=True, help="the .blend to write")
+    args = parser.parse_args(argv)
+    objects = build_maze()
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.out))
+    faces = sum(len(o.data.polygons) for o in objects.values() if o.type == "MESH")
+    print(f"maze: {faces} faces, saved {args.out}")
+
+
+if __name__ == "__main__":
+    main()
