@@ -14,6 +14,7 @@ import numpy  # noqa: E402
 
 import box_solids  # noqa: E402
 import cornell_box  # noqa: E402
+import maze  # noqa: E402
 import office  # noqa: E402
 import two_rooms  # noqa: E402
 
@@ -59,6 +60,29 @@ class CornellBoxEmissive(unittest.TestCase):
                                           objects=[objects["Floor"]])
                 self.assertGreater(report["emissive_triangles"], 0)
                 self.assertGreater(float(common.read_color_attribute(["Floor"]).mean()), 0.0)
+
+
+class Maze(unittest.TestCase):
+    """The maze of the real-scene suite: its only opening is the 1 x 1 m skylight, its walls
+    are closed solids, and a short path-traced bake finds light deep inside."""
+
+    @classmethod
+    def setUpClass(cls):
+        common.new_empty_scene()
+        cls.bakegi = common.enable_addon()
+
+    def test_skylight_is_the_only_opening(self):
+        objects = maze.build_maze()
+        ceiling = sum(p.area for p in objects["Ceiling"].data.polygons)
+        self.assertAlmostEqual(ceiling, (maze.SIZE * maze.CELL) ** 2 - 1.0, places=3)
+        walls = [o for name, o in objects.items() if name.startswith("Wall")]
+        self.assertGreater(len(walls), 15)
+        for obj in walls:
+            self.assertEqual(box_solids.open_edge_count(obj.data), 0, f"{obj.name} is not closed")
+            self.assertGreater(box_solids.signed_volume(obj), 0.0, f"{obj.name} faces inwards")
+        report = self.bakegi.bake(method="pathtrace", samples=8, target="CORNER", objects=walls[-3:])
+        self.assertGreater(report["bake_points"], 0)
+        self.assertGreater(float(common.read_color_attribute([o.name for o in walls[-3:]]).mean()), 0.0)
 
 
 class Office(unittest.TestCase):

@@ -55,8 +55,17 @@ def _box(name, lo, hi, material, collection):
         lu, lv = math.sqrt(sum(c * c for c in u)), math.sqrt(sum(c * c for c in v))
         cornell_box.grid_faces(origin, u, v, max(1, math.ceil(lu / MAX_FACE_CELL - 1e-9)),
                                max(1, math.ceil(lv / MAX_FACE_CELL - 1e-9)), vertices, faces)
-    obj = cornell_box.mesh_object(name, vertices, faces, material, collection)
-    return obj
+    # Weld the sides' shared edges: a closed 2-manifold solid (antiradiance's assumption).
+    index, welded = {}, []
+    remap = []
+    for v in vertices:
+        key = tuple(round(c, 6) for c in v)
+        if key not in index:
+            index[key] = len(welded)
+            welded.append(v)
+        remap.append(index[key])
+    faces = [tuple(remap[i] for i in f) for f in faces]
+    return cornell_box.mesh_object(name, welded, faces, material, collection)
 
 
 def _walls(layout):
