@@ -64,6 +64,23 @@ class ErrorPaths(common.SmallCornellCase):
         numpy.testing.assert_array_equal(untouched, normals[:1])
         self.assertEqual(len(warnings), 1)
 
+    def test_a_method_that_cannot_model_the_scene_hands_it_to_the_path_tracer(self):
+        """Antiradiance refused scenes too large for its model; now the path tracer bakes them
+        and the report and the summary say so."""
+        settings = {"bins": 3072, "memory_budget_mb": 8}
+        report = self.bakegi.bake(method="antiradiance", target="CORNER", objects="VISIBLE",
+                                  method_settings=settings)
+        self.assertEqual(report["method_used"], "pathtrace")
+        self.assertTrue(any("Baked with the path tracer instead" in w for w in report["warnings"]),
+                        report["warnings"])
+        from bakegi import operators
+        self.assertIn("baked by pathtrace", operators.summary(report))
+        self.assertGreater(float(common.read_color_attribute(["Floor"]).mean()), 0.0)
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="antiradiance", target="CORNER", objects="VISIBLE",
+                             method_settings={**settings, "fallback": 0})
+        self.assertIn("memory_budget_mb", str(caught.exception))
+
     def test_no_light_gives_a_clear_message(self):
         bpy.data.objects.remove(self.objects["CeilingLight"])
         before = common.scene_snapshot()

@@ -25,7 +25,11 @@ def summary(report):
     if rays is None and isinstance(report.get("counts"), dict):
         rays = report["counts"].get("rays")
     rays_text = f", {rays:,} rays" if isinstance(rays, (int, float)) else ""
-    return (f"{report.get('method', '')}: {report.get('bake_points', 0):,} points in "
+    method = report.get("method", "")
+    used = report.get("method_used")
+    if used and used != method:  # the core handed the bake on (setting "fallback")
+        method = f"{method} (baked by {used}: see the warnings)"
+    return (f"{method}: {report.get('bake_points', 0):,} points in "
             f"{seconds:.2f} s{rays_text}{_meshless_summary(report)}")
 
 

@@ -425,5 +425,50 @@ TEST(BakeJob, KeepsItsOwnCopiesAndReportsWarnings) {
   EXPECT_EQ(report.members["settings"].members["samples"].number, 4);
 }
 
+TEST(BakeJob, AMethodThatCannotModelTheSceneHandsTheBakeToThePathTracer) {
+  // Antiradiance at 3072 bins cannot hold even the unsplit box's tables in 2 MB, which the
+  // bake itself (a 12-triangle box, 100 points) fits easily.
+  auto start = [](int64_t fallback, bakegi_status expected) {
+    ScenePtr scene = new_box_scene();
+    PointsPtr points = new_floor_points(100);
+    SettingsPtr settings = new_settings();
+    EXPECT_EQ(bakegi_settings_set_string(settings.get(), "method", "antiradiance"), BAKEGI_OK);
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "bins", 3072), BAKEGI_OK);
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "memory_budget_mb", 2), BAKEGI_OK);
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "error_probes", 0), BAKEGI_OK);
+    if (fallback >= 0) {
+      EXPECT_EQ(bakegi_settings_set_int(settings.get(), "fallback", fallback), BAKEGI_OK);
+    }
+    bakegi_job* job = nullptr;
+    EXPECT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+    JobPtr owned(job);
+    EXPECT_EQ(bakegi_job_wait(job), expected) << bakegi_last_error();
+    Json report = parse_report(job);
+    std::vector<float> values(300, -1.0f);
+    if (expected == BAKEGI_OK) {
+      EXPECT_EQ(bakegi_job_get_result(job, values.data(), 100), BAKEGI_OK);
+    }
+    return std::make_pair(report, values);
+  };
+  auto [report, values] = start(-1, BAKEGI_OK);
+  EXPECT_EQ(report.members["method"].text, "antiradiance");
+  EXPECT_EQ(report.members["method_used"].text, "pathtrace");
+  ASSERT_FALSE(report.members["warnings"].items.empty());
+  const std::string warning = report.members["warnings"].items[0].text;
+  EXPECT_NE(warning.find("memory_budget_mb"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("Baked with the path tracer instead (128 samples"), std::string::npos)
+      << warning;
+  double sum = 0.0;
+  for (float v : values) {
+    EXPECT_TRUE(std::isfinite(v));
+    sum += v;
+  }
+  EXPECT_GT(sum, 0.0);
+  // fallback=0: refused as before.
+  auto refused = start(0, BAKEGI_ERROR_OUT_OF_MEMORY);
+  EXPECT_NE(std::string(bakegi_last_error()).find("memory_budget_mb"), std::string::npos);
+  EXPECT_EQ(refused.first.members["status"].text, "BAKEGI_ERROR_OUT_OF_MEMORY");
+}
+
 }  // namespace
 }  // namespace bakegi::test

@@ -251,6 +251,10 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
  *                          "error_estimate" (both kinds of probes, per object: "object" is the
  *                          bake points' object id), seconds "error_estimate". 0 = off.
  *   "error_probe_samples" int  16..2^20 (default 512): paths per probe
+ *   "fallback"     int     0 | 1 (default 1): a method that cannot model the scene within the
+ *                          memory budget (antiradiance on a very large scene) hands the bake
+ *                          to the path tracer (at "samples", else 128 paths) with a warning
+ *                          instead of failing; report "method_used" says which method baked
  * Antiradiance only ("seed" also picks its direct-light samples):
  *   "bins"         int     directional bins 12..3072 (default 300, rounded to 12*Nside^2)
  *   "iterations"   int     bounces at most, 1..100000 (default 32)

@@ -30,6 +30,9 @@ constexpr size_t kBytesPerResult = sizeof(glm::vec3);
 // +-15% of itself where the error is well above the probes' noise (512 paths: 5-8% per
 // probe on the Cornell box and Sponza), for about a tenth of a path-traced bake's rays.
 constexpr int64_t kDefaultErrorProbes = 256;
+// Paths per bake point when a bake falls back to the path tracer (solve_full): twice the
+// add-on's default of 64 (about 13% noise on the Cornell box); the error estimate says more.
+constexpr int64_t kFallbackSamples = 128;
 constexpr int64_t kDefaultErrorProbeSamples = 512;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -122,6 +125,7 @@ void BakeJob::start() {
       settings_.get_int("error_probe_samples", kDefaultErrorProbeSamples, 16, int64_t(1) << 20);
   memory_budget_bytes_ = size_t(settings_.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30))
                          << 20;
+  fallback_ = settings_.get_int("fallback", 1, 0, 1) != 0;
   solver_ = make_solver(method_);
   if (previous_ && !solver_->can_relight()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
@@ -269,7 +273,28 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   stage_start = std::chrono::steady_clock::now();
   direct_ = std::make_unique<const DirectLight>(scene, *tracer_);
   const SolveInputs inputs{scene, *tracer_, *direct_, settings_, &points_};
-  std::unique_ptr<IndirectField> field = solver_->solve(inputs, context_);
+  std::unique_ptr<IndirectField> field;
+  std::string method_used = method_;
+  try {
+    field = solver_->solve(inputs, context_);
+  } catch (const Error& e) {
+    // A scene too large for a hierarchical solver's model (antiradiance at hundreds of
+    // thousands of unclustered triangles) still gets a bake the user can trust: the path
+    // tracer's, whose error the estimate below states, with the reason in the warnings.
+    if (e.status() != BAKEGI_ERROR_OUT_OF_MEMORY || !fallback_ || method_ == "pathtrace") throw;
+    Settings fallback_settings = settings_;
+    if (!settings_.has("samples")) fallback_settings.set("samples", kFallbackSamples);
+    report.warn(std::string(e.what()) + ". Baked with the path tracer instead (" +
+                std::to_string(fallback_settings.get_int("samples", kFallbackSamples, 1,
+                                                         int64_t(1) << 30)) +
+                " samples; setting fallback=0 refuses instead)");
+    method_used = "pathtrace";
+    solver_ = make_solver("pathtrace");
+    fallback_settings_ = std::make_unique<Settings>(std::move(fallback_settings));
+    const SolveInputs fallback_inputs{scene, *tracer_, *direct_, *fallback_settings_, &points_};
+    field = solver_->solve(fallback_inputs, context_);
+  }
+  report.set_text("method_used", method_used);
   report.add_seconds("solve", seconds_since(stage_start));
 
   std::shared_ptr<const Precomputation> kept = solver_->precomputation();

@@ -111,6 +111,10 @@ class BakeJob {
   int64_t error_probes_ = 0;
   int64_t error_probe_samples_ = 0;
   size_t memory_budget_bytes_ = 0;
+  // A solver that cannot model the scene within the memory budget hands the bake to the path
+  // tracer (setting "fallback", default 1) instead of failing it: see solve_full.
+  bool fallback_ = true;
+  std::unique_ptr<Settings> fallback_settings_;  // the path tracer's, alive as long as its field
 
   JobContext context_;
   std::vector<glm::vec3> results_;

@@ -125,7 +125,7 @@ void Settings::check_known_keys(const std::vector<std::string>& known) const {
 const std::vector<std::string>& known_setting_keys() {
   static const std::vector<std::string> keys = {
       "method", "samples", "seed", "sample_offset", "threads", "max_bounces", "memory_budget_mb",
-      "error_probes", "error_probe_samples",
+      "error_probes", "error_probe_samples", "fallback",
       // antiradiance
       "bins", "iterations", "tolerance", "scheme", "patch_size", "direct_samples", "oracle",
       "oracle_factor", "glossy_fold_exponent", "near_field_rays", "near_field_distance",
