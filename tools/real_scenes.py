@@ -22,6 +22,7 @@ missing (../shared/scenes) are skipped with a message. Long: about an hour on 2 
 """
 
 import argparse
+import glob
 import json
 import os
 import subprocess
@@ -155,14 +156,43 @@ def bake_method(cli, bgs, method, folder):
     }
 
 
-def run_scene_target(scene, target, work, build, methods, reuse):
+def refresh_methods(results, methods, folder, build, results_path):
+    """Bakes `methods` again on a scene whose export and reference are kept (after a change
+    to those methods), replacing their rows."""
+    cli = os.path.join(build, "bakegi")
+    indices = numpy.load(os.path.join(folder, "subset_indices.npy")).astype(numpy.int64)
+    with open(os.path.join(folder, "export.json")) as f:
+        info = json.load(f)
+    chunks = sorted(glob.glob(os.path.join(folder, "reference_chunk_*.npy")))
+    ref = numpy.mean([numpy.load(c).astype(numpy.float64) for c in chunks], axis=0)
+    names = object_names_at(info, indices)
+    rows = {row["method"]: row for row in results["methods"]}
+    for method in methods:
+        values, row = bake_method(cli, os.path.join(folder, "scene.bgs"), method, folder)
+        if values is not None:
+            row.update(compare_at_subset(values[indices], ref, results["reference_noise"], names))
+            estimate, true = row.get("estimated_error"), row["nrmse_without_reference_noise"]
+            row["estimate_over_true"] = estimate / true if estimate and true > 0 else None
+        rows[method] = row
+        log(f"{results['scene']} {results['target']} {method}: refreshed")
+    results["methods"] = [rows[m] for m in METHODS if m in rows]
+    results["refreshed"] = time.strftime("%Y-%m-%d") + ": " + ",".join(methods)
+    with open(results_path, "w") as f:
+        json.dump(results, f, indent=1, default=str)
+    return results
+
+
+def run_scene_target(scene, target, work, build, methods, reuse, refresh=()):
     cli = os.path.join(build, "bakegi")
     folder = os.path.join(work, scene, target.lower())
     os.makedirs(folder, exist_ok=True)
     results_path = os.path.join(folder, "results.json")
     if reuse and os.path.exists(results_path):
         with open(results_path) as f:
-            return json.load(f)
+            kept = json.load(f)
+        if not refresh:
+            return kept
+        return refresh_methods(kept, refresh, folder, build, results_path)
     started = time.perf_counter()
     info = export(scene, target, folder, build)
     if info is None:
@@ -212,6 +242,7 @@ def main():
     parser.add_argument("--work", default="/tmp/bakegi_real_scenes")
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--reuse", action="store_true", help="keep results already in --work")
+    parser.add_argument("--refresh", default="", help="with --reuse: bake these methods again on kept scenes")
     parser.add_argument("--docs", action="store_true", help="write docs/real_scenes/ and docs/real_scenes.md")
     arguments = parser.parse_args()
     build = os.path.abspath(arguments.build)
@@ -222,7 +253,8 @@ def main():
             raise SystemExit(f"unknown scene {scene!r}; the suite has {', '.join(SCENES)}")
         for target in [t for t in arguments.targets.split(",") if t]:
             try:
-                results = run_scene_target(scene, target, work, build, arguments.methods.split(","), arguments.reuse)
+                results = run_scene_target(scene, target, work, build, arguments.methods.split(","), arguments.reuse,
+                                           [m for m in arguments.refresh.split(",") if m])
             except RuntimeError as error:
                 log(f"{scene} {target}: FAILED: {error}")
                 continue
