@@ -147,7 +147,8 @@ def bake_method(cli, bgs, method, folder):
     with open(report_path) as f:
         report = json.load(f)
     return numpy.load(out).astype(numpy.float64), {
-        "method": method, "wall_seconds": wall, "peak_rss_bytes": peak,
+        "method": method, "method_used": report.get("method_used", method), "wall_seconds": wall,
+        "peak_rss_bytes": peak,
         "seconds": report.get("seconds", {}).get("total"), "memory_bytes": report.get("memory_bytes"),
         "estimated_error": report.get("estimated_error"),
         "estimated_error_interval": report.get("estimated_error_interval"),

@@ -34,15 +34,21 @@ def table(results):
     ]
     for r in results:
         for m in r["methods"]:
+            method = m["method"]
+            if m.get("method_used") and m["method_used"] != method:  # the core's fallback
+                method += f" → {m['method_used']}"
             head = (f"| {r['scene']} | {r['target'].lower()} | {r.get('bake_points') or '–'} | "
-                    f"{r['reference_samples']}, {percent(r['reference_noise'])} | {m['method']} | ")
+                    f"{r['reference_samples']}, {percent(r['reference_noise'])} | {method} | ")
             if "failed" in m:
                 lines.append(head + f"**failed**: {m['failed'][:120]} | | | | | | | | |")
                 continue
             worst = m["per_object"][0] if m.get("per_object") else None
             target = TARGETS.get(r["scene"]) if m["method"] in ("antiradiance", "meshless") else None
+            fell_back = m.get("method_used", m["method"]) != m["method"]
             met = "" if target is None else ("met" if m["nrmse_without_reference_noise"] <= target else
                                              f"**not met** (≤ {percent(target)})")
+            if fell_back and target is not None:
+                met = "**not met**: the method did not bake (fallback)"
             interval = m.get("estimated_error_interval") or [None, None]
             lines.append(
                 head + f"{m['seconds']:.1f} | {m['memory_bytes'] / 2**20:.0f} / {m['peak_rss_bytes'] / 2**20:.0f} MB | "
@@ -64,7 +70,8 @@ def chart(scene, results, path):
     rows = [(r["target"].lower(), m) for r in results for m in r["methods"] if "failed" not in m]
     if not rows:
         return False
-    labels = [f"{m['method']}\n{target}" for target, m in rows]
+    labels = [f"{m['method']}{'*' if m.get('method_used', m['method']) != m['method'] else ''}\n{target}"
+              for target, m in rows]
     true = [100 * m["nrmse_without_reference_noise"] for _, m in rows]
     estimated = [100 * (m.get("estimated_error") or 0.0) for _, m in rows]
     seconds = [m["seconds"] for _, m in rows]
