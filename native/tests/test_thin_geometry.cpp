@@ -188,5 +188,40 @@ TEST(CoincidentFaces, FindsPlanesDoubledBackToBackOnly) {
   EXPECT_EQ(backed_count(0.0f, false), 0);
 }
 
+// A large tessellated plane doubled back to back (a 256 x 256 grid of quads, 131,072
+// triangles a side): every triangle is found, and the search stays linear (a pairwise one
+// would take about 10^10 covering tests here and not finish within the test run).
+TEST(CoincidentFaces, ALargePlaneDoubledBackToBackIsFoundInLinearTime) {
+  SceneDescription d;
+  const uint32_t grey = add_material(d, glm::vec3(0.5f));
+  constexpr int kCells = 256;
+  for (int side = 0; side < 2; ++side) {
+    Mesh mesh;
+    for (int j = 0; j <= kCells; ++j) {
+      for (int i = 0; i <= kCells; ++i) {
+        mesh.positions.push_back({float(i) / kCells, float(j) / kCells, 0.0f});
+      }
+    }
+    for (int j = 0; j < kCells; ++j) {
+      for (int i = 0; i < kCells; ++i) {
+        const uint32_t a = uint32_t(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 2,
+                       e = a + kCells + 1;
+        if (side == 0) {
+          mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, e});
+        } else {
+          mesh.indices.insert(mesh.indices.end(), {a, c, b, a, e, c});
+        }
+      }
+    }
+    mesh.material = grey;
+    d.meshes.push_back(std::move(mesh));
+  }
+  d.lights.push_back(test::point_light({0.5f, 0.5f, 1.0f}, glm::vec3(1.0f)));
+  const Scene scene = build_scene(d);
+  size_t backed = 0;
+  for (uint8_t b : antiradiance::backed_by_coincident_face(scene)) backed += b;
+  EXPECT_EQ(backed, scene.triangles.size());
+}
+
 }  // namespace
 }  // namespace bakegi

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <unordered_map>
 
 namespace bakegi::antiradiance {
 namespace {
@@ -44,6 +45,47 @@ bool covers(const Triangle& t, const glm::vec3& p) {
   return b1 >= kSlack && b2 >= kSlack && b1 + b2 <= 1.0f - kSlack;
 }
 
+
+// Marks the triangles of `from` whose centroid one of `by` covers. `by` is hashed into a
+// uniform grid over its bounding boxes (cells of its largest edge), so a plane of a million
+// triangles costs a million lookups, not a million squared comparisons.
+void mark_covered(const Scene& scene, const std::vector<uint32_t>& from,
+                  const std::vector<uint32_t>& by, std::vector<uint8_t>& backed) {
+  if (from.empty() || by.empty()) return;
+  float cell = 0.0f;
+  for (uint32_t j : by) {
+    const Triangle& t = scene.triangles[j];
+    for (int e = 0; e < 3; ++e) cell = std::max(cell, glm::length(t.p[(e + 1) % 3] - t.p[e]));
+  }
+  if (!(cell > 0.0f) || !std::isfinite(cell)) return;
+  auto key = [cell](int64_t x, int64_t y, int64_t z) {
+    return uint64_t(x * 73856093) ^ uint64_t(y * 19349663) ^ uint64_t(z * 83492791);
+  };
+  auto cell_of = [cell](float v) { return int64_t(std::floor(v / cell)); };
+  std::unordered_multimap<uint64_t, uint32_t> grid;
+  grid.reserve(by.size() * 2);
+  for (uint32_t j : by) {
+    const Triangle& t = scene.triangles[j];
+    const glm::vec3 lo = glm::min(glm::min(t.p[0], t.p[1]), t.p[2]);
+    const glm::vec3 hi = glm::max(glm::max(t.p[0], t.p[1]), t.p[2]);
+    // A triangle's box spans at most two cells per axis (no edge is longer than a cell).
+    for (int64_t x = cell_of(lo.x); x <= cell_of(hi.x); ++x)
+      for (int64_t y = cell_of(lo.y); y <= cell_of(hi.y); ++y)
+        for (int64_t z = cell_of(lo.z); z <= cell_of(hi.z); ++z) grid.emplace(key(x, y, z), j);
+  }
+  for (uint32_t i : from) {
+    const Triangle& t = scene.triangles[i];
+    const glm::vec3 c = (t.p[0] + t.p[1] + t.p[2]) / 3.0f;
+    const auto range = grid.equal_range(key(cell_of(c.x), cell_of(c.y), cell_of(c.z)));
+    for (auto it = range.first; it != range.second; ++it) {
+      if (covers(scene.triangles[it->second], c)) {
+        backed[i] = 1;
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<uint8_t> backed_by_coincident_face(const Scene& scene) {
@@ -58,20 +100,21 @@ std::vector<uint8_t> backed_by_coincident_face(const Scene& scene) {
     return keys[a].offset < keys[b].offset;
   });
   const float tolerance = kRelativePlaneTolerance * std::max(scene.extent(), 1e-3f);
-  // Each triangle against the later ones of its normal within `tolerance` of its plane.
-  for (size_t a = 0; a < count; ++a) {
-    const uint32_t i = order[a];
-    const glm::vec3 ci =
-        (scene.triangles[i].p[0] + scene.triangles[i].p[1] + scene.triangles[i].p[2]) / 3.0f;
-    for (size_t b = a + 1; b < count; ++b) {
-      const uint32_t j = order[b];
-      if (keys[j].normal != keys[i].normal || keys[j].offset - keys[i].offset > tolerance) break;
-      if (keys[j].flipped == keys[i].flipped) continue;
-      const glm::vec3 cj =
-          (scene.triangles[j].p[0] + scene.triangles[j].p[1] + scene.triangles[j].p[2]) / 3.0f;
-      if (covers(scene.triangles[j], ci)) backed[i] = 1;
-      if (covers(scene.triangles[i], cj)) backed[j] = 1;
+  // Runs of one normal whose consecutive offsets lie within `tolerance`: one plane (a chain
+  // of near-equal offsets); within it each side is checked against the other.
+  std::vector<uint32_t> front, back;
+  for (size_t begin = 0; begin < count;) {
+    size_t end = begin + 1;
+    while (end < count && keys[order[end]].normal == keys[order[begin]].normal &&
+           keys[order[end]].offset - keys[order[end - 1]].offset <= tolerance) {
+      ++end;
     }
+    front.clear();
+    back.clear();
+    for (size_t k = begin; k < end; ++k) (keys[order[k]].flipped ? back : front).push_back(order[k]);
+    mark_covered(scene, front, back, backed);
+    mark_covered(scene, back, front, backed);
+    begin = end;
   }
   return backed;
 }
