@@ -132,37 +132,36 @@ uint64_t saturating_multiply(uint64_t a, uint64_t b) {
 }
 
 // Everything but the links, for patches of at most `max_edge`.
-uint64_t bytes_without_links(const Scene& scene, float max_edge, int bins) {
-  const uint64_t elements = estimate_elements(scene, max_edge);
-  const uint64_t patches = estimate_patches(scene, max_edge);
-  uint64_t bytes = estimate_hierarchy_bytes(scene, max_edge);
+uint64_t bytes_without_links(const PatchCount& count, float max_edge, int bins) {
+  const uint64_t elements = count.elements(max_edge);
+  const uint64_t patches = count.patches(max_edge);
+  uint64_t bytes = count.hierarchy_bytes(max_edge);
   bytes = saturating_add(bytes, RadianceTables::bytes(elements, patches, uint64_t(bins)));
   return saturating_add(bytes, saturating_multiply(patches, kFieldBytesPerPatch));
 }
 
-uint64_t estimated_bytes(const Scene& scene, float max_edge, int bins) {
-  const uint64_t links = saturating_multiply(estimate_elements(scene, max_edge),
+uint64_t estimated_bytes(const PatchCount& count, float max_edge, int bins) {
+  const uint64_t links = saturating_multiply(count.elements(max_edge),
                                              kEstimatedLinksPerElementPerBin * uint64_t(bins));
-  return saturating_add(bytes_without_links(scene, max_edge, bins),
+  return saturating_add(bytes_without_links(count, max_edge, bins),
                         saturating_multiply(links, kPeakBytesPerLink));
 }
 
 // The smallest max_edge · 2^k (k ≥ 0) whose estimate fits `available`, or nullopt when even
-// unsplit input triangles do not fit.
-std::optional<float> patch_size_within(const Scene& scene, float max_edge, int bins,
+// the coarsest patches do not fit.
+std::optional<float> patch_size_within(const PatchCount& count, float max_edge, int bins,
                                        uint64_t available) {
-  const uint64_t elements = std::max<uint64_t>(estimate_elements(scene, max_edge), 1);
-  const uint64_t bytes = estimated_bytes(scene, max_edge, bins);
+  const uint64_t elements = std::max<uint64_t>(count.elements(max_edge), 1);
+  const uint64_t bytes = estimated_bytes(count, max_edge, bins);
   const uint64_t per_element = std::max<uint64_t>(bytes / elements, 1);
-  float edge =
-      max_edge_within_budget(scene, max_edge, std::max<uint64_t>(available / per_element, 1));
+  float edge = count.max_edge_within_budget(max_edge, std::max<uint64_t>(available / per_element, 1));
   // The per-element cost is an average; step on by doubling while the estimate is still over.
-  for (int step = 0; step < 64 && estimated_bytes(scene, edge, bins) > available; ++step) {
+  for (int step = 0; step < 64 && estimated_bytes(count, edge, bins) > available; ++step) {
     const float next = edge * 2.0f;
-    if (estimate_elements(scene, next) == estimate_elements(scene, edge)) return std::nullopt;
+    if (!std::isfinite(next) || count.elements(next) == count.elements(edge)) return std::nullopt;
     edge = next;
   }
-  if (estimated_bytes(scene, edge, bins) > available) return std::nullopt;
+  if (estimated_bytes(count, edge, bins) > available) return std::nullopt;
   return edge;
 }
 
@@ -302,8 +301,9 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   // Automatic: extent / 32, coarsened while the estimate exceeds kAutomaticElementLimit
   // elements (a detailed scene otherwise multiplies elements and links for little gain; the
   // paper's office had 18k elements).
+  const PatchCount count(scene, float(settings.glossy_fold_exponent));
   float max_edge =
-      automatic ? max_edge_within_budget(scene, default_max_edge(scene), kAutomaticElementLimit)
+      automatic ? count.max_edge_within_budget(default_max_edge(scene), kAutomaticElementLimit)
                 : float(settings.patch_size);
   if (!(max_edge > 0.0f) || !std::isfinite(max_edge)) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
@@ -311,20 +311,22 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   }
   const std::string budget_text =
       megabytes(settings.memory_budget_bytes) + " (setting memory_budget_mb)";
-  if (estimated_bytes(scene, max_edge, m) > available) {
-    const std::optional<float> fitting = patch_size_within(scene, max_edge, m, available);
+  if (estimated_bytes(count, max_edge, m) > available) {
+    const std::optional<float> fitting = patch_size_within(count, max_edge, m, available);
     if (!fitting) {
+      const float coarsest = count.max_edge_within_budget(max_edge, 1);
       throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
-                  "antiradiance: even unsplit triangles (" +
-                      std::to_string(estimate_elements(scene, 1e30f)) + " elements at " +
+                  "antiradiance: even the coarsest patches (" +
+                      std::to_string(count.elements(coarsest)) + " elements at " +
                       std::to_string(m) + " bins) need an estimated " +
-                      megabytes(estimated_bytes(scene, 1e30f, m)) + ", more than the budget of " +
-                      budget_text + " leaves; raise the budget or lower \"bins\"");
+                      megabytes(estimated_bytes(count, coarsest, m)) +
+                      ", more than the budget of " + budget_text +
+                      " leaves; raise the budget or lower \"bins\"");
     }
     if (!automatic) {
       throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
                   "antiradiance: patch size " + metres(max_edge) + " needs an estimated " +
-                      megabytes(estimated_bytes(scene, max_edge, m)) +
+                      megabytes(estimated_bytes(count, max_edge, m)) +
                       ", more than the budget of " + budget_text + " leaves; patch_size " +
                       metres(*fitting) + " (or 0 for automatic) would fit");
     }
@@ -346,7 +348,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
     hierarchy_seconds += seconds_since(stage_start);
     context.throw_if_cancelled();
 
-    const uint64_t fixed = bytes_without_links(scene, max_edge, m);
+    const uint64_t fixed = bytes_without_links(count, max_edge, m);
     const uint64_t max_links = available > fixed ? (available - fixed) / kPeakBytesPerLink : 0;
     context.set_stage("antiradiance: linking", 0.12, 0.30);
     stage_start = std::chrono::steady_clock::now();
@@ -436,9 +438,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
     s.center = element.center;
     s.normal = glm::dot(patch.shading_normal, patch.shading_normal) > 0.5f ? patch.shading_normal
                                                                            : patch.normal;
-    for (const glm::vec3& corner : patch.corners) {
-      s.radius = std::max(s.radius, glm::length(corner - element.center));
-    }
+    s.radius = element.radius;  // centre to the farthest corner (of any member)
     s.area = element.area;
     glm::vec3 value = irradiance[p] / std::numbers::pi_v<float>;
     // The output convention has no room for non-finite or negative light; iterate() warns
@@ -470,6 +470,8 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   report.add_count("antiradiance_elements", hierarchy.element_count());
   report.add_count("antiradiance_patches", hierarchy.patch_count());
   report.add_count("antiradiance_back_side_patches", hierarchy.back_side_count());
+  report.add_count("antiradiance_merged_patches", hierarchy.merged_patch_count());
+  report.add_count("antiradiance_merged_triangles", hierarchy.member_count());
   report.add_count("antiradiance_links", system.link_statistics.link_count);
   report.add_count("antiradiance_iterations", result.history.size());
   report.add_count("antiradiance_table_bytes", tables.memory_bytes());

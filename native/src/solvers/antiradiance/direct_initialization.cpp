@@ -12,6 +12,7 @@
 #include "solvers/antiradiance/push_pull.h"
 #include "util/error.h"
 #include "util/random.h"
+#include "util/sampling.h"
 
 namespace bakegi::antiradiance {
 
@@ -103,6 +104,42 @@ bool is_finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// Where sample s of `samples` of a patch's direct light is taken: its centre, or on a merged
+// patch a point of one of its triangles, chosen by area (stratified over the samples) with
+// that triangle's normals. A merged patch thus holds its triangles' mean direct light: a sun
+// stripe across part of a merged floor lights it in proportion, and a group whose centre is
+// in shadow (or, on a curved group, whose area-weighted mean would lie inside the object) is
+// not dark for it.
+SurfacePoint sample_point(const Scene& scene, const ElementHierarchy& hierarchy,
+                          const Patch& patch, const SurfacePoint& center, int64_t s,
+                          int64_t samples, float area, Pcg32& rng) {
+  if (patch.member_count == 0) return center;
+  const std::span<const MemberTriangle> members = hierarchy.members(patch);
+  const float target = (float(s) + rng.next_float()) / float(samples) * area;
+  float running = 0.0f;
+  const MemberTriangle* chosen = &members.back();
+  for (const MemberTriangle& member : members) {
+    running += scene.triangles[member.triangle].area;
+    if (running > target) {
+      chosen = &member;
+      break;
+    }
+  }
+  const Triangle& t = scene.triangles[chosen->triangle];
+  const glm::vec2 b = sample_triangle_barycentrics(rng.next_float(), rng.next_float());
+  const float b0 = 1.0f - b.x - b.y;
+  SurfacePoint x;
+  x.position = b0 * t.p[0] + b.x * t.p[1] + b.y * t.p[2];
+  // A back-side patch gathers on the other side of the same triangles.
+  const float side = patch.back_side ? -1.0f : 1.0f;
+  x.geometric_normal = side * t.face_normal;
+  const glm::vec3 shading = b0 * t.n[0] + b.x * t.n[1] + b.y * t.n[2];
+  const float length = glm::length(shading);
+  x.shading_normal = length > 1e-6f ? side * shading / length : x.geometric_normal;
+  if (glm::dot(x.shading_normal, x.geometric_normal) <= 0.0f) x.shading_normal = x.geometric_normal;
+  return x;
+}
+
 }  // namespace
 
 void initialize_direct(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
@@ -167,7 +204,9 @@ DirectLightAtPatches direct_light_at_patches(const ElementHierarchy& hierarchy,
               // The same loop as direct_irradiance_at_patches.
               for (int64_t s = 0; s < samples; ++s) {
                 Pcg32 rng = sample_stream(seed, p, uint64_t(s));
-                const glm::vec3 value = direct.irradiance_sample(x, rng, rays);
+                const SurfacePoint xs = sample_point(direct.scene(), hierarchy, patch, x, s,
+                                                     samples, elements[patch.element].area, rng);
+                const glm::vec3 value = direct.irradiance_sample(xs, rng, rays);
                 if (is_finite(value)) sum += glm::dvec3(value);
               }
               result.irradiance[p] = glm::vec3(sum / double(samples));
@@ -238,7 +277,9 @@ std::vector<glm::vec3> direct_irradiance_at_patches(const ElementHierarchy& hier
           glm::dvec3 sum(0.0);
           for (int64_t s = 0; s < samples; ++s) {
             Pcg32 rng = sample_stream(seed, p, uint64_t(s));
-            const glm::vec3 value = direct.irradiance_sample(x, rng, rays);
+            const SurfacePoint xs = sample_point(direct.scene(), hierarchy, patch, x, s, samples,
+                                                 elements[patch.element].area, rng);
+            const glm::vec3 value = direct.irradiance_sample(xs, rng, rays);
             // A non-finite sample would poison the patch and everything it lights.
             if (std::isfinite(value.x) && std::isfinite(value.y) && std::isfinite(value.z)) {
               sum += glm::dvec3(value);

@@ -10,6 +10,7 @@
 
 #include "scene/phong_lobe.h"
 #include "solvers/antiradiance/back_sides.h"
+#include "solvers/antiradiance/triangle_grouping.h"
 #include "util/error.h"
 
 namespace bakegi::antiradiance {
@@ -44,6 +45,82 @@ struct PatchSeed {
   glm::vec3 center;
   float area;
 };
+
+// Calls f(corner) for every corner of the patch: its own three, or its members' for a merged
+// patch (the element's bounds and radius cover all of them).
+template <typename F>
+void for_each_corner(const Patch& patch, const std::vector<MemberTriangle>& members, F&& f) {
+  if (patch.member_count == 0) {
+    for (const glm::vec3& corner : patch.corners) f(corner);
+    return;
+  }
+  for (uint32_t m = patch.first_member; m < patch.first_member + patch.member_count; ++m) {
+    for (const glm::vec3& corner : members[m].corners) f(corner);
+  }
+}
+
+// The diffuse albedo a patch of this triangle reflects with: a wide glossy lobe that the
+// hierarchy folds (fold_wide_glossy_lobes) adds its hemispherical albedo.
+glm::vec3 folded_albedo(const Scene& scene, const Triangle& t, float b1, float b2,
+                        float fold_exponent) {
+  const Material& material = scene.material_of(t);
+  glm::vec3 albedo = scene.albedo_at(t, b1, b2);
+  const float strongest = std::max({material.glossy.x, material.glossy.y, material.glossy.z});
+  if (strongest > 0.0f && material.glossy_exponent < fold_exponent) {
+    albedo += float(phong_hemispherical_albedo(material.glossy_exponent)) * material.glossy;
+  }
+  return albedo;
+}
+
+// One patch for a group of whole triangles (triangle_grouping.h); appends them to `members`.
+PatchSeed merged_seed(const Scene& scene, std::span<const uint32_t> group, uint32_t surface,
+                      float fold_exponent, std::vector<MemberTriangle>& members) {
+  PatchSeed seed;
+  Patch& patch = seed.patch;
+  patch.first_member = uint32_t(members.size());
+  patch.member_count = uint32_t(group.size());
+  double area = 0.0;
+  glm::dvec3 centroid_sum(0.0), normal_sum(0.0), shading_sum(0.0), albedo_sum(0.0);
+  for (uint32_t index : group) {
+    const Triangle& t = scene.triangles[index];
+    MemberTriangle member;
+    member.triangle = index;
+    for (int c = 0; c < 3; ++c) member.corners[c] = t.p[c];
+    members.push_back(member);
+    const double a = double(t.area);
+    area += a;
+    centroid_sum += a * glm::dvec3((t.p[0] + t.p[1] + t.p[2]) / 3.0f);
+    normal_sum += a * glm::dvec3(t.face_normal);
+    shading_sum += a * glm::dvec3(t.n[0] + t.n[1] + t.n[2]);
+    albedo_sum += a * glm::dvec3(folded_albedo(scene, t, 1.0f / 3.0f, 1.0f / 3.0f, fold_exponent));
+  }
+  const glm::dvec3 mean_centroid = area > 0.0 ? centroid_sum / area : centroid_sum;
+  // The centre: the centroid of the member nearest the mean (first in order on ties).
+  double nearest = std::numeric_limits<double>::infinity();
+  for (uint32_t index : group) {
+    const Triangle& t = scene.triangles[index];
+    const glm::vec3 centroid = (t.p[0] + t.p[1] + t.p[2]) / 3.0f;
+    const double d = glm::dot(glm::dvec3(centroid) - mean_centroid, glm::dvec3(centroid) - mean_centroid);
+    if (d < nearest) {
+      nearest = d;
+      seed.center = centroid;
+      patch.triangle = index;
+      for (int c = 0; c < 3; ++c) patch.corners[c] = t.p[c];
+    }
+  }
+  const Triangle& representative = scene.triangles[patch.triangle];
+  // Members' normals lie within kGroupNormalCosine of one another's seed, so the sum is long.
+  const double normal_length = glm::length(normal_sum);
+  patch.normal = normal_length > 0.0 ? glm::vec3(normal_sum / normal_length)
+                                     : representative.face_normal;
+  const double shading_length = glm::length(shading_sum);
+  patch.shading_normal =
+      shading_length > 1e-6 * area ? glm::vec3(shading_sum / shading_length) : patch.normal;
+  patch.albedo = area > 0.0 ? glm::vec3(albedo_sum / area) : glm::vec3(0.0f);
+  patch.surface = surface;
+  seed.area = float(area);
+  return seed;
+}
 
 // Repeated 4-way midpoint subdivision of one triangle, done in its barycentric (b1, b2)
 // coordinates so that albedo and shading normals are evaluated where the patch lies.
@@ -119,9 +196,9 @@ class TriangleSubdivider {
 // the patch centroids' bounds, writing elements in pre-order.
 class TreeBuilder {
  public:
-  TreeBuilder(std::vector<PatchSeed>& seeds, std::vector<Element>& elements,
-              std::vector<Patch>& patches)
-      : seeds_(seeds), elements_(elements), patches_(patches) {}
+  TreeBuilder(std::vector<PatchSeed>& seeds, const std::vector<MemberTriangle>& members,
+              std::vector<Element>& elements, std::vector<Patch>& patches)
+      : seeds_(seeds), members_(members), elements_(elements), patches_(patches) {}
 
   void run() {
     std::vector<uint32_t> order(seeds_.size());
@@ -179,10 +256,10 @@ class TreeBuilder {
     float radius2 = 0.0f;
     for (uint32_t e = index + 1; e < cluster.subtree_end; ++e) {
       if (!elements_[e].is_patch) continue;
-      for (const glm::vec3& corner : patches_[elements_[e].patch].corners) {
+      for_each_corner(patches_[elements_[e].patch], members_, [&](const glm::vec3& corner) {
         const glm::vec3 d = corner - cluster.center;
         radius2 = std::max(radius2, glm::dot(d, d));
-      }
+      });
     }
     cluster.radius = std::sqrt(radius2);
     return index;
@@ -199,18 +276,19 @@ class TreeBuilder {
     element.patch = uint32_t(patches_.size());
     element.bounds_min = element.bounds_max = seed.patch.corners[0];
     float radius2 = 0.0f;
-    for (const glm::vec3& corner : seed.patch.corners) {
+    for_each_corner(seed.patch, members_, [&](const glm::vec3& corner) {
       element.bounds_min = glm::min(element.bounds_min, corner);
       element.bounds_max = glm::max(element.bounds_max, corner);
       const glm::vec3 d = corner - seed.center;
       radius2 = std::max(radius2, glm::dot(d, d));
-    }
+    });
     element.radius = std::sqrt(radius2);
     patches_.push_back(seed.patch);
     patches_.back().element = index;
   }
 
   std::vector<PatchSeed>& seeds_;
+  const std::vector<MemberTriangle>& members_;
   std::vector<Element>& elements_;
   std::vector<Patch>& patches_;
 };
@@ -234,42 +312,132 @@ int subdivision_level(float longest_edge, float max_edge) {
   return level;
 }
 
-uint64_t estimate_patches(const Scene& scene, float max_edge, bool include_back_sides) {
-  check_max_edge(max_edge);
-  uint64_t patches = 0;
-  for (const Triangle& t : scene.triangles) {
-    const uint64_t sides = include_back_sides && on_open_mesh(scene, t) ? 2 : 1;
-    patches = saturating_add(patches, sides << (2 * subdivision_level(longest_edge(t), max_edge)));
-  }
-  return patches;
+bool mergeable_material(const Material& material, float glossy_fold_exponent) {
+  const float strongest = std::max({material.glossy.x, material.glossy.y, material.glossy.z});
+  return !(strongest > 0.0f) || material.glossy_exponent < glossy_fold_exponent;
 }
 
-uint64_t estimate_elements(const Scene& scene, float max_edge, bool include_back_sides) {
-  const uint64_t patches = estimate_patches(scene, max_edge, include_back_sides);
+namespace {
+
+// How the triangles become patches at one patch size: split or whole (level >= 0), or a
+// member of a group of small triangles (level -1).
+struct PatchPlan {
+  std::vector<int8_t> level;
+  TriangleGroups groups;
+};
+
+PatchPlan plan_patches(const Scene& scene, float max_edge, float glossy_fold_exponent) {
+  check_max_edge(max_edge);
+  const float cell = 0.5f * max_edge;
+  PatchPlan plan;
+  plan.level.resize(scene.triangles.size());
+  std::vector<uint32_t> candidates;
+  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+    const Triangle& t = scene.triangles[i];
+    const float edge = longest_edge(t);
+    if (edge <= cell && mergeable_material(scene.material_of(t), glossy_fold_exponent)) {
+      plan.level[i] = -1;
+      candidates.push_back(i);
+    } else {
+      plan.level[i] = int8_t(subdivision_level(edge, max_edge));
+    }
+  }
+  plan.groups = group_triangles(scene, candidates, cell);
+  return plan;
+}
+
+// A merged patch gets a back side when most of its area (by its members) would have one.
+bool group_has_back_side(const Scene& scene, std::span<const uint32_t> group,
+                         const std::vector<uint8_t>& back_side) {
+  double with = 0.0, all = 0.0;
+  for (uint32_t t : group) {
+    all += double(scene.triangles[t].area);
+    if (back_side[t]) with += double(scene.triangles[t].area);
+  }
+  return with > 0.0 && with >= 0.5 * all;
+}
+
+}  // namespace
+
+PatchCount::PatchCount(const Scene& scene, float glossy_fold_exponent)
+    : scene_(scene), glossy_fold_exponent_(glossy_fold_exponent) {}
+
+const PatchCount::Counts& PatchCount::counts(float max_edge) const {
+  for (const auto& [edge, counts] : known_) {
+    if (edge == max_edge) return counts;
+  }
+  const PatchPlan plan = plan_patches(scene_, max_edge, glossy_fold_exponent_);
+  Counts counts;
+  for (uint32_t i = 0; i < scene_.triangles.size(); ++i) {
+    if (plan.level[i] < 0) continue;
+    const uint64_t patches = uint64_t(1) << (2 * plan.level[i]);
+    counts.front = saturating_add(counts.front, patches);
+    const uint64_t sides = on_open_mesh(scene_, scene_.triangles[i]) ? 2 : 1;
+    counts.with_back = saturating_add(counts.with_back, sides * patches);
+  }
+  for (size_t g = 0; g < plan.groups.size(); ++g) {
+    const std::span<const uint32_t> group = plan.groups.group(g);
+    bool open = false;
+    for (uint32_t t : group) open = open || on_open_mesh(scene_, scene_.triangles[t]);
+    counts.front += 1;
+    counts.with_back += open ? 2 : 1;
+    if (group.size() > 1) counts.members += group.size();
+  }
+  known_.emplace_back(max_edge, counts);
+  return known_.back().second;
+}
+
+uint64_t PatchCount::patches(float max_edge, bool include_back_sides) const {
+  const Counts& c = counts(max_edge);
+  return include_back_sides ? c.with_back : c.front;
+}
+
+uint64_t PatchCount::elements(float max_edge, bool include_back_sides) const {
+  const uint64_t patches = this->patches(max_edge, include_back_sides);
   if (patches == 0) return 0;
   return patches > std::numeric_limits<uint64_t>::max() / 2 ? std::numeric_limits<uint64_t>::max()
                                                             : 2 * patches - 1;
 }
 
-uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge, bool include_back_sides) {
-  const uint64_t patches = estimate_patches(scene, max_edge, include_back_sides);
+uint64_t PatchCount::hierarchy_bytes(float max_edge, bool include_back_sides) const {
+  const uint64_t patches = this->patches(max_edge, include_back_sides);
   const uint64_t per_patch = 2 * sizeof(Element) + sizeof(Patch);
   if (patches > std::numeric_limits<uint64_t>::max() / per_patch) {
     return std::numeric_limits<uint64_t>::max();
   }
-  return patches == 0 ? 0 : patches * per_patch - sizeof(Element);  // 2 * patches - 1 elements
+  if (patches == 0) return 0;
+  // 2 * patches - 1 elements; a merged patch and its twin share their members.
+  return saturating_add(patches * per_patch - sizeof(Element),
+                        counts(max_edge).members * sizeof(MemberTriangle));
+}
+
+float PatchCount::max_edge_within_budget(float max_edge, uint64_t max_elements) const {
+  check_max_edge(max_edge);
+  // Each doubling splits large triangles less and merges small ones into larger cells; once a
+  // cell spans the whole scene nothing changes any more.
+  const float stop = 4.0f * std::max(scene_.extent(), max_edge);
+  while (elements(max_edge) > max_elements) {
+    const float next = max_edge * 2.0f;
+    if (!std::isfinite(next) || max_edge > stop) break;
+    max_edge = next;
+  }
+  return max_edge;
+}
+
+uint64_t estimate_patches(const Scene& scene, float max_edge, bool include_back_sides) {
+  return PatchCount(scene).patches(max_edge, include_back_sides);
+}
+
+uint64_t estimate_elements(const Scene& scene, float max_edge, bool include_back_sides) {
+  return PatchCount(scene).elements(max_edge, include_back_sides);
+}
+
+uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge, bool include_back_sides) {
+  return PatchCount(scene).hierarchy_bytes(max_edge, include_back_sides);
 }
 
 float max_edge_within_budget(const Scene& scene, float max_edge, uint64_t max_elements) {
-  check_max_edge(max_edge);
-  // Every doubling lowers each triangle's level by one until it reaches 0, so at most
-  // kMaxSubdivisionLevel + 1 steps reach the coarsest hierarchy (one patch per triangle).
-  for (int step = 0; step <= kMaxSubdivisionLevel + 1; ++step) {
-    if (estimate_elements(scene, max_edge) <= max_elements) return max_edge;
-    if (!std::isfinite(max_edge * 2.0f)) break;
-    max_edge *= 2.0f;
-  }
-  return max_edge;
+  return PatchCount(scene).max_edge_within_budget(max_edge, max_elements);
 }
 
 namespace {
@@ -303,15 +471,28 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     throw Error(BAKEGI_ERROR_INVALID_SCENE, "antiradiance: the scene has no triangles");
   }
 
+  const PatchPlan plan = plan_patches(scene, max_edge_, options.glossy_fold_exponent);
   // Which triangles get a back side decides the exact count, so it comes first (cheap: a few
   // rays per triangle of an open mesh).
   std::vector<uint8_t> back_side;
   if (options.back_sides != nullptr) back_side = exposed_back_sides(scene, *options.back_sides);
+  const auto has_back = [&](uint32_t t) { return !back_side.empty() && back_side[t] != 0; };
+  // The group starting at each triangle (groups are in order of their first member).
+  std::vector<uint32_t> group_at(scene.triangles.size(), kNoElement);
+  std::vector<uint8_t> group_back(plan.groups.size(), 0);
   uint64_t patch_count = 0;
   for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
-    const uint64_t sides = !back_side.empty() && back_side[i] ? 2 : 1;
-    patch_count = saturating_add(
-        patch_count, sides << (2 * subdivision_level(longest_edge(scene.triangles[i]), max_edge_)));
+    if (plan.level[i] < 0) continue;
+    const uint64_t sides = has_back(i) ? 2 : 1;
+    patch_count = saturating_add(patch_count, sides << (2 * plan.level[i]));
+  }
+  for (size_t g = 0; g < plan.groups.size(); ++g) {
+    const std::span<const uint32_t> group = plan.groups.group(g);
+    group_at[group.front()] = uint32_t(g);
+    group_back[g] = !back_side.empty() && (group.size() == 1
+                                               ? back_side[group.front()] != 0
+                                               : group_has_back_side(scene, group, back_side));
+    patch_count += group_back[g] ? 2 : 1;
   }
   const uint64_t elements = patch_count > std::numeric_limits<uint64_t>::max() / 2
                                 ? std::numeric_limits<uint64_t>::max()
@@ -323,7 +504,9 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     std::ostringstream message;
     message << "antiradiance: patches of at most " << max_edge_ << " m would make " << elements
             << " elements, more than the budget of " << budget << "; a patch size of "
-            << max_edge_within_budget(scene, max_edge_, budget) << " m fits";
+            << PatchCount(scene, options.glossy_fold_exponent)
+                   .max_edge_within_budget(max_edge_, budget)
+            << " m fits";
     throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, message.str());
   }
 
@@ -331,25 +514,46 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
   std::map<std::tuple<uint32_t, uint32_t, bool>, uint32_t> surfaces;
   std::vector<PatchSeed> seeds;
   seeds.reserve(size_t(patch_count));
+  size_t member_total = 0;
+  for (size_t g = 0; g < plan.groups.size(); ++g) {
+    if (plan.groups.group(g).size() > 1) member_total += plan.groups.group(g).size();
+  }
+  members_.reserve(member_total);
   for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+    const bool grouped = plan.level[i] < 0;
+    if (grouped && group_at[i] == kNoElement) continue;  // in a group seeded earlier
     const Triangle& t = scene.triangles[i];
     const auto [it, inserted] =
         surfaces.try_emplace({t.mesh, t.material, false}, uint32_t(surfaces.size()));
     const size_t first = seeds.size();
-    TriangleSubdivider(scene, i, it->second, subdivision_level(longest_edge(t), max_edge_), seeds)
-        .run();
-    if (back_side.empty() || !back_side[i]) continue;
+    bool twin = has_back(i);
+    if (!grouped) {
+      TriangleSubdivider(scene, i, it->second, plan.level[i], seeds).run();
+    } else {
+      const uint32_t g = group_at[i];
+      const std::span<const uint32_t> group = plan.groups.group(g);
+      twin = group_back[g] != 0;
+      if (group.size() == 1) {
+        TriangleSubdivider(scene, i, it->second, 0, seeds).run();
+      } else {
+        seeds.push_back(
+            merged_seed(scene, group, it->second, options.glossy_fold_exponent, members_));
+        ++merged_patch_count_;
+      }
+    }
+    if (!twin) continue;
     const uint32_t back_surface =
         surfaces.try_emplace({t.mesh, t.material, true}, uint32_t(surfaces.size())).first->second;
     const size_t last = seeds.size();
     for (size_t s = first; s < last; ++s) {
-      PatchSeed twin = seeds[s];  // the same center, bit for bit: link refinement pairs nothing
-      std::swap(twin.patch.corners[1], twin.patch.corners[2]);
-      twin.patch.normal = -twin.patch.normal;
-      twin.patch.shading_normal = -twin.patch.shading_normal;
-      twin.patch.surface = back_surface;
-      twin.patch.back_side = true;
-      seeds.push_back(twin);
+      PatchSeed twin_seed = seeds[s];  // the same center, bit for bit: link refinement pairs nothing
+      std::swap(twin_seed.patch.corners[1], twin_seed.patch.corners[2]);
+      twin_seed.patch.normal = -twin_seed.patch.normal;
+      twin_seed.patch.shading_normal = -twin_seed.patch.shading_normal;
+      twin_seed.patch.surface = back_surface;
+      twin_seed.patch.back_side = true;
+      seeds.push_back(twin_seed);
+      if (twin_seed.patch.member_count > 0) ++merged_patch_count_;
     }
     back_side_count_ += last - first;
   }
@@ -357,11 +561,12 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
   if (options.glossy_fold_exponent > 0.0f)
     fold_wide_glossy_lobes(seeds, options.glossy_fold_exponent);
 
-  TreeBuilder(seeds, elements_, patches_).run();
+  TreeBuilder(seeds, members_, elements_, patches_).run();
 }
 
 size_t ElementHierarchy::memory_bytes() const {
-  return elements_.capacity() * sizeof(Element) + patches_.capacity() * sizeof(Patch);
+  return elements_.capacity() * sizeof(Element) + patches_.capacity() * sizeof(Patch) +
+         members_.capacity() * sizeof(MemberTriangle);
 }
 
 }  // namespace bakegi::antiradiance

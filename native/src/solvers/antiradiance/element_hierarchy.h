@@ -1,11 +1,21 @@
 // The element hierarchy of Antiradiance (paper §3.2, §4.1): input triangles subdivided into
-// patches below a size threshold, a binary tree of clusters above them, all elements in one
-// array in depth-first (pre-order) order so that push (parent -> descendants) and pull
-// (leaves -> ancestors) are contiguous loops over that array.
+// patches below a size threshold, small ones grouped into patches of about that size
+// (triangle_grouping.h), a binary tree of clusters above them, all elements in one array in
+// depth-first (pre-order) order so that push (parent -> descendants) and pull (leaves ->
+// ancestors) are contiguous loops over that array.
+//
+// Patch sizes: a triangle whose longest edge exceeds max_edge is split 4-way until its
+// patches' edges are at most max_edge; one whose longest edge is at most max_edge / 2 (and
+// whose material has no glossy lobe the local pass keeps) joins a group of small triangles in
+// a cell of edge max_edge / 2, so a merged patch spans at most about max_edge too; the rest
+// are a patch each. The element count thus follows the patch size and no longer the
+// tessellation (the 131k-triangle living room: 388,911 elements unmerged).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -34,6 +44,12 @@ struct Element {
   bool is_patch = false;
 };
 
+// A whole input triangle that belongs to a merged patch.
+struct MemberTriangle {
+  glm::vec3 corners[3];   // as in Scene::triangles
+  uint32_t triangle = 0;  // index into Scene::triangles
+};
+
 // What only patches carry (clusters need no normal: the paper's oracle uses none).
 struct Patch {
   glm::vec3 corners[3];            // counter-clockwise around `normal`
@@ -50,6 +66,13 @@ struct Patch {
   // normal (corners in reverse order).
   // Emission is not a patch's: emitters reach receivers as direct light (DirectLight).
   bool back_side = false;
+  // A merged patch (member_count > 0) is the whole input triangles
+  // ElementHierarchy::members(*this): its area is theirs, its normals and albedo their
+  // area-weighted means, its centre (Element::center) the centroid of the member nearest to
+  // the group's area-weighted centroid (a point on the surface, which a curved group's mean
+  // is not); `corners` and `triangle` are that member's. Never glossy.
+  uint32_t first_member = 0;
+  uint32_t member_count = 0;
 };
 
 struct HierarchyOptions {
@@ -68,7 +91,7 @@ struct HierarchyOptions {
   float glossy_fold_exponent = 0.0f;
 };
 
-// Default patch size: the scene's bounding-box diagonal / 32. For the Cornell box (2 m room,
+// Default patch size: the scene's bounding-box diagonal / 16 (the comment below predates it). For the Cornell box (2 m room,
 // diagonal 3.46 m: patches of at most 0.108 m) this gives 13,312 patches and 26,623 elements,
 // whose three RGB bin tables (I_ex, L_in, I_total) take 123 MB at 128 bins and 184 MB at 192.
 // extent / 64 would give four times that (106k elements, about 490 MB at 128 bins).
@@ -79,20 +102,49 @@ float default_max_edge(const Scene& scene);
 inline constexpr int kMaxSubdivisionLevel = 20;
 int subdivision_level(float longest_edge, float max_edge);
 
-// Counts the build will produce, computed before allocating anything (saturate at
-// UINT64_MAX). elements = 2 * patches - 1 (a binary tree with patches as leaves). Exact for a
-// build without back sides when include_back_sides is false; with it, an upper bound that
-// gives every triangle of an open mesh a twin (the exposure test drops some).
+// Counts the build will produce for one scene, computed before allocating the hierarchy
+// (saturate at UINT64_MAX): elements = 2 * patches - 1 (a binary tree with patches as
+// leaves). Exact for a build without back sides when include_back_sides is false; with it,
+// an upper bound that gives a twin to every patch with a triangle of an open mesh (the
+// exposure test drops some). Grouping small triangles takes a sort, so counts are kept per
+// max_edge: a budget search asks for the same sizes many times. Not thread-safe.
+class PatchCount {
+ public:
+  // `glossy_fold_exponent` as in HierarchyOptions (it decides which triangles may merge).
+  explicit PatchCount(const Scene& scene, float glossy_fold_exponent = 0.0f);
+
+  uint64_t patches(float max_edge, bool include_back_sides = true) const;
+  uint64_t elements(float max_edge, bool include_back_sides = true) const;
+  // Bytes the built hierarchy holds (elements, patches and member triangles, not the solver's
+  // bin tables); the build briefly needs about as much again before the patches are ordered.
+  uint64_t hierarchy_bytes(float max_edge, bool include_back_sides = true) const;
+  // The smallest max_edge * 2^k (k >= 0) whose hierarchy has at most max_elements elements:
+  // the coarsening to offer when a budget is exceeded. Returns max_edge when it already fits.
+  float max_edge_within_budget(float max_edge, uint64_t max_elements) const;
+
+ private:
+  struct Counts {
+    uint64_t front = 0;       // patches without back sides
+    uint64_t with_back = 0;   // upper bound with back sides
+    uint64_t members = 0;     // member triangles of merged patches
+  };
+  const Counts& counts(float max_edge) const;
+
+  const Scene& scene_;
+  float glossy_fold_exponent_;
+  mutable std::vector<std::pair<float, Counts>> known_;
+};
+
+// One-off counts (a PatchCount for one question; glossy lobes not folded).
 uint64_t estimate_patches(const Scene& scene, float max_edge, bool include_back_sides = true);
 uint64_t estimate_elements(const Scene& scene, float max_edge, bool include_back_sides = true);
-// Bytes the built hierarchy holds (elements and patches, not the solver's bin tables);
-// the build briefly needs about as much again for the patches before they are ordered.
 uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge,
                                   bool include_back_sides = true);
-
-// The smallest max_edge * 2^k (k >= 0) whose hierarchy has at most max_elements elements:
-// the coarsening to offer when a budget is exceeded. Returns max_edge when it already fits.
 float max_edge_within_budget(const Scene& scene, float max_edge, uint64_t max_elements);
+
+// Whether triangles of this material may join a merged patch: not when it keeps a glossy lobe
+// (a lobe folded into the albedo, HierarchyOptions::glossy_fold_exponent, is diffuse).
+bool mergeable_material(const Material& material, float glossy_fold_exponent);
 
 class ElementHierarchy {
  public:
@@ -105,6 +157,15 @@ class ElementHierarchy {
   // Patches in the order their elements appear (leaf order of the pre-order layout).
   const std::vector<Patch>& patches() const { return patches_; }
   const Element& root() const { return elements_.front(); }
+  // The input triangles of a merged patch (empty for any other patch).
+  std::span<const MemberTriangle> members(const Patch& patch) const {
+    return std::span<const MemberTriangle>(members_).subspan(patch.first_member,
+                                                              patch.member_count);
+  }
+  std::span<const MemberTriangle> members_all() const { return members_; }
+  // Patches that are merged groups of small triangles, and the triangles in them.
+  size_t merged_patch_count() const { return merged_patch_count_; }
+  size_t member_count() const { return members_.size(); }
 
   size_t element_count() const { return elements_.size(); }
   size_t patch_count() const { return patches_.size(); }
@@ -123,6 +184,8 @@ class ElementHierarchy {
  private:
   std::vector<Element> elements_;
   std::vector<Patch> patches_;
+  std::vector<MemberTriangle> members_;
+  size_t merged_patch_count_ = 0;
   uint32_t surface_count_ = 0;
   size_t back_side_count_ = 0;
   float max_edge_ = 0.0f;

@@ -85,6 +85,7 @@ class Refiner {
           const BinSpreading& spreading, const LinkingOptions& options)
       : elements_(hierarchy.elements()),
         patches_(hierarchy.patches()),
+        members_(hierarchy.members_all()),
         bins_(bins),
         spreading_(spreading),
         options_(options),
@@ -224,8 +225,18 @@ class Refiner {
     const double point_model = double(sender.area) *
                                std::abs(glm::dot(glm::dvec3(from.normal), central)) *
                                delivered_cosine / (distance * distance);
-    if (!(point_model > 0.0)) return 1.0;
-    const double exact = projected_solid_angle(from.corners, glm::dvec3(receiver.center), n_i);
+    // max(exact, bound) / point_model >= 1 whenever the point model is within the bound:
+    // only pairs beyond it need the exact value (a merged sender sums it over its members).
+    if (!(point_model > kNearFieldBound)) return 1.0;
+    const glm::dvec3 x(receiver.center);
+    double exact = 0.0;
+    if (from.member_count == 0) {
+      exact = projected_solid_angle(from.corners, x, n_i);
+    } else {
+      for (const MemberTriangle& member : members_.subspan(from.first_member, from.member_count)) {
+        exact += projected_solid_angle(member.corners, x, n_i);
+      }
+    }
     return std::min(1.0, std::max(exact, kNearFieldBound) / point_model);
   }
 
@@ -235,6 +246,7 @@ class Refiner {
  private:
   const std::vector<Element>& elements_;
   const std::vector<Patch>& patches_;
+  std::span<const MemberTriangle> members_;
   const DirectionalBins& bins_;
   const BinSpreading& spreading_;
   const LinkingOptions& options_;

@@ -32,6 +32,14 @@ PatchLocator::PatchLocator(const Scene& scene, const ElementHierarchy& hierarchy
   patches_.reserve(patches.size());
   for (size_t p = 0; p < patches.size(); ++p) {
     const Patch& patch = patches[p];
+    if (patch.member_count > 0) {
+      // A merged patch is whole triangles: every point of each belongs to it.
+      for (const MemberTriangle& member : hierarchy.members(patch)) {
+        patches_[key(member.triangle, patch.back_side, 0, 0, false)] = uint32_t(p);
+        levels_[member.triangle] = 0;
+      }
+      continue;
+    }
     const Triangle& t = scene.triangles[patch.triangle];
     const glm::vec3 centroid = (patch.corners[0] + patch.corners[1] + patch.corners[2]) / 3.0f;
     const glm::vec2 uv = barycentrics(t, centroid);

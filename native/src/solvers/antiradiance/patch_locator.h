@@ -5,7 +5,8 @@
 // its barycentric coordinates (u, v) = (b1, b2) with N = 2^k cells per side: cell (i, j) =
 // (⌊N u⌋, ⌊N v⌋) holds an upright patch where the fractional parts sum below 1 and an inverted
 // one above. Each patch is keyed by the cell of its own centroid, so the lookup does not depend
-// on the order in which the hierarchy stores a triangle's patches.
+// on the order in which the hierarchy stores a triangle's patches. The triangles of a merged
+// patch are level 0: each maps to that patch whole.
 #pragma once
 
 #include <cstdint>
