@@ -301,7 +301,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   // Automatic: extent / 32, coarsened while the estimate exceeds kAutomaticElementLimit
   // elements (a detailed scene otherwise multiplies elements and links for little gain; the
   // paper's office had 18k elements).
-  const PatchCount count(scene, float(settings.glossy_fold_exponent));
+  const PatchCount count(scene);
   float max_edge =
       automatic ? count.max_edge_within_budget(default_max_edge(scene), kAutomaticElementLimit)
                 : float(settings.patch_size);

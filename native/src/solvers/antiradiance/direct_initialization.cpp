@@ -119,7 +119,7 @@ SurfacePoint sample_point(const Scene& scene, const ElementHierarchy& hierarchy,
   float running = 0.0f;
   const MemberTriangle* chosen = &members.back();
   for (const MemberTriangle& member : members) {
-    running += scene.triangles[member.triangle].area;
+    running += member.area;
     if (running > target) {
       chosen = &member;
       break;
@@ -127,13 +127,22 @@ SurfacePoint sample_point(const Scene& scene, const ElementHierarchy& hierarchy,
   }
   const Triangle& t = scene.triangles[chosen->triangle];
   const glm::vec2 b = sample_triangle_barycentrics(rng.next_float(), rng.next_float());
-  const float b0 = 1.0f - b.x - b.y;
   SurfacePoint x;
-  x.position = b0 * t.p[0] + b.x * t.p[1] + b.y * t.p[2];
+  x.position = (1.0f - b.x - b.y) * chosen->corners[0] + b.x * chosen->corners[1] +
+               b.y * chosen->corners[2];
   // A back-side patch gathers on the other side of the same triangles.
   const float side = patch.back_side ? -1.0f : 1.0f;
   x.geometric_normal = side * t.face_normal;
-  const glm::vec3 shading = b0 * t.n[0] + b.x * t.n[1] + b.y * t.n[2];
+  // The shading normal where the point lies in its input triangle (a member may be a piece).
+  const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0], d = x.position - t.p[0];
+  const float a11 = glm::dot(e1, e1), a12 = glm::dot(e1, e2), a22 = glm::dot(e2, e2);
+  const float det = a11 * a22 - a12 * a12;
+  glm::vec2 uv(1.0f / 3.0f);
+  if (std::abs(det) > 0.0f) {
+    uv = glm::vec2(a22 * glm::dot(d, e1) - a12 * glm::dot(d, e2),
+                   a11 * glm::dot(d, e2) - a12 * glm::dot(d, e1)) / det;
+  }
+  const glm::vec3 shading = (1.0f - uv.x - uv.y) * t.n[0] + uv.x * t.n[1] + uv.y * t.n[2];
   const float length = glm::length(shading);
   x.shading_normal = length > 1e-6f ? side * shading / length : x.geometric_normal;
   if (glm::dot(x.shading_normal, x.geometric_normal) <= 0.0f) x.shading_normal = x.geometric_normal;
@@ -218,8 +227,10 @@ DirectLightAtPatches direct_light_at_patches(const ElementHierarchy& hierarchy,
             for (int64_t s = 0; s < samples; ++s) {
               Pcg32 rng = sample_stream(seed, p, uint64_t(s));
               terms.clear();
+              const SurfacePoint xs = sample_point(direct.scene(), hierarchy, patch, x, s,
+                                                   samples, elements[patch.element].area, rng);
               const glm::vec3 value = direct.irradiance_sample_terms(
-                  x, rng, rays, [&](const glm::vec3& direction, const glm::vec3& irradiance) {
+                  xs, rng, rays, [&](const glm::vec3& direction, const glm::vec3& irradiance) {
                     terms.emplace_back(direction, irradiance);
                   });
               // A non-finite sample would poison the patch and everything it lights.

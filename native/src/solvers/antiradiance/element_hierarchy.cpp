@@ -10,6 +10,7 @@
 
 #include "scene/phong_lobe.h"
 #include "solvers/antiradiance/back_sides.h"
+#include "solvers/antiradiance/triangle_bisection.h"
 #include "solvers/antiradiance/triangle_grouping.h"
 #include "util/error.h"
 
@@ -59,22 +60,49 @@ void for_each_corner(const Patch& patch, const std::vector<MemberTriangle>& memb
   }
 }
 
-// The diffuse albedo a patch of this triangle reflects with: a wide glossy lobe that the
-// hierarchy folds (fold_wide_glossy_lobes) adds its hemispherical albedo.
-glm::vec3 folded_albedo(const Scene& scene, const Triangle& t, float b1, float b2,
-                        float fold_exponent) {
-  const Material& material = scene.material_of(t);
-  glm::vec3 albedo = scene.albedo_at(t, b1, b2);
-  const float strongest = std::max({material.glossy.x, material.glossy.y, material.glossy.z});
-  if (strongest > 0.0f && material.glossy_exponent < fold_exponent) {
-    albedo += float(phong_hemispherical_albedo(material.glossy_exponent)) * material.glossy;
-  }
-  return albedo;
+// A grouping candidate: a whole small triangle (code 0) or a piece of a sliver (triangle_bisection.h).
+struct Piece {
+  uint32_t triangle = 0;
+  uint32_t code = 0;
+  float area = 0.0f;
+  glm::vec3 corners[3];
+  glm::vec2 centroid_uv{1.0f / 3.0f};  // barycentrics of the piece's centroid in the triangle
+};
+
+glm::vec3 centroid_of(const Piece& piece) {
+  return (piece.corners[0] + piece.corners[1] + piece.corners[2]) / 3.0f;
 }
 
-// One patch for a group of whole triangles (triangle_grouping.h); appends them to `members`.
-PatchSeed merged_seed(const Scene& scene, std::span<const uint32_t> group, uint32_t surface,
-                      float fold_exponent, std::vector<MemberTriangle>& members) {
+// The interpolated shading normal of t at barycentrics uv (unnormalized).
+glm::vec3 shading_at(const Triangle& t, glm::vec2 uv) {
+  return (1.0f - uv.x - uv.y) * t.n[0] + uv.x * t.n[1] + uv.y * t.n[2];
+}
+
+// One sliver piece as a patch on its own.
+PatchSeed piece_seed(const Scene& scene, const Piece& piece, uint32_t surface) {
+  const Triangle& t = scene.triangles[piece.triangle];
+  PatchSeed seed;
+  Patch& patch = seed.patch;
+  std::copy(piece.corners, piece.corners + 3, patch.corners);
+  patch.normal = t.face_normal;
+  const glm::vec3 shading = shading_at(t, piece.centroid_uv);
+  const float length = glm::length(shading);
+  patch.shading_normal = length > 1e-6f ? shading / length : patch.normal;
+  patch.albedo = scene.albedo_at(t, piece.centroid_uv.x, piece.centroid_uv.y);
+  patch.glossy = scene.material_of(t).glossy;
+  patch.glossy_exponent = scene.material_of(t).glossy_exponent;
+  patch.triangle = piece.triangle;
+  patch.surface = surface;
+  patch.sliver_piece = piece.code;
+  seed.center = centroid_of(piece);
+  seed.area = piece.area;
+  return seed;
+}
+
+// One patch for a group of pieces (triangle_grouping.h); appends them to `members`.
+PatchSeed merged_seed(const Scene& scene, const std::vector<Piece>& pieces,
+                      std::span<const uint32_t> group, uint32_t surface,
+                      std::vector<MemberTriangle>& members) {
   PatchSeed seed;
   Patch& patch = seed.patch;
   patch.first_member = uint32_t(members.size());
@@ -82,34 +110,36 @@ PatchSeed merged_seed(const Scene& scene, std::span<const uint32_t> group, uint3
   double area = 0.0;
   glm::dvec3 centroid_sum(0.0), normal_sum(0.0), shading_sum(0.0), albedo_sum(0.0);
   for (uint32_t index : group) {
-    const Triangle& t = scene.triangles[index];
+    const Piece& piece = pieces[index];
+    const Triangle& t = scene.triangles[piece.triangle];
     MemberTriangle member;
-    member.triangle = index;
-    for (int c = 0; c < 3; ++c) member.corners[c] = t.p[c];
+    member.triangle = piece.triangle;
+    member.code = piece.code;
+    member.area = piece.area;
+    std::copy(piece.corners, piece.corners + 3, member.corners);
     members.push_back(member);
-    const double a = double(t.area);
+    const double a = double(piece.area);
     area += a;
-    centroid_sum += a * glm::dvec3((t.p[0] + t.p[1] + t.p[2]) / 3.0f);
+    centroid_sum += a * glm::dvec3(centroid_of(piece));
     normal_sum += a * glm::dvec3(t.face_normal);
-    shading_sum += a * glm::dvec3(t.n[0] + t.n[1] + t.n[2]);
-    albedo_sum += a * glm::dvec3(folded_albedo(scene, t, 1.0f / 3.0f, 1.0f / 3.0f, fold_exponent));
+    shading_sum += a * glm::dvec3(shading_at(t, piece.centroid_uv));
+    albedo_sum += a * glm::dvec3(scene.albedo_at(t, piece.centroid_uv.x, piece.centroid_uv.y));
   }
   const glm::dvec3 mean_centroid = area > 0.0 ? centroid_sum / area : centroid_sum;
   // The centre: the centroid of the member nearest the mean (first in order on ties).
   double nearest = std::numeric_limits<double>::infinity();
   for (uint32_t index : group) {
-    const Triangle& t = scene.triangles[index];
-    const glm::vec3 centroid = (t.p[0] + t.p[1] + t.p[2]) / 3.0f;
-    const double d = glm::dot(glm::dvec3(centroid) - mean_centroid, glm::dvec3(centroid) - mean_centroid);
-    if (d < nearest) {
-      nearest = d;
-      seed.center = centroid;
-      patch.triangle = index;
-      for (int c = 0; c < 3; ++c) patch.corners[c] = t.p[c];
+    const Piece& piece = pieces[index];
+    const glm::dvec3 d = glm::dvec3(centroid_of(piece)) - mean_centroid;
+    if (glm::dot(d, d) < nearest) {
+      nearest = glm::dot(d, d);
+      seed.center = centroid_of(piece);
+      patch.triangle = piece.triangle;
+      std::copy(piece.corners, piece.corners + 3, patch.corners);
     }
   }
   const Triangle& representative = scene.triangles[patch.triangle];
-  // Members' normals lie within kGroupNormalCosine of one another's seed, so the sum is long.
+  // Members' normals lie within kGroupNormalCosine of the group's seed, so the sum is long.
   const double normal_length = glm::length(normal_sum);
   patch.normal = normal_length > 0.0 ? glm::vec3(normal_sum / normal_length)
                                      : representative.face_normal;
@@ -117,6 +147,9 @@ PatchSeed merged_seed(const Scene& scene, std::span<const uint32_t> group, uint3
   patch.shading_normal =
       shading_length > 1e-6 * area ? glm::vec3(shading_sum / shading_length) : patch.normal;
   patch.albedo = area > 0.0 ? glm::vec3(albedo_sum / area) : glm::vec3(0.0f);
+  // One surface is one material: the members share its lobe (folded later like any patch's).
+  patch.glossy = scene.material_of(representative).glossy;
+  patch.glossy_exponent = scene.material_of(representative).glossy_exponent;
   patch.surface = surface;
   seed.area = float(area);
   return seed;
@@ -312,65 +345,109 @@ int subdivision_level(float longest_edge, float max_edge) {
   return level;
 }
 
-bool mergeable_material(const Material& material, float glossy_fold_exponent) {
-  const float strongest = std::max({material.glossy.x, material.glossy.y, material.glossy.z});
-  return !(strongest > 0.0f) || material.glossy_exponent < glossy_fold_exponent;
-}
-
 namespace {
 
-// How the triangles become patches at one patch size: split or whole (level >= 0), or a
-// member of a group of small triangles (level -1).
+// A triangle whose longest edge is more than this many times its height over that edge is a
+// sliver (equilateral: 1.15; a right isosceles triangle on its hypotenuse: 2).
+constexpr float kSliverAspect = 4.0f;
+
+// Counting stops beyond this many patches (the count then saturates): more than any budget
+// allows, and an absurdly small patch size costs no time to refuse.
+constexpr uint64_t kCountedPatchLimit = uint64_t(1) << 27;
+
+// How the triangles become patches at one patch size: split 4-way or whole (leaves[i] > 0
+// patches at level[i]), or pieces to group (leaves[i] == 0: a small triangle is one piece, a
+// sliver is bisected into pieces of the cell size). Pieces are in triangle order.
 struct PatchPlan {
-  std::vector<int8_t> level;
-  TriangleGroups groups;
+  std::vector<uint64_t> leaves;
+  std::vector<uint8_t> level;
+  std::vector<Piece> pieces;
+  TriangleGroups groups;    // of pieces
+  bool saturated = false;   // more than kCountedPatchLimit patches or pieces
 };
 
-PatchPlan plan_patches(const Scene& scene, float max_edge, float glossy_fold_exponent) {
+PatchPlan plan_patches(const Scene& scene, float max_edge) {
   check_max_edge(max_edge);
   const float cell = 0.5f * max_edge;
   PatchPlan plan;
-  plan.level.resize(scene.triangles.size());
-  std::vector<uint32_t> candidates;
-  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+  plan.leaves.assign(scene.triangles.size(), 0);
+  plan.level.assign(scene.triangles.size(), 0);
+  std::vector<GroupCandidate> candidates;
+  uint64_t total = 0;
+  const auto add_piece = [&](const Piece& piece) {
+    const Triangle& t = scene.triangles[piece.triangle];
+    plan.pieces.push_back(piece);
+    candidates.push_back({centroid_of(piece), t.face_normal, t.mesh, t.material});
+  };
+  for (uint32_t i = 0; i < scene.triangles.size() && !plan.saturated; ++i) {
     const Triangle& t = scene.triangles[i];
-    const float edge = longest_edge(t);
-    if (edge <= cell && mergeable_material(scene.material_of(t), glossy_fold_exponent)) {
-      plan.level[i] = -1;
-      candidates.push_back(i);
-    } else {
-      plan.level[i] = int8_t(subdivision_level(edge, max_edge));
+    if (longest_edge(t) <= cell) {
+      Piece piece;
+      piece.triangle = i;
+      piece.area = t.area;
+      std::copy(t.p, t.p + 3, piece.corners);
+      add_piece(piece);
+      ++total;
+      continue;
     }
+    // 4-way midpoint splits keep a triangle's shape (what the solver's tests and tuning are
+    // for) but halve every edge: a sliver (longest edge more than kSliverAspect times its
+    // height over that edge) would become 4^k needles. It is bisected into pieces of the cell
+    // size instead (triangle_bisection.h), which group with their neighbours.
+    const float edge = longest_edge(t);
+    const bool sliver = edge * edge > kSliverAspect * 2.0f * t.area;
+    if (!sliver) {
+      const int level = subdivision_level(edge, max_edge);
+      plan.level[i] = uint8_t(level);
+      plan.leaves[i] = uint64_t(1) << (2 * level);
+      total += plan.leaves[i];
+      plan.saturated = total > kCountedPatchLimit;
+      continue;
+    }
+    total += bisection_piece_count(t, cell, kCountedPatchLimit - std::min(total, kCountedPatchLimit));
+    plan.saturated = total > kCountedPatchLimit;
+    if (plan.saturated) break;
+    bisect_triangle(t, cell, [&](const BisectionPiece& cut) {
+      Piece piece;
+      piece.triangle = i;
+      piece.code = cut.code;
+      for (int c = 0; c < 3; ++c) {
+        const glm::vec2 b = cut.corners[c];
+        piece.corners[c] = (1.0f - b.x - b.y) * t.p[0] + b.x * t.p[1] + b.y * t.p[2];
+      }
+      piece.area = float(double(t.area) / std::ldexp(1.0, cut.depth));
+      piece.centroid_uv = (cut.corners[0] + cut.corners[1] + cut.corners[2]) / 3.0f;
+      add_piece(piece);
+    });
   }
-  plan.groups = group_triangles(scene, candidates, cell);
+  if (!plan.saturated) plan.groups = group_candidates(candidates, scene.bounds_min, cell);
   return plan;
 }
 
 // A merged patch gets a back side when most of its area (by its members) would have one.
-bool group_has_back_side(const Scene& scene, std::span<const uint32_t> group,
+bool group_has_back_side(const std::vector<Piece>& pieces, std::span<const uint32_t> group,
                          const std::vector<uint8_t>& back_side) {
   double with = 0.0, all = 0.0;
-  for (uint32_t t : group) {
-    all += double(scene.triangles[t].area);
-    if (back_side[t]) with += double(scene.triangles[t].area);
+  for (uint32_t p : group) {
+    all += double(pieces[p].area);
+    if (back_side[pieces[p].triangle]) with += double(pieces[p].area);
   }
   return with > 0.0 && with >= 0.5 * all;
 }
 
 }  // namespace
 
-PatchCount::PatchCount(const Scene& scene, float glossy_fold_exponent)
-    : scene_(scene), glossy_fold_exponent_(glossy_fold_exponent) {}
+PatchCount::PatchCount(const Scene& scene) : scene_(scene) {}
 
 const PatchCount::Counts& PatchCount::counts(float max_edge) const {
   for (const auto& [edge, counts] : known_) {
     if (edge == max_edge) return counts;
   }
-  const PatchPlan plan = plan_patches(scene_, max_edge, glossy_fold_exponent_);
+  const PatchPlan plan = plan_patches(scene_, max_edge);
   Counts counts;
   for (uint32_t i = 0; i < scene_.triangles.size(); ++i) {
-    if (plan.level[i] < 0) continue;
-    const uint64_t patches = uint64_t(1) << (2 * plan.level[i]);
+    if (plan.leaves[i] == 0) continue;
+    const uint64_t patches = plan.leaves[i];
     counts.front = saturating_add(counts.front, patches);
     const uint64_t sides = on_open_mesh(scene_, scene_.triangles[i]) ? 2 : 1;
     counts.with_back = saturating_add(counts.with_back, sides * patches);
@@ -378,10 +455,15 @@ const PatchCount::Counts& PatchCount::counts(float max_edge) const {
   for (size_t g = 0; g < plan.groups.size(); ++g) {
     const std::span<const uint32_t> group = plan.groups.group(g);
     bool open = false;
-    for (uint32_t t : group) open = open || on_open_mesh(scene_, scene_.triangles[t]);
+    for (uint32_t p : group) {
+      open = open || on_open_mesh(scene_, scene_.triangles[plan.pieces[p].triangle]);
+    }
     counts.front += 1;
     counts.with_back += open ? 2 : 1;
     if (group.size() > 1) counts.members += group.size();
+  }
+  if (plan.saturated) {
+    counts.front = counts.with_back = std::numeric_limits<uint64_t>::max();
   }
   known_.emplace_back(max_edge, counts);
   return known_.back().second;
@@ -471,27 +553,26 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     throw Error(BAKEGI_ERROR_INVALID_SCENE, "antiradiance: the scene has no triangles");
   }
 
-  const PatchPlan plan = plan_patches(scene, max_edge_, options.glossy_fold_exponent);
+  const PatchPlan plan = plan_patches(scene, max_edge_);
   // Which triangles get a back side decides the exact count, so it comes first (cheap: a few
   // rays per triangle of an open mesh).
   std::vector<uint8_t> back_side;
   if (options.back_sides != nullptr) back_side = exposed_back_sides(scene, *options.back_sides);
   const auto has_back = [&](uint32_t t) { return !back_side.empty() && back_side[t] != 0; };
-  // The group starting at each triangle (groups are in order of their first member).
-  std::vector<uint32_t> group_at(scene.triangles.size(), kNoElement);
+  // The group starting at each piece (groups are in order of their first piece).
+  std::vector<uint32_t> group_at(plan.pieces.size(), kNoElement);
   std::vector<uint8_t> group_back(plan.groups.size(), 0);
   uint64_t patch_count = 0;
   for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
-    if (plan.level[i] < 0) continue;
+    if (plan.leaves[i] == 0) continue;
     const uint64_t sides = has_back(i) ? 2 : 1;
-    patch_count = saturating_add(patch_count, sides << (2 * plan.level[i]));
+    patch_count = saturating_add(patch_count, sides * plan.leaves[i]);
   }
+  if (plan.saturated) patch_count = std::numeric_limits<uint64_t>::max();
   for (size_t g = 0; g < plan.groups.size(); ++g) {
     const std::span<const uint32_t> group = plan.groups.group(g);
     group_at[group.front()] = uint32_t(g);
-    group_back[g] = !back_side.empty() && (group.size() == 1
-                                               ? back_side[group.front()] != 0
-                                               : group_has_back_side(scene, group, back_side));
+    group_back[g] = !back_side.empty() && group_has_back_side(plan.pieces, group, back_side);
     patch_count += group_back[g] ? 2 : 1;
   }
   const uint64_t elements = patch_count > std::numeric_limits<uint64_t>::max() / 2
@@ -504,9 +585,7 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     std::ostringstream message;
     message << "antiradiance: patches of at most " << max_edge_ << " m would make " << elements
             << " elements, more than the budget of " << budget << "; a patch size of "
-            << PatchCount(scene, options.glossy_fold_exponent)
-                   .max_edge_within_budget(max_edge_, budget)
-            << " m fits";
+            << PatchCount(scene).max_edge_within_budget(max_edge_, budget) << " m fits";
     throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, message.str());
   }
 
@@ -519,43 +598,56 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
     if (plan.groups.group(g).size() > 1) member_total += plan.groups.group(g).size();
   }
   members_.reserve(member_total);
+  // Seeds in triangle order: a triangle's own patches, or the groups whose first piece is
+  // one of its pieces, each followed by its twin.
+  size_t next_piece = 0;
   for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
-    const bool grouped = plan.level[i] < 0;
-    if (grouped && group_at[i] == kNoElement) continue;  // in a group seeded earlier
     const Triangle& t = scene.triangles[i];
-    const auto [it, inserted] =
-        surfaces.try_emplace({t.mesh, t.material, false}, uint32_t(surfaces.size()));
-    const size_t first = seeds.size();
-    bool twin = has_back(i);
-    if (!grouped) {
-      TriangleSubdivider(scene, i, it->second, plan.level[i], seeds).run();
-    } else {
-      const uint32_t g = group_at[i];
-      const std::span<const uint32_t> group = plan.groups.group(g);
-      twin = group_back[g] != 0;
-      if (group.size() == 1) {
-        TriangleSubdivider(scene, i, it->second, 0, seeds).run();
-      } else {
-        seeds.push_back(
-            merged_seed(scene, group, it->second, options.glossy_fold_exponent, members_));
-        ++merged_patch_count_;
+    const auto emit = [&](auto&& make_seeds, bool twin) {
+      const uint32_t surface =
+          surfaces.try_emplace({t.mesh, t.material, false}, uint32_t(surfaces.size())).first->second;
+      const size_t first = seeds.size();
+      make_seeds(surface);
+      if (!twin) return;
+      const uint32_t back_surface =
+          surfaces.try_emplace({t.mesh, t.material, true}, uint32_t(surfaces.size())).first->second;
+      const size_t last = seeds.size();
+      for (size_t s = first; s < last; ++s) {
+        // The same center, bit for bit: link refinement pairs nothing.
+        PatchSeed twin_seed = seeds[s];
+        std::swap(twin_seed.patch.corners[1], twin_seed.patch.corners[2]);
+        twin_seed.patch.normal = -twin_seed.patch.normal;
+        twin_seed.patch.shading_normal = -twin_seed.patch.shading_normal;
+        twin_seed.patch.surface = back_surface;
+        twin_seed.patch.back_side = true;
+        seeds.push_back(twin_seed);
+        if (twin_seed.patch.member_count > 0) ++merged_patch_count_;
       }
+      back_side_count_ += last - first;
+    };
+    if (plan.leaves[i] > 0) {
+      emit([&](uint32_t surface) { TriangleSubdivider(scene, i, surface, plan.level[i], seeds).run(); },
+           has_back(i));
+      continue;
     }
-    if (!twin) continue;
-    const uint32_t back_surface =
-        surfaces.try_emplace({t.mesh, t.material, true}, uint32_t(surfaces.size())).first->second;
-    const size_t last = seeds.size();
-    for (size_t s = first; s < last; ++s) {
-      PatchSeed twin_seed = seeds[s];  // the same center, bit for bit: link refinement pairs nothing
-      std::swap(twin_seed.patch.corners[1], twin_seed.patch.corners[2]);
-      twin_seed.patch.normal = -twin_seed.patch.normal;
-      twin_seed.patch.shading_normal = -twin_seed.patch.shading_normal;
-      twin_seed.patch.surface = back_surface;
-      twin_seed.patch.back_side = true;
-      seeds.push_back(twin_seed);
-      if (twin_seed.patch.member_count > 0) ++merged_patch_count_;
+    for (; next_piece < plan.pieces.size() && plan.pieces[next_piece].triangle == i; ++next_piece) {
+      const uint32_t g = group_at[next_piece];
+      if (g == kNoElement) continue;  // in a group seeded earlier
+      const std::span<const uint32_t> group = plan.groups.group(g);
+      const Piece& piece = plan.pieces[next_piece];
+      emit(
+          [&](uint32_t surface) {
+            if (group.size() > 1) {
+              seeds.push_back(merged_seed(scene, plan.pieces, group, surface, members_));
+              ++merged_patch_count_;
+            } else if (piece.code == 0) {
+              TriangleSubdivider(scene, i, surface, 0, seeds).run();
+            } else {
+              seeds.push_back(piece_seed(scene, piece, surface));
+            }
+          },
+          group_back[g] != 0);
     }
-    back_side_count_ += last - first;
   }
   surface_count_ = uint32_t(surfaces.size());
   if (options.glossy_fold_exponent > 0.0f)

@@ -5,9 +5,10 @@
 // ancestors) are contiguous loops over that array.
 //
 // Patch sizes: a triangle whose longest edge exceeds max_edge is split 4-way until its
-// patches' edges are at most max_edge; one whose longest edge is at most max_edge / 2 (and
-// whose material has no glossy lobe the local pass keeps) joins a group of small triangles in
-// a cell of edge max_edge / 2, so a merged patch spans at most about max_edge too; the rest
+// patches' edges are at most max_edge. A sliver (a long thin triangle, as fan triangulations
+// of n-gons make them: 4-way splits would turn it into 4^k needles) is instead cut into strips
+// (triangle_bisection.h) no longer than max_edge / 2, which group like small triangles; one whose longest edge is at most max_edge / 2 (and
+// joins a group of small triangles of its surface in a cell of edge max_edge / 2, so a merged patch spans at most about max_edge too; the rest
 // are a patch each. The element count thus follows the patch size and no longer the
 // tessellation (the 131k-triangle living room: 388,911 elements unmerged).
 #pragma once
@@ -44,10 +45,13 @@ struct Element {
   bool is_patch = false;
 };
 
-// A whole input triangle that belongs to a merged patch.
+// A triangle that belongs to a merged patch: a whole input triangle, or a piece of a sliver
+// (slivers are cut into pieces about as long as the grouping cell, which then group).
 struct MemberTriangle {
-  glm::vec3 corners[3];   // as in Scene::triangles
+  glm::vec3 corners[3];   // world positions, counter-clockwise like the input triangle
   uint32_t triangle = 0;  // index into Scene::triangles
+  uint32_t code = 0;      // 0: the whole triangle; else its piece code (triangle_bisection.h)
+  float area = 0.0f;
 };
 
 // What only patches carry (clusters need no normal: the paper's oracle uses none).
@@ -62,15 +66,18 @@ struct Patch {
   uint32_t triangle = 0;           // index into Scene::triangles
   uint32_t surface = 0;            // see ElementHierarchy::surface_count()
   uint16_t subdivision_level = 0;  // times the source triangle was split 4-way
+  // A sliver's piece that is a patch on its own: its code (triangle_bisection.h); 0 for every
+  // other patch.
+  uint32_t sliver_piece = 0;
   // The twin on the back of an open mesh's triangle (back_sides.h): same place, flipped
   // normal (corners in reverse order).
   // Emission is not a patch's: emitters reach receivers as direct light (DirectLight).
   bool back_side = false;
-  // A merged patch (member_count > 0) is the whole input triangles
+  // A merged patch (member_count > 0) is the triangles (or sliver pieces)
   // ElementHierarchy::members(*this): its area is theirs, its normals and albedo their
   // area-weighted means, its centre (Element::center) the centroid of the member nearest to
   // the group's area-weighted centroid (a point on the surface, which a curved group's mean
-  // is not); `corners` and `triangle` are that member's. Never glossy.
+  // is not); `corners` and `triangle` are that member's. Its lobe is their material's.
   uint32_t first_member = 0;
   uint32_t member_count = 0;
 };
@@ -110,8 +117,7 @@ int subdivision_level(float longest_edge, float max_edge);
 // max_edge: a budget search asks for the same sizes many times. Not thread-safe.
 class PatchCount {
  public:
-  // `glossy_fold_exponent` as in HierarchyOptions (it decides which triangles may merge).
-  explicit PatchCount(const Scene& scene, float glossy_fold_exponent = 0.0f);
+  explicit PatchCount(const Scene& scene);
 
   uint64_t patches(float max_edge, bool include_back_sides = true) const;
   uint64_t elements(float max_edge, bool include_back_sides = true) const;
@@ -131,20 +137,15 @@ class PatchCount {
   const Counts& counts(float max_edge) const;
 
   const Scene& scene_;
-  float glossy_fold_exponent_;
   mutable std::vector<std::pair<float, Counts>> known_;
 };
 
-// One-off counts (a PatchCount for one question; glossy lobes not folded).
+// One-off counts (a PatchCount for one question).
 uint64_t estimate_patches(const Scene& scene, float max_edge, bool include_back_sides = true);
 uint64_t estimate_elements(const Scene& scene, float max_edge, bool include_back_sides = true);
 uint64_t estimate_hierarchy_bytes(const Scene& scene, float max_edge,
                                   bool include_back_sides = true);
 float max_edge_within_budget(const Scene& scene, float max_edge, uint64_t max_elements);
-
-// Whether triangles of this material may join a merged patch: not when it keeps a glossy lobe
-// (a lobe folded into the albedo, HierarchyOptions::glossy_fold_exponent, is diffuse).
-bool mergeable_material(const Material& material, float glossy_fold_exponent);
 
 class ElementHierarchy {
  public:

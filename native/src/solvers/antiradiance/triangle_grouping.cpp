@@ -27,26 +27,25 @@ int64_t cell_index(float coordinate, float origin, float cell) {
 
 }  // namespace
 
-TriangleGroups group_triangles(const Scene& scene, std::span<const uint32_t> candidates,
-                               float cell) {
+TriangleGroups group_candidates(std::span<const GroupCandidate> candidates, glm::vec3 bounds_min,
+                                float cell) {
   TriangleGroups groups;
   if (candidates.empty()) return groups;
-  const glm::vec3 origin = scene.bounds_min - kGridOffsetInCells * cell;
+  const glm::vec3 origin = bounds_min - kGridOffsetInCells * cell;
   std::vector<Keyed> keyed(candidates.size());
   for (size_t i = 0; i < candidates.size(); ++i) {
-    const Triangle& t = scene.triangles[candidates[i]];
-    const glm::vec3 centroid = (t.p[0] + t.p[1] + t.p[2]) / 3.0f;
-    keyed[i] = {t.mesh,
-                t.material,
-                {cell_index(centroid.x, origin.x, cell), cell_index(centroid.y, origin.y, cell),
-                 cell_index(centroid.z, origin.z, cell)},
-                candidates[i]};
+    const GroupCandidate& c = candidates[i];
+    keyed[i] = {c.mesh,
+                c.material,
+                {cell_index(c.centroid.x, origin.x, cell), cell_index(c.centroid.y, origin.y, cell),
+                 cell_index(c.centroid.z, origin.z, cell)},
+                uint32_t(i)};
   }
   std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
     return std::tie(a.mesh, a.material, a.cell[0], a.cell[1], a.cell[2], a.triangle) <
            std::tie(b.mesh, b.material, b.cell[0], b.cell[1], b.cell[2], b.triangle);
   });
-  // Per cell: greedy normal cones. `open` holds the cell's triangles not yet in a group.
+  // Per cell: greedy normal cones. `open` holds the cell's candidates not yet in a group.
   std::vector<uint32_t> open, rest;
   struct Group {
     uint32_t first;
@@ -59,14 +58,14 @@ TriangleGroups group_triangles(const Scene& scene, std::span<const uint32_t> can
     open.clear();
     for (size_t i = begin; i < end; ++i) open.push_back(keyed[i].triangle);  // ascending
     while (!open.empty()) {
-      const glm::vec3 seed = scene.triangles[open.front()].face_normal;
+      const glm::vec3 seed = candidates[open.front()].normal;
       Group group{open.front(), {}};
       rest.clear();
-      for (uint32_t t : open) {
-        if (glm::dot(scene.triangles[t].face_normal, seed) >= kGroupNormalCosine || t == open.front()) {
-          group.members.push_back(t);
+      for (uint32_t c : open) {
+        if (c == open.front() || glm::dot(candidates[c].normal, seed) >= kGroupNormalCosine) {
+          group.members.push_back(c);
         } else {
-          rest.push_back(t);
+          rest.push_back(c);
         }
       }
       found.push_back(std::move(group));
@@ -82,6 +81,20 @@ TriangleGroups group_triangles(const Scene& scene, std::span<const uint32_t> can
     groups.members.insert(groups.members.end(), group.members.begin(), group.members.end());
     groups.offsets.push_back(uint32_t(groups.members.size()));
   }
+  return groups;
+}
+
+TriangleGroups group_triangles(const Scene& scene, std::span<const uint32_t> triangles,
+                               float cell) {
+  std::vector<uint32_t> sorted(triangles.begin(), triangles.end());
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<GroupCandidate> candidates(sorted.size());
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    const Triangle& t = scene.triangles[sorted[i]];
+    candidates[i] = {(t.p[0] + t.p[1] + t.p[2]) / 3.0f, t.face_normal, t.mesh, t.material};
+  }
+  TriangleGroups groups = group_candidates(candidates, scene.bounds_min, cell);
+  for (uint32_t& m : groups.members) m = sorted[m];
   return groups;
 }
 

@@ -43,10 +43,24 @@ struct TriangleGroups {
   }
 };
 
-// Groups `candidates` (indices into scene.triangles, any order) by cell of edge `cell`,
-// surface and normal as described above. Deterministic: the same groups for any input order.
-// `cell` must be positive and finite.
-TriangleGroups group_triangles(const Scene& scene, std::span<const uint32_t> candidates,
+// What grouping needs of a triangle (or of a piece of one: element_hierarchy.h cuts slivers
+// into pieces first).
+struct GroupCandidate {
+  glm::vec3 centroid{0.0f};
+  glm::vec3 normal{0.0f};  // unit face normal
+  uint32_t mesh = 0, material = 0;
+};
+
+// Groups candidates by cell of edge `cell` (the grid placed from `bounds_min`), surface and
+// normal as described above; the groups hold indices into `candidates`, and a candidate's
+// index breaks every tie, so the result depends on the candidates' order only through their
+// indices. `cell` must be positive and finite.
+TriangleGroups group_candidates(std::span<const GroupCandidate> candidates, glm::vec3 bounds_min,
+                                float cell);
+
+// The same for whole triangles (indices into scene.triangles, any order); the groups hold
+// triangle indices and do not depend on the order given.
+TriangleGroups group_triangles(const Scene& scene, std::span<const uint32_t> triangles,
                                float cell);
 
 }  // namespace bakegi::antiradiance
