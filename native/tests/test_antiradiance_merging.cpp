@@ -14,7 +14,10 @@
 #include "scene/scene_validation.h"
 #include "solvers/antiradiance/direct_initialization.h"
 #include "solvers/antiradiance/element_hierarchy.h"
+#include "solvers/antiradiance/patch_locator.h"
+#include "solvers/antiradiance/triangle_bisection.h"
 #include "solvers/antiradiance/triangle_grouping.h"
+#include "util/random.h"
 
 namespace bakegi {
 namespace {
@@ -63,6 +66,95 @@ SceneDescription tessellated_room(int cells) {
   d.meshes.push_back(test::make_icosphere({0.6f, 0.3f, 0.5f}, 0.5f, 5, sphere));
   d.lights.push_back(test::point_light({-0.5f, -0.4f, 2.2f}, glm::vec3(8.0f)));
   return d;
+}
+
+// A square floor as a fan from one corner: 2 x 100 needles up to 5.7 m long and a few
+// centimetres wide at their far end (what triangulating an n-gon makes).
+Mesh fanned_floor(float half, int per_side, uint32_t material) {
+  Mesh mesh;
+  mesh.positions.push_back({-half, -half, 0.0f});
+  for (int i = 0; i <= per_side; ++i) {
+    mesh.positions.push_back({half, -half + 2.0f * half * float(i) / float(per_side), 0.0f});
+  }
+  for (int i = per_side - 1; i >= 0; --i) {
+    mesh.positions.push_back({-half + 2.0f * half * float(i) / float(per_side), half, 0.0f});
+  }
+  for (uint32_t i = 1; i + 1 < mesh.positions.size(); ++i) {
+    mesh.indices.insert(mesh.indices.end(), {0, i, i + 1});
+  }
+  mesh.material = material;
+  return mesh;
+}
+
+TEST(TriangleBisection, PiecesPartitionTheTriangleAndAreFoundFromTheirPoints) {
+  SceneDescription d;
+  const uint32_t grey = add_material(d, glm::vec3(0.5f));
+  Mesh needle;
+  needle.positions = {{0, 0, 0}, {5, 0.02f, 0}, {5, -0.03f, 0.01f}};
+  needle.indices = {0, 1, 2};
+  needle.material = grey;
+  d.meshes.push_back(needle);
+  d.lights.push_back(test::point_light({0, 0, 1}, glm::vec3(1.0f)));
+  const Scene scene = build_scene(d);
+  const Triangle& t = scene.triangles[0];
+  const float size = 0.25f;
+  std::vector<antiradiance::BisectionPiece> pieces;
+  antiradiance::bisect_triangle(t, size, [&](const auto& p) { pieces.push_back(p); });
+  EXPECT_EQ(antiradiance::bisection_piece_count(t, size, 1000000), pieces.size());
+  EXPECT_EQ(antiradiance::bisection_piece_count(t, size, 3), 4u);  // counting stops at the cap
+  // A 5 m needle in pieces of 0.25 m: bisection makes three half-needles per two cuts, 3^5 =
+  // 243 pieces (which then group with their neighbours), 4-way splitting 4^5 = 1024.
+  EXPECT_LE(pieces.size(), 243u);
+  double area = 0.0;
+  const auto world = [&](glm::vec2 b) {
+    return (1.0f - b.x - b.y) * t.p[0] + b.x * t.p[1] + b.y * t.p[2];
+  };
+  for (const auto& p : pieces) {
+    area += std::ldexp(1.0, -p.depth);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LE(glm::length(world(p.corners[(c + 1) % 3]) - world(p.corners[c])), size * 1.0001f);
+    }
+    // The piece's centroid leads back to it.
+    const glm::vec2 centroid = (p.corners[0] + p.corners[1] + p.corners[2]) / 3.0f;
+    EXPECT_EQ(antiradiance::bisection_piece_at(t, size, centroid.x, centroid.y), p.code);
+  }
+  EXPECT_NEAR(area, 1.0, 1e-12);  // fractions of the triangle's area
+}
+
+TEST(AntiradianceMerging, AFannedFloorBecomesPatchesOfThePatchSize) {
+  SceneDescription d;
+  const uint32_t grey = add_material(d, glm::vec3(0.5f));
+  d.meshes.push_back(fanned_floor(2.0f, 100, grey));
+  d.lights.push_back(test::point_light({0, 0, 2}, glm::vec3(1.0f)));
+  const Scene scene = build_scene(d);
+  const float max_edge = 0.5f;
+  const ElementHierarchy h(scene, HierarchyOptions{max_edge, 0});
+  // 16 m² in cells of 0.25 m: about 300 groups, where 4-way splits made 64-256 needles of
+  // each of the 200 triangles (~30k patches).
+  std::printf("fanned floor, %zu triangles: %zu patches (%zu merged)\n", scene.triangles.size(),
+              h.patch_count(), h.merged_patch_count());
+  EXPECT_LT(h.patch_count(), 600u);
+  EXPECT_EQ(antiradiance::estimate_patches(scene, max_edge, false), h.patch_count());
+  double area = 0.0;
+  for (const Patch& p : h.patches()) area += double(h.elements()[p.element].area);
+  EXPECT_NEAR(area, 16.0, 1e-4);
+  // Every point of every needle lands in a patch that holds its piece.
+  const antiradiance::PatchLocator locator(scene, h);
+  Pcg32 rng(3, 5);
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+    for (int s = 0; s < 20; ++s) {
+      float b1 = rng.next_float(), b2 = rng.next_float();
+      if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
+      const uint32_t found = locator.find(t, b1, b2, false);
+      ASSERT_NE(found, antiradiance::PatchLocator::kNone);
+      const Patch& patch = h.patches()[found];
+      const glm::vec3 p = (1.0f - b1 - b2) * scene.triangles[t].p[0] +
+                          b1 * scene.triangles[t].p[1] + b2 * scene.triangles[t].p[2];
+      // Within the patch's bounding sphere (a patch holds the pieces around the point).
+      EXPECT_LE(glm::length(p - h.elements()[patch.element].center),
+                h.elements()[patch.element].radius * 1.001f);
+    }
+  }
 }
 
 TEST(TriangleGrouping, AFlatFloorIsOneGroupPerCellAndEveryTriangleIsInOne) {
