@@ -278,10 +278,12 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   try {
     field = solver_->solve(inputs, context_);
   } catch (const Error& e) {
-    // A scene too large for a hierarchical solver's model (antiradiance at hundreds of
-    // thousands of unclustered triangles) still gets a bake the user can trust: the path
-    // tracer's, whose error the estimate below states, with the reason in the warnings.
-    if (e.status() != BAKEGI_ERROR_OUT_OF_MEMORY || !fallback_ || method_ == "pathtrace") throw;
+    // A scene too large for a hierarchical solver's model, or one its model cannot solve
+    // (antiradiance diverging on a furnished room), still gets a bake the user can trust: the
+    // path tracer's, whose error the estimate below states, with the reason in the warnings.
+    const bool cannot_model =
+        e.status() == BAKEGI_ERROR_OUT_OF_MEMORY || dynamic_cast<const CannotModel*>(&e) != nullptr;
+    if (!cannot_model || !fallback_ || method_ == "pathtrace") throw;
     Settings fallback_settings = settings_;
     if (!settings_.has("samples")) fallback_settings.set("samples", kFallbackSamples);
     report.warn(std::string(e.what()) + ". Baked with the path tracer instead (" +

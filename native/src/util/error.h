@@ -19,4 +19,14 @@ class Error : public std::runtime_error {
   bakegi_status status_;
 };
 
+// A solver's model of this scene is unusable (antiradiance's iteration diverging from its first
+// bounce on): with the setting "fallback" on (the default) the bake job hands the bake to the
+// path tracer, as it does when a method does not fit the memory budget. A solver throws it
+// only when "fallback" is on; otherwise it returns what it has, with a warning.
+class CannotModel : public Error {
+ public:
+  explicit CannotModel(const std::string& message)
+      : Error(BAKEGI_ERROR_INVALID_SCENE, message) {}
+};
+
 }  // namespace bakegi

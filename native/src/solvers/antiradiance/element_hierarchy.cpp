@@ -349,7 +349,7 @@ namespace {
 
 // A triangle whose longest edge is more than this many times its height over that edge is a
 // sliver (equilateral: 1.15; a right isosceles triangle on its hypotenuse: 2).
-constexpr float kSliverAspect = 4.0f;
+constexpr float kSliverAspect = 2.5f;
 
 // Counting stops beyond this many patches (the count then saturates): more than any budget
 // allows, and an absurdly small patch size costs no time to refuse.
@@ -493,12 +493,13 @@ uint64_t PatchCount::hierarchy_bytes(float max_edge, bool include_back_sides) co
                         counts(max_edge).members * sizeof(MemberTriangle));
 }
 
-float PatchCount::max_edge_within_budget(float max_edge, uint64_t max_elements) const {
+float PatchCount::max_edge_within_budget(float max_edge, uint64_t max_elements,
+                                         bool include_back_sides) const {
   check_max_edge(max_edge);
   // Each doubling splits large triangles less and merges small ones into larger cells; once a
   // cell spans the whole scene nothing changes any more.
   const float stop = 4.0f * std::max(scene_.extent(), max_edge);
-  while (elements(max_edge) > max_elements) {
+  while (elements(max_edge, include_back_sides) > max_elements) {
     const float next = max_edge * 2.0f;
     if (!std::isfinite(next) || max_edge > stop) break;
     max_edge = next;

@@ -124,9 +124,11 @@ class PatchCount {
   // Bytes the built hierarchy holds (elements, patches and member triangles, not the solver's
   // bin tables); the build briefly needs about as much again before the patches are ordered.
   uint64_t hierarchy_bytes(float max_edge, bool include_back_sides = true) const;
-  // The smallest max_edge * 2^k (k >= 0) whose hierarchy has at most max_elements elements:
-  // the coarsening to offer when a budget is exceeded. Returns max_edge when it already fits.
-  float max_edge_within_budget(float max_edge, uint64_t max_elements) const;
+  // The smallest max_edge * 2^k (k >= 0) whose hierarchy has at most max_elements elements
+  // (counting back sides as `elements` does): the coarsening to offer when a budget is
+  // exceeded. Returns max_edge when it already fits.
+  float max_edge_within_budget(float max_edge, uint64_t max_elements,
+                               bool include_back_sides = true) const;
 
  private:
   struct Counts {
