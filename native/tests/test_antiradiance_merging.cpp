@@ -247,8 +247,14 @@ TEST(AntiradianceMerging, ElementsFollowThePatchSizeNotTheTessellation) {
     for (const auto& m : h.members(p)) {
       ++covered[m.triangle];
       member_area += double(fine.triangles[m.triangle].area);
-      const glm::vec3 centroid = (m.corners[0] + m.corners[1] + m.corners[2]) / 3.0f;
-      centre_on_member = centre_on_member || centroid == e.center;
+      // On the member's plane and within its bounds (the centre is a point of a member).
+      const glm::vec3 n = fine.triangles[m.triangle].face_normal;
+      const glm::vec3 lo = glm::min(glm::min(m.corners[0], m.corners[1]), m.corners[2]);
+      const glm::vec3 hi = glm::max(glm::max(m.corners[0], m.corners[1]), m.corners[2]);
+      centre_on_member = centre_on_member ||
+                         (std::abs(glm::dot(e.center - m.corners[0], n)) < 1e-5f &&
+                          glm::all(glm::greaterThanEqual(e.center, lo - 1e-5f)) &&
+                          glm::all(glm::lessThanEqual(e.center, hi + 1e-5f)));
       for (const glm::vec3& corner : m.corners) {
         EXPECT_LE(glm::length(corner - e.center), e.radius * (1.0f + 1e-5f));
       }

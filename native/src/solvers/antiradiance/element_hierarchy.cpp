@@ -99,6 +99,30 @@ PatchSeed piece_seed(const Scene& scene, const Piece& piece, uint32_t surface) {
   return seed;
 }
 
+// The point of triangle abc nearest p (Ericson, Real-Time Collision Detection, 5.1.5).
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a,
+                                     const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  }
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
 // One patch for a group of pieces (triangle_grouping.h); appends them to `members`.
 PatchSeed merged_seed(const Scene& scene, const std::vector<Piece>& pieces,
                       std::span<const uint32_t> group, uint32_t surface,
@@ -126,14 +150,21 @@ PatchSeed merged_seed(const Scene& scene, const std::vector<Piece>& pieces,
     albedo_sum += a * glm::dvec3(scene.albedo_at(t, piece.centroid_uv.x, piece.centroid_uv.y));
   }
   const glm::dvec3 mean_centroid = area > 0.0 ? centroid_sum / area : centroid_sum;
-  // The centre: the centroid of the member nearest the mean (first in order on ties).
+  // The centre: the point of the members nearest their area-weighted centroid. On a planar
+  // group that is the centroid itself, whichever way its quads were triangulated (a mirrored
+  // copy of a mesh splits them along the other diagonal and must bake the same); on a curved
+  // one, whose centroid lies inside the object, a point on the surface. `triangle` and
+  // `corners` are the member it lies on (first in order on ties).
   double nearest = std::numeric_limits<double>::infinity();
   for (uint32_t index : group) {
     const Piece& piece = pieces[index];
-    const glm::dvec3 d = glm::dvec3(centroid_of(piece)) - mean_centroid;
-    if (glm::dot(d, d) < nearest) {
-      nearest = glm::dot(d, d);
-      seed.center = centroid_of(piece);
+    const glm::dvec3 q = closest_point_on_triangle(mean_centroid, glm::dvec3(piece.corners[0]),
+                                                   glm::dvec3(piece.corners[1]),
+                                                   glm::dvec3(piece.corners[2]));
+    const double d = glm::dot(q - mean_centroid, q - mean_centroid);
+    if (d < nearest) {
+      nearest = d;
+      seed.center = glm::vec3(q);
       patch.triangle = piece.triangle;
       std::copy(piece.corners, piece.corners + 3, patch.corners);
     }

@@ -75,9 +75,10 @@ struct Patch {
   bool back_side = false;
   // A merged patch (member_count > 0) is the triangles (or sliver pieces)
   // ElementHierarchy::members(*this): its area is theirs, its normals and albedo their
-  // area-weighted means, its centre (Element::center) the centroid of the member nearest to
-  // the group's area-weighted centroid (a point on the surface, which a curved group's mean
-  // is not); `corners` and `triangle` are that member's. Its lobe is their material's.
+  // area-weighted means, its centre (Element::center) the point of the members nearest their
+  // area-weighted centroid (the centroid itself on a planar group; on the surface, where a
+  // curved group's centroid is not); `corners` and `triangle` are the member it lies on. Its
+  // lobe is their material's.
   uint32_t first_member = 0;
   uint32_t member_count = 0;
 };
