@@ -54,8 +54,8 @@ struct GlossyQuad {
     d.lights.push_back(test::point_light({0, 0, 5}, glm::vec3(1.0f)));
     scene = build_scene(d);
     antiradiance::HierarchyOptions options;
-    // Whole triangles: their 0.28 m diagonals are under 0.5 m and over the 0.25 m below
-    // which triangles merge into one patch.
+    // Whole triangles: their 0.28 m diagonals are under 0.5 m and over the 0.125 m below
+    // which triangles group into one patch.
     options.max_edge = 0.5f;
     h = std::make_unique<ElementHierarchy>(scene, options);
   }

@@ -205,10 +205,11 @@ TEST(AntiradianceHierarchy, EstimateEqualsTheBuiltCount) {
     // The default counts a back side for every triangle of the five open wall quads.
     EXPECT_GT(antiradiance::estimate_patches(scene, max_edge), h.patch_count());
   }
-  // Cells of 5 m hold the whole box: the two triangles of each planar quad merge into one
-  // patch (17 quads), and each of the five open wall quads may get a back side.
-  EXPECT_EQ(antiradiance::estimate_patches(scene, 10.0f, false), scene.triangles.size() / 2);
-  EXPECT_EQ(antiradiance::estimate_patches(scene, 10.0f), scene.triangles.size() / 2 + 5);
+  // At 20 m every triangle groups (longest edges up to 2.83 m, under 20 / 4) and cells of 10 m
+  // hold the whole box: the two triangles of each planar quad are one patch (17 quads), and
+  // each of the five open wall quads may get a back side.
+  EXPECT_EQ(antiradiance::estimate_patches(scene, 20.0f, false), scene.triangles.size() / 2);
+  EXPECT_EQ(antiradiance::estimate_patches(scene, 20.0f), scene.triangles.size() / 2 + 5);
 }
 
 // A right triangle with legs 1 (longest edge sqrt 2) and threshold 0.5 is split twice

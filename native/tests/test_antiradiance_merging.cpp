@@ -216,7 +216,7 @@ TEST(TriangleGrouping, GroupsKeepToOneSurfaceAndANormalCone) {
 
 TEST(AntiradianceMerging, ElementsFollowThePatchSizeNotTheTessellation) {
   const Scene coarse = build_scene(tessellated_room(1));
-  const Scene fine = build_scene(tessellated_room(48));  // 27,648 + 20,480 triangles
+  const Scene fine = build_scene(tessellated_room(64));  // 49,152 + 20,480 triangles
   const float max_edge = antiradiance::default_max_edge(fine);
   const ElementHierarchy h(fine, HierarchyOptions{max_edge, 0});
   const ElementHierarchy h_coarse(coarse, HierarchyOptions{max_edge, 0});
@@ -225,7 +225,8 @@ TEST(AntiradianceMerging, ElementsFollowThePatchSizeNotTheTessellation) {
               max_edge, fine.triangles.size(), h.patch_count(), h.merged_patch_count(),
               h.member_count(), h_coarse.patch_count());
   // The walls are the coarse room's patches at most a few times over (cells of half the
-  // patch size), the sphere a few hundred: far from the 48k triangles.
+  // patch size), the sphere a few hundred: far from the 70k triangles (all under a quarter of
+  // the patch size, so all group).
   EXPECT_LT(h.patch_count(), fine.triangles.size() / 10);
   EXPECT_EQ(antiradiance::estimate_patches(fine, max_edge, false), h.patch_count());
   EXPECT_EQ(antiradiance::estimate_hierarchy_bytes(fine, max_edge, false), h.memory_bytes());
@@ -338,7 +339,7 @@ TEST(AntiradianceMerging, ATessellatedRoomAgreesWithThePathTracer) {
     normals.push_back(n);
   }
   const BakePoints points = test::make_points(positions, normals);
-  test::Baker baker(tessellated_room(48));
+  test::Baker baker(tessellated_room(64));
   test::BakeOptions reference;
   reference.samples = 1024;
   const std::vector<glm::vec3> expected = baker.bake(points, reference);

@@ -378,9 +378,12 @@ int subdivision_level(float longest_edge, float max_edge) {
 
 namespace {
 
+// Triangles with a longest edge up to this fraction of the patch size group.
+constexpr float kGroupedEdge = 0.25f;
+
 // A triangle whose longest edge is more than this many times its height over that edge is a
 // sliver (equilateral: 1.15; a right isosceles triangle on its hypotenuse: 2).
-constexpr float kSliverAspect = 2.5f;
+constexpr float kSliverAspect = 4.0f;
 
 // Counting stops beyond this many patches (the count then saturates): more than any budget
 // allows, and an absurdly small patch size costs no time to refuse.
@@ -412,7 +415,10 @@ PatchPlan plan_patches(const Scene& scene, float max_edge) {
   };
   for (uint32_t i = 0; i < scene.triangles.size() && !plan.saturated; ++i) {
     const Triangle& t = scene.triangles[i];
-    if (longest_edge(t) <= cell) {
+    // Only triangles well under the patch size group: one a little smaller is as good a
+    // patch on its own (grouping the suite's 12,960-triangle Cornell box at its 0.11 m
+    // triangles took it from 4.0% to 5.0%, and a maze of 0.1 m walls from 75% to 115%).
+    if (longest_edge(t) <= kGroupedEdge * max_edge) {
       Piece piece;
       piece.triangle = i;
       piece.area = t.area;
