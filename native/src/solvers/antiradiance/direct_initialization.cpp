@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "direct/surface_point.h"
+#include "scene/triangle_geometry.h"
 #include "solvers/antiradiance/push_pull.h"
 #include "util/error.h"
 #include "util/random.h"
@@ -128,21 +129,12 @@ SurfacePoint sample_point(const Scene& scene, const ElementHierarchy& hierarchy,
   const Triangle& t = scene.triangles[chosen->triangle];
   const glm::vec2 b = sample_triangle_barycentrics(rng.next_float(), rng.next_float());
   SurfacePoint x;
-  x.position = (1.0f - b.x - b.y) * chosen->corners[0] + b.x * chosen->corners[1] +
-               b.y * chosen->corners[2];
+  x.position = at_barycentrics(chosen->corners, b);
   // A back-side patch gathers on the other side of the same triangles.
   const float side = patch.back_side ? -1.0f : 1.0f;
   x.geometric_normal = side * t.face_normal;
   // The shading normal where the point lies in its input triangle (a member may be a piece).
-  const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0], d = x.position - t.p[0];
-  const float a11 = glm::dot(e1, e1), a12 = glm::dot(e1, e2), a22 = glm::dot(e2, e2);
-  const float det = a11 * a22 - a12 * a12;
-  glm::vec2 uv(1.0f / 3.0f);
-  if (std::abs(det) > 0.0f) {
-    uv = glm::vec2(a22 * glm::dot(d, e1) - a12 * glm::dot(d, e2),
-                   a11 * glm::dot(d, e2) - a12 * glm::dot(d, e1)) / det;
-  }
-  const glm::vec3 shading = (1.0f - uv.x - uv.y) * t.n[0] + uv.x * t.n[1] + uv.y * t.n[2];
+  const glm::vec3 shading = at_barycentrics(t.n, barycentrics_of(t.p, x.position));
   const float length = glm::length(shading);
   x.shading_normal = length > 1e-6f ? side * shading / length : x.geometric_normal;
   if (glm::dot(x.shading_normal, x.geometric_normal) <= 0.0f) x.shading_normal = x.geometric_normal;

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "scene/phong_lobe.h"
+#include "scene/triangle_geometry.h"
 #include "solvers/antiradiance/back_sides.h"
 #include "solvers/antiradiance/triangle_bisection.h"
 #include "solvers/antiradiance/triangle_grouping.h"
@@ -73,11 +74,6 @@ glm::vec3 centroid_of(const Piece& piece) {
   return (piece.corners[0] + piece.corners[1] + piece.corners[2]) / 3.0f;
 }
 
-// The interpolated shading normal of t at barycentrics uv (unnormalized).
-glm::vec3 shading_at(const Triangle& t, glm::vec2 uv) {
-  return (1.0f - uv.x - uv.y) * t.n[0] + uv.x * t.n[1] + uv.y * t.n[2];
-}
-
 // One sliver piece as a patch on its own.
 PatchSeed piece_seed(const Scene& scene, const Piece& piece, uint32_t surface) {
   const Triangle& t = scene.triangles[piece.triangle];
@@ -85,7 +81,7 @@ PatchSeed piece_seed(const Scene& scene, const Piece& piece, uint32_t surface) {
   Patch& patch = seed.patch;
   std::copy(piece.corners, piece.corners + 3, patch.corners);
   patch.normal = t.face_normal;
-  const glm::vec3 shading = shading_at(t, piece.centroid_uv);
+  const glm::vec3 shading = at_barycentrics(t.n, piece.centroid_uv);
   const float length = glm::length(shading);
   patch.shading_normal = length > 1e-6f ? shading / length : patch.normal;
   patch.albedo = scene.albedo_at(t, piece.centroid_uv.x, piece.centroid_uv.y);
@@ -97,30 +93,6 @@ PatchSeed piece_seed(const Scene& scene, const Piece& piece, uint32_t surface) {
   seed.center = centroid_of(piece);
   seed.area = piece.area;
   return seed;
-}
-
-// The point of triangle abc nearest p (Ericson, Real-Time Collision Detection, 5.1.5).
-glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a,
-                                     const glm::dvec3& b, const glm::dvec3& c) {
-  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-  const glm::dvec3 bp = p - b;
-  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
-  const glm::dvec3 cp = p - c;
-  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  }
-  const double denominator = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
 // One patch for a group of pieces (triangle_grouping.h); appends them to `members`.
@@ -146,7 +118,7 @@ PatchSeed merged_seed(const Scene& scene, const std::vector<Piece>& pieces,
     area += a;
     centroid_sum += a * glm::dvec3(centroid_of(piece));
     normal_sum += a * glm::dvec3(t.face_normal);
-    shading_sum += a * glm::dvec3(shading_at(t, piece.centroid_uv));
+    shading_sum += a * glm::dvec3(at_barycentrics(t.n, piece.centroid_uv));
     albedo_sum += a * glm::dvec3(scene.albedo_at(t, piece.centroid_uv.x, piece.centroid_uv.y));
   }
   const glm::dvec3 mean_centroid = area > 0.0 ? centroid_sum / area : centroid_sum;
@@ -205,9 +177,7 @@ class TriangleSubdivider {
   void run() { split({0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, level_); }
 
  private:
-  glm::vec3 position(glm::vec2 b) const {
-    return (1.0f - b.x - b.y) * triangle_.p[0] + b.x * triangle_.p[1] + b.y * triangle_.p[2];
-  }
+  glm::vec3 position(glm::vec2 b) const { return at_barycentrics(triangle_.p, b); }
 
   void split(glm::vec2 a, glm::vec2 b, glm::vec2 c, int depth) {
     if (depth == 0) {
@@ -232,8 +202,7 @@ class TriangleSubdivider {
     patch.normal = triangle_.face_normal;
     // The mean of the linearly interpolated shading normal over the patch is its value at
     // the centroid.
-    const glm::vec3 shading = (1.0f - centroid.x - centroid.y) * triangle_.n[0] +
-                              centroid.x * triangle_.n[1] + centroid.y * triangle_.n[2];
+    const glm::vec3 shading = at_barycentrics(triangle_.n, centroid);
     const float shading_length = glm::length(shading);
     patch.shading_normal = shading_length > 1e-6f ? shading / shading_length : patch.normal;
     patch.albedo = scene_.albedo_at(triangle_, centroid.x, centroid.y);
@@ -448,10 +417,7 @@ PatchPlan plan_patches(const Scene& scene, float max_edge) {
       Piece piece;
       piece.triangle = i;
       piece.code = cut.code;
-      for (int c = 0; c < 3; ++c) {
-        const glm::vec2 b = cut.corners[c];
-        piece.corners[c] = (1.0f - b.x - b.y) * t.p[0] + b.x * t.p[1] + b.y * t.p[2];
-      }
+      for (int c = 0; c < 3; ++c) piece.corners[c] = at_barycentrics(t.p, cut.corners[c]);
       piece.area = float(double(t.area) / std::ldexp(1.0, cut.depth));
       piece.centroid_uv = (cut.corners[0] + cut.corners[1] + cut.corners[2]) / 3.0f;
       add_piece(piece);

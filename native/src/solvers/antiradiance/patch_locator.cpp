@@ -4,21 +4,12 @@
 #include <cmath>
 
 #include "scene/scene.h"
+#include "scene/triangle_geometry.h"
 #include "solvers/antiradiance/triangle_bisection.h"
 
 namespace bakegi::antiradiance {
 
 namespace {
-
-// Barycentrics (b1, b2) of p in triangle t, by least squares in the triangle's plane.
-glm::vec2 barycentrics(const Triangle& t, const glm::vec3& p) {
-  const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0], d = p - t.p[0];
-  const float a = glm::dot(e1, e1), b = glm::dot(e1, e2), c = glm::dot(e2, e2);
-  const float r1 = glm::dot(d, e1), r2 = glm::dot(d, e2);
-  const float det = a * c - b * b;
-  if (!(std::abs(det) > 0.0f)) return glm::vec2(1.0f / 3.0f);
-  return glm::vec2((c * r1 - b * r2) / det, (a * r2 - b * r1) / det);
-}
 
 // The 4-way lattice cell of (u, v) at `level`: 15 + 15 bits of cell and 1 of orientation.
 uint32_t lattice_code(float b1, float b2, int level) {
@@ -60,7 +51,7 @@ PatchLocator::PatchLocator(const Scene& scene, const ElementHierarchy& hierarchy
     // depend on the order in which the hierarchy stores a triangle's patches.
     const Triangle& t = scene.triangles[patch.triangle];
     const glm::vec3 centroid = (patch.corners[0] + patch.corners[1] + patch.corners[2]) / 3.0f;
-    const glm::vec2 uv = barycentrics(t, centroid);
+    const glm::vec2 uv = barycentrics_of(t.p, centroid);
     patches_[key(patch.triangle, patch.back_side,
                  lattice_code(uv.x, uv.y, patch.subdivision_level))] = uint32_t(p);
     schemes_[patch.triangle] = patch.subdivision_level;

@@ -2,13 +2,11 @@
 
 #include <algorithm>
 
+#include "scene/triangle_geometry.h"
+
 namespace bakegi::antiradiance {
 
 namespace {
-
-glm::vec3 world(const Triangle& t, glm::vec2 b) {
-  return (1.0f - b.x - b.y) * t.p[0] + b.x * t.p[1] + b.y * t.p[2];
-}
 
 // The index i of the edge (corner i, corner i + 1) to cut, or -1 for a piece. Squared world
 // lengths, the first longest on ties, so that every caller makes the same cuts.
@@ -17,7 +15,7 @@ int edge_to_cut(const Triangle& t, const glm::vec2 (&c)[3], float piece_size, in
   float longest = -1.0f;
   int edge = -1;
   for (int i = 0; i < 3; ++i) {
-    const glm::vec3 d = world(t, c[(i + 1) % 3]) - world(t, c[i]);
+    const glm::vec3 d = at_barycentrics(t.p, c[(i + 1) % 3]) - at_barycentrics(t.p, c[i]);
     const float length2 = glm::dot(d, d);
     if (length2 > longest) {
       longest = length2;

@@ -14,7 +14,7 @@ constexpr float kGridOffsetInCells = 0.381966f;
 struct Keyed {
   uint32_t mesh, material;
   int64_t cell[3];
-  uint32_t triangle;
+  uint32_t candidate;  // index into the candidates: breaks ties, so the order is total
 
   auto key() const { return std::tie(mesh, material, cell[0], cell[1], cell[2]); }
 };
@@ -42,8 +42,8 @@ TriangleGroups group_candidates(std::span<const GroupCandidate> candidates, glm:
                 uint32_t(i)};
   }
   std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-    return std::tie(a.mesh, a.material, a.cell[0], a.cell[1], a.cell[2], a.triangle) <
-           std::tie(b.mesh, b.material, b.cell[0], b.cell[1], b.cell[2], b.triangle);
+    return std::tie(a.mesh, a.material, a.cell[0], a.cell[1], a.cell[2], a.candidate) <
+           std::tie(b.mesh, b.material, b.cell[0], b.cell[1], b.cell[2], b.candidate);
   });
   // Per cell: greedy normal cones. `open` holds the cell's candidates not yet in a group.
   std::vector<uint32_t> open, rest;
@@ -56,7 +56,7 @@ TriangleGroups group_candidates(std::span<const GroupCandidate> candidates, glm:
     size_t end = begin + 1;
     while (end < keyed.size() && keyed[end].key() == keyed[begin].key()) ++end;
     open.clear();
-    for (size_t i = begin; i < end; ++i) open.push_back(keyed[i].triangle);  // ascending
+    for (size_t i = begin; i < end; ++i) open.push_back(keyed[i].candidate);  // ascending
     while (!open.empty()) {
       const glm::vec3 seed = candidates[open.front()].normal;
       Group group{open.front(), {}};
