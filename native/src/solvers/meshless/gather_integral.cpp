@@ -6,6 +6,7 @@
 #include "scene/phong_lobe.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
+#include "solvers/meshless/level_completion.h"
 #include "solvers/meshless/visible_basis.h"
 #include "util/random.h"
 #include "util/sampling.h"
@@ -38,7 +39,8 @@ std::vector<glm::vec3> glossy_as_diffuse(const Scene& scene) {
 uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& senders,
                       const glm::vec3& position, const glm::vec3& normal, uint64_t receiver,
                       const GatherSettings& settings, SenderAccumulator& out,
-                      std::vector<BasisValue>& scratch, uint64_t* visibility_rays) {
+                      std::vector<BasisValue>& scratch, uint64_t* visibility_rays,
+                      uint64_t* hits_completed) {
   const uint32_t rays = std::max(1u, settings.rays);
   const uint32_t side = static_cast<uint32_t>(std::sqrt(static_cast<double>(rays)));
   const uint32_t stratified = side * side;
@@ -48,7 +50,7 @@ uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHi
   const glm::vec3 origin = position + normal * settings.ray_epsilon;
   const RayTracer* visibility = settings.visibility ? &tracer : nullptr;
   std::vector<BasisValue> candidates;
-  uint64_t occlusion_rays = 0;
+  uint64_t occlusion_rays = 0, completed_hits = 0;
 
   for (uint32_t r = 0; r < rays; ++r) {
     float u1 = rng.next_float(), u2 = rng.next_float();
@@ -66,17 +68,21 @@ uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHi
     const SurfacePoint y = surface_at_hit(scene, hit, direction);
     // ω̄ points from the receiver towards the sender (where the light comes from).
     const glm::vec3 reflected = albedo * (kInvPi * ray_weight);
+    scratch.clear();
     for (uint32_t level = 0; level < senders.level_count(); ++level) {
-      scratch.clear();
       gather_visible_basis(senders, visibility, level, y.position, y.shading_normal, scratch,
                            candidates, occlusion_rays);
-      for (const BasisValue& b : scratch) {
-        LinkValue& link = out.at(b.index);
-        for (int c = 0; c < 3; ++c) link[c] += (reflected[c] * b.value) * direction;
-      }
+    }
+    if (settings.completion != nullptr) {
+      if (complete_missing_levels(senders, *settings.completion, scratch) > 0) ++completed_hits;
+    }
+    for (const BasisValue& b : scratch) {
+      LinkValue& link = out.at(b.index);
+      for (int c = 0; c < 3; ++c) link[c] += (reflected[c] * b.value) * direction;
     }
   }
   if (visibility_rays != nullptr) *visibility_rays += occlusion_rays;
+  if (hits_completed != nullptr) *hits_completed += completed_hits;
   return rays;
 }
 

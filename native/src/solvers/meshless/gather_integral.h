@@ -25,6 +25,8 @@ class RayTracer;
 
 namespace bakegi::meshless {
 
+struct VisibleRelations;
+
 // Dense accumulator over the senders with a list of the ones touched, reused across
 // receivers by one thread (clearing costs only what was touched).
 class SenderAccumulator {
@@ -63,6 +65,11 @@ struct GatherSettings {
   // per level (visible_basis.h): a coarse sender centred behind a wall does not hand its
   // coefficient to surfaces on this side of it. One occlusion ray per candidate function.
   bool visibility = true;
+  // The senders' visible coarser relations (visible_basis.h, of a hierarchy whose first
+  // levels are the senders): a hit that sees a finer sender level but none of a coarser one
+  // takes the finest level it sees with those points' coarser relations instead
+  // (level_completion.h). Null: a level the hit does not see adds nothing.
+  const VisibleRelations* completion = nullptr;
   // Per material: the glossy lobe's hemispherical albedo (ρ_g times
   // phong_hemispherical_albedo), added to the diffuse albedo at a hit. The method transports
   // diffuse light only; folding a lobe keeps its energy and loses its direction. Null: lobes
@@ -75,10 +82,12 @@ std::vector<glm::vec3> glossy_as_diffuse(const Scene& scene);
 
 // Adds T'_ij for every sender j of `senders` (the first sender levels of the basis, see
 // TransferOperator::sender_count) into `out`; returns the number of hemisphere rays cast
-// (`visibility_rays`, if given, gets the occlusion rays of the visibility test added).
+// (`visibility_rays`, if given, gets the occlusion rays of the visibility test added;
+// `hits_completed` the hits that had a level completed).
 uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHierarchy& senders,
                       const glm::vec3& position, const glm::vec3& normal, uint64_t receiver,
                       const GatherSettings& settings, SenderAccumulator& out,
-                      std::vector<BasisValue>& scratch, uint64_t* visibility_rays = nullptr);
+                      std::vector<BasisValue>& scratch, uint64_t* visibility_rays = nullptr,
+                      uint64_t* hits_completed = nullptr);
 
 }  // namespace bakegi::meshless

@@ -48,6 +48,10 @@ struct MeshlessPrecomputation : Precomputation,
   // Per sender: the cosine-weighted fraction of its hemisphere open to the world
   // (sky_visibility.h), so that the world's direct light is exact for any world colour.
   std::vector<float> sender_sky_visibility;
+  // The coarser relations of `all` that Eq. 17 used (visible_basis.h, the pull part empty):
+  // bake points complete the levels they cannot see with them (level_completion.h). Null
+  // without the visibility test.
+  std::shared_ptr<const meshless::VisibleRelations> receiver_relations;
   MeshlessStatistics statistics;
 
   // The evaluation weights of the last bake points evaluated, so that relighting the same
@@ -83,6 +87,7 @@ struct MeshlessPrecomputation : Precomputation,
     std::lock_guard<std::mutex> lock(weights_mutex_);
     return all.memory_bytes() + senders.memory_bytes() + transfer.memory_bytes() +
            sender_sky_visibility.size() * sizeof(float) +
+           (receiver_relations ? receiver_relations->memory_bytes() : 0) +
            (weights_ ? weights_->memory_bytes() : 0) +
            (relations_ ? relations_->memory_bytes() : 0);
   }

@@ -183,13 +183,16 @@ void MeshlessField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
   context.report().add_count("meshless_evaluation_weights_reused", weights ? 1 : 0);
   if (!weights) {
     auto computed = std::make_shared<EvaluationWeights>();
-    const VisibleEvaluationStats stats = visible_weights(
-        system_->all, visibility_, points.positions, points.normals, *computed, &context);
+    const VisibleEvaluationStats stats =
+        visible_weights(system_->all, visibility_, points.positions, points.normals, *computed,
+                        &context, visibility_ ? system_->receiver_relations.get() : nullptr);
     context.report().add_count("rays", stats.rays);
     context.report().add_count("meshless_visibility_rays", stats.rays);
     context.report().add_count("meshless_visibility_blocked", stats.blocked);
     context.report().add_count("meshless_visibility_skipped_levels", stats.levels_skipped);
     context.report().add_count("meshless_visibility_blind_points", stats.points_blind);
+    context.report().add_count("meshless_completed_levels", stats.levels_completed);
+    context.report().add_count("meshless_uncovered_points", stats.uncovered);
     system_->keep_weights(key, computed);
     weights = std::move(computed);
   }
@@ -373,8 +376,12 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   refinement.link_budget_bytes =
       settings.memory_budget_bytes > used ? (settings.memory_budget_bytes - used) / 2 : 1;
   RefinementStats refinement_stats;
-  const TransferOperator single = refine_transfer(
-      scene, inputs.tracer, system->all, system->senders, refinement, context, refinement_stats);
+  auto receiver_relations = std::make_shared<VisibleRelations>();
+  const TransferOperator single =
+      refine_transfer(scene, inputs.tracer, system->all, system->senders, refinement, context,
+                      refinement_stats, receiver_relations.get());
+  if (settings.visibility) system->receiver_relations = std::move(receiver_relations);
+  report.add_count("meshless_gather_hits_completed", refinement_stats.hits_completed);
   const double refine_seconds = seconds_since(start);
   report.add_seconds("meshless_refinement", refine_seconds);
 

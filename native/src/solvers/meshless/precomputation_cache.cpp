@@ -20,7 +20,8 @@ constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'M'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
 constexpr size_t kTrailerBytes = 8;
 constexpr uint32_t kStatistics = section_tag("STAT"), kPoints = section_tag("PNTS"),
-                   kTransfer = section_tag("XFER"), kSkyVisibility = section_tag("SKYV");
+                   kTransfer = section_tag("XFER"), kSkyVisibility = section_tag("SKYV"),
+                   kReceiverRelations = section_tag("RREL");
 constexpr size_t kPointBytes = 3 * 4 + 3 * 4 + 4 + 4;
 
 // The serializers below write every member; a member added to these types must be added
@@ -146,6 +147,57 @@ std::vector<float> read_sky_visibility(ByteReader& r, size_t expected) {
     if (!(v >= 0.0f && v <= 1.0f)) r.fail("corrupt: sky visibility outside [0, 1]");
   }
   return visibility;
+}
+
+// The receivers' coarser relations (level_completion.h): a point count (0: none kept), the
+// row offsets, then (index, weight) per entry.
+void write_receiver_relations(ByteWriter& w, const VisibleRelations* relations) {
+  const size_t at = w.begin_section(kReceiverRelations);
+  const size_t rows = relations ? relations->coarser_offsets.size() - 1 : 0;
+  w.u64(rows);
+  if (rows > 0) {
+    for (uint64_t offset : relations->coarser_offsets) w.u64(offset);
+    for (const BasisValue& v : relations->coarser) {
+      w.u32(v.index);
+      w.f32(v.value);
+    }
+  }
+  w.end_section(at);
+}
+
+// Null when the file kept none. Every entry must name a point of a coarser level than its row's.
+std::shared_ptr<const VisibleRelations> read_receiver_relations(ByteReader& r,
+                                                                const BasisHierarchy& all) {
+  const uint64_t rows = r.u64();
+  if (rows == 0) return nullptr;
+  if (rows != all.size()) {
+    r.fail("corrupt: receiver relations for " + std::to_string(rows) + " of " +
+           std::to_string(all.size()) + " points");
+  }
+  auto relations = std::make_shared<VisibleRelations>();
+  r.array(relations->coarser_offsets, rows + 1, 8, "receiver relation offsets",
+          [&] { return r.u64(); });
+  if (relations->coarser_offsets.front() != 0) r.fail("corrupt: receiver relation offsets");
+  for (size_t i = 0; i < rows; ++i) {
+    if (relations->coarser_offsets[i + 1] < relations->coarser_offsets[i]) {
+      r.fail("corrupt: receiver relation offsets decrease");
+    }
+  }
+  r.array(relations->coarser, relations->coarser_offsets.back(), 8, "receiver relations", [&] {
+    BasisValue v;
+    v.index = r.u32();
+    v.value = r.f32();
+    return v;
+  });
+  for (uint32_t j = 0; j < rows; ++j) {
+    for (const BasisValue& v : relations->coarser_of(j)) {
+      if (v.index >= all.size() || all.point(v.index).level >= all.point(j).level ||
+          !(v.value >= 0.0f && v.value <= 1.0f)) {
+        r.fail("corrupt: a receiver relation outside the coarser levels or [0, 1]");
+      }
+    }
+  }
+  return relations;
 }
 
 std::vector<uint64_t> read_u64s(ByteReader& r, const char* what) {
@@ -300,6 +352,7 @@ std::vector<uint8_t> encode_precomputation(const MeshlessPrecomputation& precomp
   write_points(w, precomputation.all);
   write_transfer(w, precomputation.transfer);
   write_sky_visibility(w, precomputation.sender_sky_visibility);
+  write_receiver_relations(w, precomputation.receiver_relations.get());
   w.patch_u64(payload_size_at, w.bytes.size() - kHeaderBytes);
   w.u64(fnv1a64(w.bytes));
   return std::move(w.bytes);
@@ -376,6 +429,9 @@ std::shared_ptr<MeshlessPrecomputation> decode_precomputation(std::span<const ui
   end = open_section(r, kSkyVisibility, "sky visibility");
   precomputation->sender_sky_visibility = read_sky_visibility(r, sender_count);
   close_section(r, end, "sky visibility");
+  end = open_section(r, kReceiverRelations, "receiver relations");
+  precomputation->receiver_relations = read_receiver_relations(r, precomputation->all);
+  close_section(r, end, "receiver relations");
   if (r.left() != 0) fail("corrupt: unexpected bytes after the last section");
   precomputation->statistics = std::move(statistics);
   return precomputation;

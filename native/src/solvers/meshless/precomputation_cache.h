@@ -40,8 +40,9 @@ namespace bakegi::meshless {
 // Bump when the layout changes or when what the precomputation computes changes (placement,
 // refinement, bounces) so that files made by older code are never loaded.
 // 2: glossy lobes fold into T; 3: levels_reduced in the statistics; 4: the senders' sky
-// visibility (SKYV).
-inline constexpr uint32_t kPrecomputationCacheVersion = 4;
+// visibility (SKYV); 5: gather hits complete blind sender levels, and the receivers' coarser
+// relations (RREL) for completing them at bake points.
+inline constexpr uint32_t kPrecomputationCacheVersion = 5;
 
 struct CacheKey {
   uint64_t high = 0, low = 0;

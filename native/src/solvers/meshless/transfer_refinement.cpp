@@ -22,6 +22,7 @@ struct ThreadScratch {
   SenderAccumulator accumulator;
   std::vector<BasisValue> basis;
   uint64_t visibility_rays = 0;
+  uint64_t hits_completed = 0;
 };
 
 // Computes receiver i's links (Eqs. 16, 17) and keeps the significant ones (Fig. 5).
@@ -32,8 +33,11 @@ uint64_t refine_receiver(const Scene& scene, const RayTracer& tracer, const Basi
   SenderAccumulator& acc = scratch.accumulator;
   acc.clear();
   const BasisPoint& x = all.point(receiver);
-  const uint64_t rays = gather_links(scene, tracer, senders, x.position, x.normal, receiver,
-                                     settings.gather, acc, scratch.basis, &scratch.visibility_rays);
+  GatherSettings gather = settings.gather;
+  if (gather.visibility) gather.completion = &relations;
+  const uint64_t rays = gather_links(scene, tracer, senders, x.position, x.normal, receiver, gather,
+                                     acc, scratch.basis, &scratch.visibility_rays,
+                                     &scratch.hits_completed);
   // Eq. 17: what coarser receivers already deliver at x_i is not this receiver's to carry.
   // With visibility, "coarser receivers" are those x_i sees (visible_basis.h), the same ones
   // the evaluation at bake points uses, so F_L(x_i) reproduces T'_i there.
@@ -75,7 +79,7 @@ uint64_t refine_receiver(const Scene& scene, const RayTracer& tracer, const Basi
 TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
                                  const BasisHierarchy& all, const BasisHierarchy& senders,
                                  const RefinementSettings& settings, JobContext& context,
-                                 RefinementStats& stats) {
+                                 RefinementStats& stats, VisibleRelations* receiver_relations) {
   if (senders.size() == 0 || senders.size() > all.size() ||
       senders.level_count() > all.level_count()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
@@ -87,8 +91,9 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
   stats = RefinementStats{};
   stats.potential_links = static_cast<uint64_t>(all.size()) * senders.size();
 
-  // The receivers' coarser relations for Eq. 17 (the pull part is unused here).
-  const VisibleRelations relations =
+  // The receivers' coarser relations for Eq. 17 and, through their sender part, for completing
+  // the sender levels a gather hit cannot see (level_completion.h). The pull part is unused.
+  VisibleRelations relations =
       visible_relations(all, settings.gather.visibility ? &tracer : nullptr, &context);
   stats.visibility_rays = relations.rays;
 
@@ -145,7 +150,15 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
     bytes = op.memory_bytes();
     current = std::move(next);
   }
-  for (const ThreadScratch& local : scratch) stats.visibility_rays += local.visibility_rays;
+  for (const ThreadScratch& local : scratch) {
+    stats.visibility_rays += local.visibility_rays;
+    stats.hits_completed += local.hits_completed;
+  }
+  if (receiver_relations != nullptr) {
+    *receiver_relations = std::move(relations);
+    receiver_relations->pull = {};
+    receiver_relations->pull_offsets = {};
+  }
   return op;
 }
 

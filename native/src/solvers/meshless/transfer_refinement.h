@@ -20,6 +20,7 @@
 #include "solvers/meshless/basis_hierarchy.h"
 #include "solvers/meshless/gather_integral.h"
 #include "solvers/meshless/transfer_links.h"
+#include "solvers/meshless/visible_basis.h"
 
 namespace bakegi {
 struct Scene;
@@ -44,6 +45,7 @@ struct RefinementStats {
   std::vector<uint64_t> links_per_level;      // links kept, by receiver level
   uint64_t rays = 0;                          // hemisphere rays of Eq. 16
   uint64_t visibility_rays = 0;  // occlusion rays of the visibility-aware basis (visible_basis.h)
+  uint64_t hits_completed = 0;   // gather hits with a sender level completed (level_completion.h)
   uint64_t links = 0;
   uint64_t potential_links = 0;  // all receivers x all senders (Table 1's denominator)
   int stopped_at_level = -1;     // >= 0 when the budget stopped refinement before this level
@@ -51,9 +53,12 @@ struct RefinementStats {
 
 // `all` holds every receiver level; `senders` the first levels of the same points (indices
 // [0, senders.size()) agree). Cancellable; reports progress of the stage.
+// `receiver_relations` (optional) gets the coarser relations of `all` that Eq. 17 used (the
+// pull part empty), for completing blind levels at bake points (level_completion.h).
 TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
                                  const BasisHierarchy& all, const BasisHierarchy& senders,
                                  const RefinementSettings& settings, JobContext& context,
-                                 RefinementStats& stats);
+                                 RefinementStats& stats,
+                                 VisibleRelations* receiver_relations = nullptr);
 
 }  // namespace bakegi::meshless

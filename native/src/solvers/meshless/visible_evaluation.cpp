@@ -13,6 +13,7 @@
 
 #include "scene/lifted_visibility.h"
 #include "scene/ray_tracer.h"
+#include "solvers/meshless/level_completion.h"
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/random.h"
@@ -74,7 +75,8 @@ void EvaluationWeights::apply(std::span<const float> coefficients, uint32_t chan
 VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTracer* tracer,
                                        std::span<const glm::vec3> positions,
                                        std::span<const glm::vec3> normals,
-                                       EvaluationWeights& weights, JobContext* job) {
+                                       EvaluationWeights& weights, JobContext* job,
+                                       const VisibleRelations* completion) {
   if (normals.size() != positions.size()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "meshless visible evaluation: positions and normals sizes disagree");
@@ -85,7 +87,7 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
   // thread count.
   std::vector<std::vector<BasisValue>> block_entries(blocks);
   std::vector<uint64_t> row_sizes(positions.size(), 0);
-  std::atomic<uint64_t> rays{0}, blocked{0}, skipped{0}, blind{0}, uncovered{0};
+  std::atomic<uint64_t> rays{0}, blocked{0}, skipped{0}, blind{0}, uncovered{0}, completed{0};
   std::atomic<size_t> done{0};
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, blocks, 1), [&](const tbb::blocked_range<size_t>& block_range) {
@@ -95,7 +97,7 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
           std::vector<BasisValue> candidates, seen_row, all_row;
           std::vector<char> visible;
           uint64_t local_rays = 0, local_blocked = 0, local_skipped = 0, local_blind = 0,
-                   local_uncovered = 0;
+                   local_uncovered = 0, local_completed = 0;
           const size_t end = std::min(positions.size(), (block + 1) * kBlock);
           for (size_t q = block * kBlock; q < end; ++q) {
             const glm::vec3& x = positions[q];
@@ -144,11 +146,16 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
               }
             }
             if (!covered) ++local_uncovered;
-            // A level none of whose functions the point sees adds nothing (its light does not
-            // reach the point). A point that sees no function of any level gets the unblocked
-            // value scaled by how open its surroundings are (see the header).
+            // A level none of whose functions the point sees adds nothing of its own (its light
+            // does not reach the point); below a level it sees, the completion gives it what
+            // that level's coefficients were made the differences from (level_completion.h).
+            // A point that sees no function of any level gets the unblocked value scaled by
+            // how open its surroundings are (see the header).
             if (sees_any) {
               local_skipped += blind_levels;
+              if (completion != nullptr) {
+                local_completed += complete_missing_levels(basis, *completion, seen_row);
+              }
             } else if (covered) {
               ++local_blind;
               const float open =
@@ -168,6 +175,7 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
           skipped += local_skipped;
           blind += local_blind;
           uncovered += local_uncovered;
+          completed += local_completed;
           const size_t finished = done.fetch_add(end - block * kBlock) + (end - block * kBlock);
           if (job != nullptr) job->set_stage_progress(double(finished) / double(positions.size()));
         }
@@ -188,6 +196,7 @@ VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTra
   stats.levels_skipped = skipped.load();
   stats.points_blind = blind.load();
   stats.uncovered = size_t(uncovered.load());
+  stats.levels_completed = completed.load();
   return stats;
 }
 

@@ -15,7 +15,10 @@
 // box these are the floor corners under the boxes: every coarse function there sits on the
 // lit floor outside, and using their unblocked value instead, as the antiradiance splat does
 // for its single level, left those corners at 55% of the floor's mean; measured 13.5% against
-// 12.4% error at levels=4). A point that sees no candidate of any level gets the unblocked
+// 12.4% error at levels=4). Below a level the point does see, such a level is completed
+// through that level's points (level_completion.h: the coefficients the point sees are
+// differences from what those points saw, so without it the bulk of the light was lost; on the
+// living room's sofas about 30%). A point that sees no candidate of any level gets the unblocked
 // value scaled by its openness: the fraction of 16 cosine-weighted rays that travel farther
 // than the smallest support radius among its candidates. In a gap narrower than the basis
 // (1 cm behind a bookshelf standing off a wall, under a board resting on another) that is
@@ -45,6 +48,8 @@ class RayTracer;
 
 namespace bakegi::meshless {
 
+struct VisibleRelations;
+
 inline constexpr float kLiftOfRadius = 0.01f;     // of the basis function's radius r_j
 inline constexpr float kLiftPerDistance = 0.15f;  // of the point-to-center distance
 
@@ -53,6 +58,7 @@ struct VisibleEvaluationStats {
   uint64_t blocked = 0;           // candidates left out
   uint64_t levels_skipped = 0;    // (point, level) pairs left out: every candidate blocked
   uint64_t points_blind = 0;      // points that see no candidate at all (openness-scaled)
+  uint64_t levels_completed = 0;  // skipped levels completed through finer ones
   size_t uncovered = 0;           // queries no level covers (their values are 0)
 };
 
@@ -72,12 +78,15 @@ struct EvaluationWeights {
 };
 
 // The weights of the points under the rule above: with `tracer`, the visibility test; without,
-// plain per-level Shepard weights (as evaluate_many). Parallel (TBB) and deterministic;
-// `job` (optional) is checked for cancel and gets stage progress.
+// plain per-level Shepard weights (as evaluate_many). With `completion` (the coarser
+// relations the coefficients were computed with), a skipped level below a level the point
+// sees is completed through that level's points (level_completion.h). Parallel (TBB) and
+// deterministic; `job` (optional) is checked for cancel and gets stage progress.
 VisibleEvaluationStats visible_weights(const BasisHierarchy& basis, const RayTracer* tracer,
                                        std::span<const glm::vec3> positions,
                                        std::span<const glm::vec3> normals,
-                                       EvaluationWeights& weights, JobContext* job = nullptr);
+                                       EvaluationWeights& weights, JobContext* job = nullptr,
+                                       const VisibleRelations* completion = nullptr);
 
 // Like evaluate_many (multilevel_approximation.h), with the visibility test. Parallel (TBB)
 // and deterministic (each query depends only on itself); `job` (optional) is checked for
