@@ -71,15 +71,29 @@ class Maze(unittest.TestCase):
         common.new_empty_scene()
         cls.bakegi = common.enable_addon()
 
+    def test_every_cell_is_reached_from_the_skylight(self):
+        # The first layout sealed 21 of the 25 cells off from the skylight's cell: a room that
+        # is dark except for one corridor tests no deep indirect light at all.
+        distance = maze.cell_distances()
+        self.assertEqual(len(distance), maze.SIZE * maze.SIZE)
+        self.assertEqual(max(distance.values()), 9)
+        # A tree (one path to each cell): as many openings as cells minus one.
+        walls = len(list(maze._layout_walls(maze.LAYOUT)))
+        inner_walls = 2 * maze.SIZE * (maze.SIZE - 1)
+        self.assertEqual(inner_walls - walls, maze.SIZE * maze.SIZE - 1)
+
     def test_skylight_is_the_only_opening(self):
         objects = maze.build_maze()
         ceiling = sum(p.area for p in objects["Ceiling"].data.polygons)
         self.assertAlmostEqual(ceiling, (maze.SIZE * maze.CELL) ** 2 - 1.0, places=3)
         walls = [o for name, o in objects.items() if name.startswith("Wall")]
         self.assertGreater(len(walls), 15)
+        half = maze.SIZE * maze.CELL / 2
         for obj in walls:
             self.assertEqual(box_solids.open_edge_count(obj.data), 0, f"{obj.name} is not closed")
             self.assertGreater(box_solids.signed_volume(obj), 0.0, f"{obj.name} faces inwards")
+            for v in obj.data.vertices:  # inside the shell: nothing pokes out into the sun
+                self.assertLess(max(abs(v.co.x), abs(v.co.y)), half, obj.name)
         report = self.bakegi.bake(method="pathtrace", samples=8, target="CORNER", objects=walls[-3:])
         self.assertGreater(report["bake_points"], 0)
         self.assertGreater(float(common.read_color_attribute([o.name for o in walls[-3:]]).mean()), 0.0)

@@ -1,7 +1,9 @@
 """A maze lit only through a skylight: deep indirect light. A closed 6 x 6 x 2 m room whose
 ceiling has one 1 x 1 m opening above the maze's first cell; a sun shines through it onto
-that cell's floor and a sky fills it; every other corridor is reached only after two to
-eight bounces. A scene of the real-scene suite (tools/real_scenes.py), built from code.
+that cell's floor and a sky fills it; every other cell lies one to nine cells along the
+maze's corridors from it (a spanning tree of the 5 x 5 cells: one way to each, eight dead
+ends), so most of the room is lit only after several bounces. A scene of the real-scene suite
+(tools/real_scenes.py), built from code.
 
 Run:
     blender -b --factory-startup --python scenes/maze.py -- --out maze.blend
@@ -28,11 +30,18 @@ HEIGHT = 2.0
 THICKNESS = 0.1
 MAX_FACE_CELL = 0.25
 # Walls between cells: "h r c" a wall under row r (between rows r and r+1) across column c,
-# "v r c" a wall right of column c (between columns c and c+1) along row r. The path runs from
-# cell (0, 0), under the skylight, through every cell.
+# "v r c" a wall right of column c (between columns c and c+1) along row r; row 0 is the
+# north row (y = +3), column 0 the west one. A spanning tree of the grid (16 of its 40 inner
+# walls), so every cell is reached from cell (0, 0), under the skylight, by exactly one path
+# (cell_distances() below; the scene test checks it). Distances in cells from (0, 0):
+#    0 9 8 7 8
+#    1 2 3 6 7
+#    8 5 4 5 8
+#    7 6 9 6 7
+#    8 7 8 7 8
 LAYOUT = """
-v 0 0, v 1 0, v 2 0, v 3 0, h 0 1, h 0 2, h 0 3, v 0 3, h 1 1, v 1 2, h 1 3, h 1 4,
-v 2 1, h 2 2, v 2 3, h 3 0, h 3 1, v 3 2, h 3 3, v 3 3, h 2 4, v 4 0, v 4 2
+v 0 0, h 0 1, h 0 2, v 0 3, h 1 0, h 1 1, v 1 2, h 1 4, v 2 0, h 2 2, v 2 3, v 3 1, v 3 2,
+h 3 4, v 4 0, v 4 2
 """
 SUN_STRENGTH = 8.0  # W/m^2
 SKY = ((0.45, 0.6, 1.0), 0.5)  # colour, strength
@@ -68,19 +77,58 @@ def _box(name, lo, hi, material, collection):
     return cornell_box.mesh_object(name, welded, faces, material, collection)
 
 
+def _layout_walls(layout):
+    """(kind, row, column) per wall of the layout string."""
+    for item in (w.split() for w in layout.replace("\n", " ").split(",") if w.strip()):
+        yield item[0], int(item[1]), int(item[2])
+
+
+def cell_distances(layout=LAYOUT):
+    """{(row, column): cells from the skylight's cell (0, 0)} for the cells reachable from it
+    (breadth first through the openings; pure Python, no Blender)."""
+    walls = set(_layout_walls(layout))
+
+    def neighbours(row, column):
+        if column < SIZE - 1 and ("v", row, column) not in walls:
+            yield row, column + 1
+        if column > 0 and ("v", row, column - 1) not in walls:
+            yield row, column - 1
+        if row < SIZE - 1 and ("h", row, column) not in walls:
+            yield row + 1, column
+        if row > 0 and ("h", row - 1, column) not in walls:
+            yield row - 1, column
+
+    distance = {(0, 0): 0}
+    frontier = [(0, 0)]
+    while frontier:
+        cell = frontier.pop(0)
+        for other in neighbours(*cell):
+            if other not in distance:
+                distance[other] = distance[cell] + 1
+                frontier.append(other)
+    return distance
+
+
 def _walls(layout):
     half = SIZE * CELL / 2
     t = THICKNESS / 2
-    for i, item in enumerate(w.split() for w in layout.replace("\n", " ").split(",") if w.strip()):
-        kind, row, column = item[0], int(item[1]), int(item[2])
+
+    # No wall reaches through the room's shell into the sunlit outside: walls along the shell
+    # stop 1 mm short of it, so their end faces look at the shell (dark), not out of the room.
+    edge = half - 0.001
+
+    def inside(lo, hi):
+        return tuple(max(c, -edge) for c in lo[:2]) + lo[2:], tuple(min(c, edge) for c in hi[:2]) + hi[2:]
+
+    for i, (kind, row, column) in enumerate(_layout_walls(layout)):
         if kind == "h":  # between rows row and row + 1, across column
             y = half - (row + 1) * CELL
             x0 = -half + column * CELL
-            yield f"Wall{i:02d}", (x0 - t, y - t, 0.0), (x0 + CELL + t, y + t, HEIGHT)
+            yield (f"Wall{i:02d}",) + inside((x0 - t, y - t, 0.0), (x0 + CELL + t, y + t, HEIGHT))
         else:  # right of column, along row
             x = -half + (column + 1) * CELL
             y1 = half - row * CELL
-            yield f"Wall{i:02d}", (x - t, y1 - CELL - t, 0.0), (x + t, y1 + t, HEIGHT)
+            yield (f"Wall{i:02d}",) + inside((x - t, y1 - CELL - t, 0.0), (x + t, y1 + t, HEIGHT))
 
 
 def build_maze():
