@@ -186,6 +186,55 @@ TEST(ErrorProbes, DrawnAtBakePointsAreDistinctAndDeterministic) {
   EXPECT_EQ(probes_at_bake_points(points, 5000, 0).size(), points.size());
 }
 
+// Probes drawn half by the bake's light: a few bright points that carry much of the light
+// (and so, for a method whose error follows the light, of the error) are met by a few
+// hundred probes, and the sampling weights make weighted means over the probes estimate
+// means over all points.
+TEST(ErrorProbes, DrawnByLightMeetRareBrightPointsAndWeighBackToThePointsMeans) {
+  constexpr int kPoints = 20000, kBright = 50;
+  BakePoints points;
+  std::vector<glm::vec3> baked;
+  double total = 0.0;
+  for (int i = 0; i < kPoints; ++i) {
+    points.positions.push_back(glm::vec3(float(i), 0.0f, 0.0f));
+    points.normals.push_back(glm::vec3(0, 0, 1));
+    points.object_ids.push_back(0);
+    const float y = i % (kPoints / kBright) == 0 ? 40.0f : 1.0f;  // luminance y (grey)
+    baked.push_back(glm::vec3(y));
+    total += y;
+  }
+  const double mean = total / kPoints;
+  const ErrorProbes a = probes_weighted_by_light(points, baked, 256, 3);
+  const ErrorProbes b = probes_weighted_by_light(points, baked, 256, 3);
+  ASSERT_EQ(a.size(), 256u);
+  ASSERT_EQ(a.sampling_weights.size(), 256u);
+  EXPECT_EQ(a.stencil_points, b.stencil_points);
+  // Bright points hold 2,000 of the 21,950 units of light: drawn with probability
+  // 0.5 x 50 / 20,000 + 0.5 x 0.091 = 0.047 each time (12 of 256 expected; 0.64 uniformly).
+  size_t bright = 0;
+  double weights = 0.0, weighted_light = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const uint32_t p = a.stencil_points[i][0];
+    EXPECT_EQ(a.points.positions[i], points.positions[p]);
+    const double y = baked[p].x;
+    bright += y > 1.0 ? 1 : 0;
+    EXPECT_NEAR(a.sampling_weight(i), 1.0 / (kPoints * (0.5 / kPoints + 0.5 * y / total)), 1e-6);
+    weights += a.sampling_weight(i);
+    weighted_light += a.sampling_weight(i) * y;
+  }
+  EXPECT_GE(bright, 5u);
+  // The weighted mean of the bake's light over the probes is the points' mean (this is the
+  // estimator's denominator and squared-error mean in miniature).
+  EXPECT_NEAR(weighted_light / weights, mean, 0.05 * mean);
+
+  // At most `count` points: every point once, uniformly; a black bake: uniformly.
+  EXPECT_EQ(probes_weighted_by_light(points, baked, kPoints, 0).size(), size_t(kPoints));
+  const std::vector<glm::vec3> black(kPoints, glm::vec3(0.0f));
+  const ErrorProbes uniform = probes_weighted_by_light(points, black, 100, 0);
+  ASSERT_EQ(uniform.size(), 100u);
+  for (size_t i = 0; i < uniform.size(); ++i) EXPECT_EQ(uniform.sampling_weight(i), 1.0f);
+}
+
 TEST(ErrorProbes, BadDisplayProbesAreRefused) {
   auto one = [](glm::vec3 p, glm::vec3 n, uint32_t index, float w0, float w1) {
     ErrorProbes probes;

@@ -365,7 +365,8 @@ void BakeJob::estimate_error(Report& report) {
   ErrorEstimateSettings settings;
   settings.samples = error_probe_samples_;
   settings.seed = uint64_t(settings_.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max()));
-  const ErrorProbes at_points = probes_at_bake_points(points_, size_t(error_probes_), settings.seed);
+  const ErrorProbes at_points =
+      probes_weighted_by_light(points_, results_, size_t(error_probes_), settings.seed);
   const ErrorEstimate estimate =
       bakegi::estimate_error(*direct_, at_points, display_probes_, results_, settings, context_);
   report.set_json("error_estimate", error_estimate_json(estimate));

@@ -37,18 +37,20 @@ struct ProbeRecord {
   double difference = 0.0;  // Y(baked) - Y(path traced)
   double variance = 0.0;    // of the path-traced luminance mean
   double reference = 0.0;   // Y(path traced)
+  double weight = 1.0;      // the probe's sampling weight (error_probes.h)
   uint32_t object_id = 0;
 };
 
+// Weighted means over the probes estimate means over the points they were drawn from.
 double nrmse_of(const std::vector<const ProbeRecord*>& records) {
-  double squared = 0.0, reference = 0.0;
+  double squared = 0.0, reference = 0.0, weights = 0.0;
   for (const ProbeRecord* r : records) {
-    squared += r->difference * r->difference - r->variance;
-    reference += r->reference;
+    squared += r->weight * (r->difference * r->difference - r->variance);
+    reference += r->weight * r->reference;
+    weights += r->weight;
   }
-  if (!(reference > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-  const double n = double(records.size());
-  return std::sqrt(std::max(squared / n, 0.0)) / (reference / n);
+  if (!(reference > 0.0) || !(weights > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return std::sqrt(std::max(squared / weights, 0.0)) / (reference / weights);
 }
 
 ProbeErrorStatistics statistics_of(const std::vector<const ProbeRecord*>& records,
@@ -56,12 +58,13 @@ ProbeErrorStatistics statistics_of(const std::vector<const ProbeRecord*>& record
   ProbeErrorStatistics s;
   s.probes = records.size();
   if (records.empty()) return s;
-  double variance = 0.0, reference = 0.0;
+  double variance = 0.0, reference = 0.0, weights = 0.0;
   for (const ProbeRecord* r : records) {
-    variance += r->variance;
-    reference += r->reference;
+    variance += r->weight * r->variance;
+    reference += r->weight * r->reference;
+    weights += r->weight;
   }
-  const double n = double(records.size());
+  const double n = weights > 0.0 ? weights : 1.0;
   s.mean_reference = reference / n;
   s.probe_noise = s.mean_reference > 0.0 ? std::sqrt(variance / n) / s.mean_reference
                                          : std::numeric_limits<double>::quiet_NaN();
@@ -142,6 +145,7 @@ std::vector<ProbeRecord> trace_probes(const DirectLight& direct, const ErrorProb
           r.reference = luminance(sum / count);
           r.difference = luminance(glm::dvec3(probes.baked_value(i, baked))) - r.reference;
           r.variance = sample_variance / count;
+          r.weight = double(probes.sampling_weight(i));
           r.object_id = probes.points.object_ids[i];
         }
         rays.fetch_add(local_rays, std::memory_order_relaxed);

@@ -8,8 +8,10 @@
 // expectation, and
 //     NRMSE = sqrt(max(0, mean_i(d_i^2 - v_i))) / mean_i(Y(r_i))
 // estimates the NRMSE of the bake over the points the probes were drawn from (the project's
-// metric, luminance Y = 0.2126 R + 0.7152 G + 0.0722 B). Its 90% interval comes from a
-// bootstrap over the probes. For the path tracer itself the estimate is its noise; the
+// metric, luminance Y = 0.2126 R + 0.7152 G + 0.0722 B); the means are weighted by the
+// probes' sampling weights (error_probes.h: probes at bake points are drawn half by the
+// bake's light, so each counts 1 / (n q)). Its 90% interval comes from a bootstrap over the
+// probes. For the path tracer itself the estimate is its noise; the
 // probes use other random streams than the bake.
 #pragma once
 

@@ -12,7 +12,9 @@
 namespace bakegi {
 
 void ErrorProbes::add(const glm::vec3& position, const glm::vec3& normal, uint32_t object_id,
-                      const std::array<uint32_t, 4>& indices, const std::array<float, 4>& weights) {
+                      const std::array<uint32_t, 4>& indices, const std::array<float, 4>& weights,
+                      float sampling_weight) {
+  sampling_weights.push_back(sampling_weight);
   points.positions.push_back(position);
   points.normals.push_back(normal);
   points.object_ids.push_back(object_id);
@@ -51,10 +53,50 @@ ErrorProbes probes_at_bake_points(const BakePoints& points, size_t count, uint64
   return probes;
 }
 
+ErrorProbes probes_weighted_by_light(const BakePoints& points, const std::vector<glm::vec3>& baked,
+                                     size_t count, uint64_t seed) {
+  const size_t n = points.size();
+  if (count >= n || baked.size() != n) return probes_at_bake_points(points, count, seed);
+  // Cumulative q_i = 0.5 / n + 0.5 Y_i / Σ Y (Y clamped at 0; non-finite values count 0).
+  std::vector<double> cumulative(n);
+  double light = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec3& c = baked[i];
+    const double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    light += std::isfinite(y) && y > 0.0 ? y : 0.0;
+  }
+  if (!(light > 0.0) || !std::isfinite(light)) return probes_at_bake_points(points, count, seed);
+  const double uniform_share = 0.5 / double(n), light_share = 0.5 / light;
+  auto probability = [&](size_t i) {
+    const glm::vec3& c = baked[i];
+    const double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    return uniform_share + (std::isfinite(y) && y > 0.0 ? light_share * y : 0.0);
+  };
+  double running = 0.0;
+  for (size_t i = 0; i < n; ++i) cumulative[i] = running += probability(i);
+  Pcg32 rng(mix64(seed ^ 0x119475u), 0x9B05688C2B3E6C1Full);
+  std::vector<uint32_t> drawn(count);
+  for (uint32_t& index : drawn) {
+    const double u = (double(rng.next_uint()) + double(rng.next_uint()) / 4294967296.0) /
+                     4294967296.0 * running;
+    const size_t at = size_t(std::upper_bound(cumulative.begin(), cumulative.end(), u) -
+                             cumulative.begin());
+    index = uint32_t(std::min(at, n - 1));
+  }
+  std::sort(drawn.begin(), drawn.end());  // memory order: the points' own locality
+  ErrorProbes probes;
+  for (const uint32_t i : drawn) {
+    probes.add(points.positions[i], points.normals[i], points.object_ids[i], {i, 0, 0, 0},
+               {1.0f, 0.0f, 0.0f, 0.0f}, float(1.0 / (double(n) * probability(i))));
+  }
+  return probes;
+}
+
 void check_error_probes(ErrorProbes& probes, size_t bake_point_count) {
   const size_t count = probes.points.positions.size();
   if (probes.points.normals.size() != count || probes.points.object_ids.size() != count ||
-      probes.stencil_points.size() != count || probes.stencil_weights.size() != count) {
+      probes.stencil_points.size() != count || probes.stencil_weights.size() != count ||
+      (!probes.sampling_weights.empty() && probes.sampling_weights.size() != count)) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "display probes: array sizes differ");
   }
   for (size_t i = 0; i < count; ++i) {
