@@ -58,20 +58,17 @@ ErrorProbes probes_weighted_by_light(const BakePoints& points, const std::vector
   const size_t n = points.size();
   if (count >= n || baked.size() != n) return probes_at_bake_points(points, count, seed);
   // Cumulative q_i = 0.5 / n + 0.5 Y_i / Σ Y (Y clamped at 0; non-finite values count 0).
-  std::vector<double> cumulative(n);
-  double light = 0.0;
-  for (size_t i = 0; i < n; ++i) {
+  auto light_at = [&](size_t i) {
     const glm::vec3& c = baked[i];
     const double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-    light += std::isfinite(y) && y > 0.0 ? y : 0.0;
-  }
+    return std::isfinite(y) && y > 0.0 ? y : 0.0;
+  };
+  double light = 0.0;
+  for (size_t i = 0; i < n; ++i) light += light_at(i);
   if (!(light > 0.0) || !std::isfinite(light)) return probes_at_bake_points(points, count, seed);
   const double uniform_share = 0.5 / double(n), light_share = 0.5 / light;
-  auto probability = [&](size_t i) {
-    const glm::vec3& c = baked[i];
-    const double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-    return uniform_share + (std::isfinite(y) && y > 0.0 ? light_share * y : 0.0);
-  };
+  auto probability = [&](size_t i) { return uniform_share + light_share * light_at(i); };
+  std::vector<double> cumulative(n);
   double running = 0.0;
   for (size_t i = 0; i < n; ++i) cumulative[i] = running += probability(i);
   Pcg32 rng(mix64(seed ^ 0x119475u), 0x9B05688C2B3E6C1Full);
