@@ -1,6 +1,5 @@
 #include "solvers/meshless/level_completion.h"
 
-#include <algorithm>
 #include <bit>
 #include <cstdint>
 

@@ -376,11 +376,12 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   refinement.link_budget_bytes =
       settings.memory_budget_bytes > used ? (settings.memory_budget_bytes - used) / 2 : 1;
   RefinementStats refinement_stats;
-  auto receiver_relations = std::make_shared<VisibleRelations>();
+  auto receiver_relations =
+      settings.visibility ? std::make_shared<VisibleRelations>() : nullptr;
   const TransferOperator single =
       refine_transfer(scene, inputs.tracer, system->all, system->senders, refinement, context,
                       refinement_stats, receiver_relations.get());
-  if (settings.visibility) system->receiver_relations = std::move(receiver_relations);
+  system->receiver_relations = std::move(receiver_relations);
   report.add_count("meshless_gather_hits_completed", refinement_stats.hits_completed);
   const double refine_seconds = seconds_since(start);
   report.add_seconds("meshless_refinement", refine_seconds);

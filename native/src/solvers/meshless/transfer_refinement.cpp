@@ -33,11 +33,9 @@ uint64_t refine_receiver(const Scene& scene, const RayTracer& tracer, const Basi
   SenderAccumulator& acc = scratch.accumulator;
   acc.clear();
   const BasisPoint& x = all.point(receiver);
-  GatherSettings gather = settings.gather;
-  if (gather.visibility) gather.completion = &relations;
-  const uint64_t rays = gather_links(scene, tracer, senders, x.position, x.normal, receiver, gather,
-                                     acc, scratch.basis, &scratch.visibility_rays,
-                                     &scratch.hits_completed);
+  const uint64_t rays =
+      gather_links(scene, tracer, senders, x.position, x.normal, receiver, settings.gather, acc,
+                   scratch.basis, &scratch.visibility_rays, &scratch.hits_completed);
   // Eq. 17: what coarser receivers already deliver at x_i is not this receiver's to carry.
   // With visibility, "coarser receivers" are those x_i sees (visible_basis.h), the same ones
   // the evaluation at bake points uses, so F_L(x_i) reproduces T'_i there.
@@ -96,6 +94,8 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
   VisibleRelations relations =
       visible_relations(all, settings.gather.visibility ? &tracer : nullptr, &context);
   stats.visibility_rays = relations.rays;
+  RefinementSettings gathering = settings;
+  if (gathering.gather.visibility) gathering.gather.completion = &relations;
 
   std::vector<uint32_t> current;
   for (uint32_t i = all.level_begin(0); i < all.level_end(0); ++i) current.push_back(i);
@@ -126,7 +126,7 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
                         uint64_t local_rays = 0;
                         for (size_t r = range.begin(); r != range.end(); ++r) {
                           local_rays += refine_receiver(scene, tracer, all, senders, relations,
-                                                        settings, current[r], op, local);
+                                                        gathering, current[r], op, local);
                         }
                         rays += local_rays;
                         const size_t finished = done += range.size();
