@@ -33,6 +33,16 @@ def output_dir():
     return path
 
 
+def blender_script_command(script, arguments=()):
+    """The command that runs `script` in a fresh background Blender of this same version:
+    the Blender program, or (in Blender as a Python module, which has no program) this
+    Python through bpy_boot.py. What follows "--" in sys.argv is `arguments`."""
+    if bpy.app.binary_path:
+        return [bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script,
+                "--", *arguments]
+    return [sys.executable, os.path.join(HERE, "bpy_boot.py"), script, "--", *arguments]
+
+
 def enable_addon():
     """Enable the bakegi add-on (found through BLENDER_USER_SCRIPTS or the user's add-ons); return the module."""
     import addon_utils
@@ -68,11 +78,26 @@ class SmallCornellCase(unittest.TestCase):
         self.objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
 
 
+def reference_folder(version=None):
+    """blender_tests/data/<major.minor>/: the Cycles references of this Blender version (Cycles'
+    results differ between versions: each version's bakes are compared with its own)."""
+    major, minor = (version or bpy.app.version)[:2]
+    return os.path.join(DATA, f"{major}.{minor}")
+
+
 def load_reference(name):
-    """(values (n, 3) float64, sidecar dict) of blender_tests/data/<name>.npy/.json."""
-    values = numpy.load(os.path.join(DATA, name + ".npy")).astype(numpy.float64)
-    with open(os.path.join(DATA, name + ".json")) as f:
+    """(values (n, 3) float64, sidecar dict) of blender_tests/data/<version>/<name>.npy/.json."""
+    folder = reference_folder()
+    path = os.path.join(folder, name + ".npy")
+    if not os.path.isfile(path):
+        raise AssertionError(
+            f"no Cycles reference {name} for Blender {bpy.app.version_string} in {folder}: make them with "
+            "blender_tests/make_references.py in this version")
+    values = numpy.load(path).astype(numpy.float64)
+    with open(os.path.join(folder, name + ".json")) as f:
         sidecar = json.load(f)
+    if tuple(int(x) for x in sidecar["blender"].split(".")[:2]) != tuple(bpy.app.version[:2]):
+        raise AssertionError(f"{path} was made with Blender {sidecar['blender']}, not {bpy.app.version_string}")
     return values, sidecar
 
 
@@ -104,6 +129,8 @@ def scene_snapshot():
     for mesh in bpy.data.meshes:
         attributes = {}
         for attribute in mesh.attributes:
+            if attribute.name.startswith(UI_STATE_PREFIXES):
+                continue  # read through the elements' flags below
             attributes[attribute.name] = (attribute.domain, attribute.data_type, _attribute_checksum(attribute))
         colors = mesh.color_attributes
         snapshot["meshes"][mesh.name] = {
@@ -112,17 +139,35 @@ def scene_snapshot():
             "render_color_index": colors.render_color_index,
             "materials": [m.name if m else None for m in mesh.materials],
             "vertices": len(mesh.vertices),
+            "flags": _selection_and_visibility(mesh),
         }
     for material in bpy.data.materials:
         snapshot["materials"][material.name] = _node_tree_snapshot(material.node_tree) if material.use_nodes else None
     return snapshot
 
 
+# Selection and visibility live in hidden attributes whose presence and type vary between
+# Blender versions (absent = all false; 5.0's from_pydata even makes .select_edge INT32_2D):
+# compared as the elements' flags, not as attributes.
+UI_STATE_PREFIXES = (".select_", ".hide_", ".uv_select_")
+
+
+def _selection_and_visibility(mesh):
+    flags = {}
+    for name in ("vertices", "edges", "polygons"):
+        elements = getattr(mesh, name)
+        for flag in ("select", "hide"):
+            values = [False] * len(elements)
+            elements.foreach_get(flag, values)
+            flags[f"{name}.{flag}"] = sum(i for i, v in enumerate(values) if v)
+    return flags
+
+
 def _attribute_checksum(attribute):
-    field = {"FLOAT_COLOR": "color", "BYTE_COLOR": "color", "FLOAT_VECTOR": "vector", "FLOAT2": "vector"}.get(
-        attribute.data_type, "value"
-    )
-    width = {"color": 4, "vector": 3 if attribute.data_type == "FLOAT_VECTOR" else 2}.get(field, 1)
+    field = {"FLOAT_COLOR": "color", "BYTE_COLOR": "color", "FLOAT_VECTOR": "vector", "FLOAT2": "vector",
+             "INT32_2D": "value", "QUATERNION": "value", "FLOAT4X4": "value"}.get(attribute.data_type, "value")
+    width = {"FLOAT_COLOR": 4, "BYTE_COLOR": 4, "FLOAT_VECTOR": 3, "FLOAT2": 2, "INT32_2D": 2,
+             "QUATERNION": 4, "FLOAT4X4": 16}.get(attribute.data_type, 1)
     try:
         values = numpy.empty(len(attribute.data) * width, dtype=numpy.float64)
         attribute.data.foreach_get(field, values)

@@ -4,8 +4,10 @@
         [--only cornell|lights|textured] [--cornell-samples 65536] [--light-samples 16384] \
         [--textured-samples 8192] [--chunk 8192]
     blender -b --factory-startup --python blender_tests/make_references.py -- --bounce-study
+    <python with bpy> blender_tests/bpy_boot.py blender_tests/make_references.py -- [...]
 
-Writes into blender_tests/data/:
+Writes into blender_tests/data/<Blender major.minor>/ (each version's tests compare with its
+own Cycles; --data elsewhere):
 - cornell_indirect.npy: Cycles' indirect light (tools/cycles_bake.py,
   cycles_indirect) per face corner of the small Cornell box
   (scenes/cornell_box.py, TEST_SUBDIVISIONS), float32 (n, 3);
@@ -37,7 +39,9 @@ import light_units  # noqa: E402
 import metrics  # noqa: E402
 import textured_emitter  # noqa: E402
 
-DATA = os.path.join(HERE, "data")
+import common  # noqa: E402
+
+DATA = common.reference_folder()
 CORNELL_OBJECTS = ("Floor", "Ceiling", "BackWall", "LeftWall", "RightWall", "ShortBox", "TallBox")
 
 
@@ -97,7 +101,7 @@ def make_cornell(samples, chunk, seed):
 
 
 def make_lights(samples, chunk, seed):
-    for kind in light_units.LIGHT_KINDS:
+    for kind in light_units.light_kinds():
         bpy.ops.wm.read_factory_settings(use_empty=True)
         built = light_units.build_light_scene(kind)
         objects = [built[name] for name in light_units.RECEIVERS]
@@ -138,6 +142,8 @@ def bounce_study(samples=4096):
 def main():
     import argparse
 
+    global DATA
+
     argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--only", choices=("cornell", "lights", "textured"))
@@ -147,7 +153,10 @@ def main():
     parser.add_argument("--chunk", type=int, default=8192)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--bounce-study", action="store_true")
+    parser.add_argument("--data", help=f"output folder (default {os.path.relpath(DATA, ROOT)})")
     arguments = parser.parse_args(argv)
+    if arguments.data:
+        DATA = os.path.abspath(arguments.data)
     start = time.perf_counter()
     if arguments.bounce_study:
         bounce_study()

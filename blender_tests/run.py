@@ -3,6 +3,11 @@
 
     python3 blender_tests/run.py --library build/libbakegi.so [--junit out.xml] [--output out/blender_tests]
     python3 blender_tests/run.py --installed            # use the add-on installed in Blender
+    python3 blender_tests/run.py --library build/libbakegi.so --bpy .venv/bpy-4.2/bin/python
+
+With --bpy the tests run in Blender as a Python module (the `bpy` package of that
+interpreter, through blender_tests/bpy_boot.py) instead of the Blender program; the tests
+that need a window (test_ui.py) are left out there.
 
 With --library, a temporary user-scripts folder holds addons/bakegi (a link
 to the repository's addon/bakegi) and BAKEGI_LIBRARY points at the library,
@@ -13,7 +18,7 @@ blender_tests/test_*.py runs as
 
 (test_ui.py without -b, under ``xvfb-run -a``), runs its unittest cases and
 writes their outcome to $BAKEGI_TEST_RESULTS. The last line printed is
-``N passed, N failed, N skipped``; the exit code is non-zero on any failure.
+``Blender <version>: N passed, N failed, N skipped``; the exit code is non-zero on any failure.
 Plain Python 3, no dependencies.
 """
 
@@ -38,7 +43,11 @@ def parse_arguments():
     source = parser.add_mutually_exclusive_group(required=True)
     source.add_argument("--library", help="path to libbakegi.so to use with the repository's add-on")
     source.add_argument("--installed", action="store_true", help="use the bakegi add-on installed in Blender")
-    parser.add_argument("--blender", default=shutil.which("blender") or "blender")
+    program = parser.add_mutually_exclusive_group()
+    program.add_argument("--blender", default=shutil.which("blender") or "blender",
+                         help="the Blender program (default: blender on PATH)")
+    program.add_argument("--bpy", metavar="PYTHON",
+                         help="a Python interpreter with the bpy module: run the tests in it instead")
     parser.add_argument("--junit", help="write JUnit XML here")
     parser.add_argument("--output", default=os.path.join(ROOT, "out", "blender_tests"),
                         help="folder for files the tests make for people (screenshots)")
@@ -47,8 +56,10 @@ def parse_arguments():
     return parser.parse_args()
 
 
-def select_tests(names):
+def select_tests(names, bpy_module=False):
     every = sorted(glob.glob(os.path.join(HERE, "test_*.py")))
+    if bpy_module:  # no window in the bpy module
+        every = [p for p in every if os.path.basename(p) not in UI_TESTS]
     if not names:
         return every
     chosen = []
@@ -85,6 +96,8 @@ def prepare_environment(arguments, scratch):
 
 def command_for(arguments, path):
     name = os.path.basename(path)
+    if arguments.bpy:
+        return [arguments.bpy, os.path.join(HERE, "bpy_boot.py"), path]
     if name in UI_TESTS:
         return ["xvfb-run", "-a", "-s", "-screen 0 1024x768x24", arguments.blender, "--factory-startup",
                 "--enable-event-simulate", "-p", "0", "0", "800", "600", "--python-exit-code", "1", "--python", path]
@@ -144,9 +157,29 @@ def write_junit(path, results):
     ET.ElementTree(suites).write(path, encoding="utf-8", xml_declaration=True)
 
 
+def blender_version(arguments):
+    """'Blender 4.2.23 (bpy module)' or 'Blender 3.4.1' for the report lines."""
+    if arguments.bpy:
+        command = [arguments.bpy, "-c", "import bpy; print(bpy.app.version_string)"]
+    else:
+        command = [arguments.blender, "-b", "--factory-startup", "--python-expr",
+                   "import bpy; print('VERSION', bpy.app.version_string)"]
+    try:
+        out = subprocess.run(command, capture_output=True, text=True, timeout=120).stdout
+    except (OSError, subprocess.TimeoutExpired) as error:
+        sys.exit(f"run.py: cannot start {command[0]}: {error}")
+    lines = [l for l in out.splitlines() if l.strip()]
+    if arguments.bpy:
+        return f"Blender {lines[-1].strip() if lines else '?'} (bpy module)"
+    found = [l.split(None, 1)[1] for l in lines if l.startswith("VERSION ")]
+    return f"Blender {found[0] if found else '?'}"
+
+
 def main():
     arguments = parse_arguments()
-    tests = select_tests(arguments.tests)
+    tests = select_tests(arguments.tests, bool(arguments.bpy))
+    version = blender_version(arguments)
+    print(f"== tests in {version}", flush=True)
     os.makedirs(arguments.output, exist_ok=True)
     scratch = tempfile.mkdtemp(prefix="bakegi_blender_tests_")
     env = prepare_environment(arguments, scratch)
@@ -165,7 +198,7 @@ def main():
         print(f"{name}: {summary['file_seconds']:.1f} s (log: {summary['log']})", flush=True)
     if arguments.junit:
         write_junit(arguments.junit, results)
-    print(f"{counts['passed']} passed, {counts['failed']} failed, {counts['skipped']} skipped")
+    print(f"{version}: {counts['passed']} passed, {counts['failed']} failed, {counts['skipped']} skipped")
     return 1 if counts["failed"] else 0
 
 

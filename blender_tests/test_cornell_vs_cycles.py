@@ -1,6 +1,6 @@
 """bakegi's path tracer agrees with a converged Cycles bake on the Cornell box.
 
-The reference (blender_tests/data/cornell_indirect.npy, made by
+The reference (blender_tests/data/<version>/cornell_indirect.npy, made by
 make_references.py) is Cycles' indirect light per face corner of the small
 Cornell box, with its own noise recorded in the sidecar (about 0.45 %). bakegi
 bakes the same scene twice with different seeds; the two bakes give bakegi's

@@ -2,7 +2,7 @@
 
 For each one-light scene of scenes/light_units.py, bakegi bakes the direct
 light (method 'direct') at the receivers' face corners and the result is
-compared with the stored Cycles direct bake (blender_tests/data/light_*.npy,
+compared with the stored Cycles direct bake (blender_tests/data/<version>/light_*.npy,
 16384 samples, its noise about 0.01 %).
 
 Tolerance: relative RMSE <= 2 %. The reference's noise is negligible
@@ -38,6 +38,7 @@ import common  # noqa: E402
 
 import unittest  # noqa: E402
 
+import bpy  # noqa: E402
 import numpy  # noqa: E402
 
 import light_units  # noqa: E402
@@ -92,10 +93,13 @@ class LightUnitsAgainstCycles(unittest.TestCase):
         noise = metrics.noise_from_halves(bakes[0], bakes[1])
         error = metrics.relative_rmse(average, reference)
         ratio = metrics.luminance(average).sum() / metrics.luminance(reference).sum()
+        # The metric is on luminance; the colour (a light's temperature) is checked per channel.
+        channels = average.sum(axis=0) / reference.sum(axis=0)
         print(f"{kind}: relative RMSE {100 * error:.2f}%, bakegi noise {100 * noise:.2f}%, "
-              f"total ratio bakegi/Cycles {ratio:.4f}")
+              f"total ratio bakegi/Cycles {ratio:.4f}, per channel {numpy.round(channels, 4)}")
         self.assertLessEqual(noise, NOISE_LIMIT, f"{kind}: bakegi's direct light too noisy to compare")
         self.assertLessEqual(error, TOLERANCE, f"{kind}: bakegi's direct light differs from Cycles'")
+        self.assertLessEqual(numpy.abs(channels - 1.0).max(), TOLERANCE, f"{kind}: the colour differs")
 
     def test_point_with_radius(self):
         self.check_kind("POINT")
@@ -123,6 +127,29 @@ class LightUnitsAgainstCycles(unittest.TestCase):
 
     def test_world_color(self):
         self.check_kind("WORLD")
+
+    # Settings of later versions, against that version's Cycles.
+    def check_newer_kind(self, kind):
+        first = light_units.NEWER_LIGHT_KINDS[kind]
+        if kind not in light_units.light_kinds():
+            self.skipTest(f"Blender {bpy.app.version_string} has no such setting (it came in "
+                          f"{first[0]}.{first[1]})")
+        self.check_kind(kind)
+
+    def test_spot_exposure_and_temperature(self):
+        self.check_newer_kind("SPOT_EXPOSURE_TEMPERATURE")
+
+    def test_sun_exposure_and_temperature(self):
+        self.check_newer_kind("SUN_TEMPERATURE")
+
+    def test_area_not_normalized(self):
+        self.check_newer_kind("AREA_NOT_NORMALIZED")
+
+    def test_point_not_normalized(self):
+        self.check_newer_kind("POINT_NOT_NORMALIZED")
+
+    def test_sun_not_normalized(self):
+        self.check_newer_kind("SUN_NOT_NORMALIZED")
 
     def test_emissive_mesh_textured(self):
         bakes, reports = self.check_kind(textured_emitter.KIND)

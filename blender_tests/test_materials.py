@@ -219,6 +219,7 @@ class Materials(unittest.TestCase):
         material, node = node_material("both", "ShaderNodeBsdfPrincipled")
         tree = material.node_tree
         emission = node.inputs.get("Emission Color") or node.inputs["Emission"]
+        node.inputs["Emission Strength"].default_value = 1.0  # 0 by default since Blender 4.0
         for socket, uv_map in ((node.inputs["Base Color"], "Albedo"), (emission, "Glow")):
             texture = tree.nodes.new("ShaderNodeTexImage")
             texture.image = self.image()

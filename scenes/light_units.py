@@ -3,7 +3,8 @@
 Run:
     blender -b --factory-startup --python scenes/light_units.py -- --kind SPOT --out spot.blend
 
-or import it and call ``build_light_scene(kind)``. Kinds: LIGHT_KINDS.
+or import it and call ``build_light_scene(kind)``. Kinds: LIGHT_KINDS, and on the Blender
+versions that have their settings NEWER_LIGHT_KINDS (``light_kinds()`` lists this version's).
 
 Every scene has the same receivers: a 4 m x 4 m floor, a 4 m x 2 m back wall
 and a small square blocker floating above the floor that casts a shadow, so
@@ -36,6 +37,23 @@ LIGHT_KINDS = (
     "WORLD",
 )
 
+# Light settings later Blender versions added, each kind with the first version that has them:
+# exposure, blackbody temperature and 'Normalize' (4.5).
+NEWER_LIGHT_KINDS = {
+    "SPOT_EXPOSURE_TEMPERATURE": (4, 5),
+    "SUN_TEMPERATURE": (4, 5),
+    "AREA_NOT_NORMALIZED": (4, 5),
+    "POINT_NOT_NORMALIZED": (4, 5),
+    "SUN_NOT_NORMALIZED": (4, 5),
+}
+
+
+def light_kinds(version=None):
+    """The kinds this Blender version can build."""
+    version = tuple((version or bpy.app.version)[:2])
+    return LIGHT_KINDS + tuple(k for k, first in NEWER_LIGHT_KINDS.items() if version >= first)
+
+
 RECEIVER_ALBEDO = (0.8, 0.8, 0.8)
 RECEIVERS = ("Floor", "Wall", "Blocker")
 DEFAULT_SUBDIVISIONS = 20  # cells along 4 m: about 2.5k face corners
@@ -49,6 +67,8 @@ def _add_light(kind, collection):
         "AREA_DISK": ("DISK", 0.9, 0.9),
         "AREA_ELLIPSE": ("ELLIPSE", 1.1, 0.5),
     }
+    if kind in NEWER_LIGHT_KINDS:
+        return _add_newer_light(kind, collection)
     if kind == "POINT":
         data = bpy.data.lights.new("Light", "POINT")
         data.energy = 150.0
@@ -88,6 +108,35 @@ def _add_light(kind, collection):
     return light
 
 
+def _add_newer_light(kind, collection):
+    """The kinds of NEWER_LIGHT_KINDS: a base kind with the later settings changed."""
+    if kind == "SPOT_EXPOSURE_TEMPERATURE":
+        light = _add_light("SPOT", collection)
+        light.data.exposure = -0.6
+        light.data.use_temperature = True
+        light.data.temperature = 3200.0
+    elif kind == "SUN_TEMPERATURE":
+        light = _add_light("SUN", collection)
+        light.data.exposure = 1.3
+        light.data.use_temperature = True
+        light.data.temperature = 9500.0
+    elif kind == "AREA_NOT_NORMALIZED":
+        light = _add_light("AREA_RECTANGLE", collection)
+        light.data.normalize = False
+        light.data.energy = 25.0  # per m^2 of a 1.2 x 0.4 m light: about 1/2 of AREA_RECTANGLE
+    elif kind == "POINT_NOT_NORMALIZED":
+        light = _add_light("POINT", collection)
+        light.data.normalize = False
+        light.data.energy = 600.0  # x 4 pi (0.25 m)^2: about 3x POINT
+    elif kind == "SUN_NOT_NORMALIZED":
+        light = _add_light("SUN", collection)
+        light.data.normalize = False
+        light.data.energy = 80.0  # x pi sin^2(6 deg): about the irradiance of SUN
+    else:
+        raise ValueError(f"unknown light kind {kind!r}")
+    return light
+
+
 def _add_emissive_quad(collection):
     """A 0.6 m square emitter, tilted so both of its sides light the receivers."""
     material = cornell_box.emission_material("Emitter", (1.0, 0.8, 0.6), 12.0)
@@ -106,8 +155,9 @@ def build_light_scene(kind, subdivisions=DEFAULT_SUBDIVISIONS, clear=True):
 
     The receivers (the objects to compare) are RECEIVERS, in that order.
     """
-    if kind not in LIGHT_KINDS:
-        raise ValueError(f"unknown light kind {kind!r}; expected one of {LIGHT_KINDS}")
+    if kind not in light_kinds():
+        raise ValueError(f"unknown light kind {kind!r} in Blender {bpy.app.version_string}; "
+                         f"expected one of {light_kinds()}")
     if clear:
         cornell_box.clear_scene()
     scene = bpy.context.scene

@@ -184,9 +184,11 @@ def cycles_indirect(objects, samples, seed=0, domain="CORNER", sample_offset=0, 
 
 
 def cycles_chunked(function, objects, samples, chunk_samples, seed=0, domain="CORNER", progress=None, **kwargs):
-    """Average `function` (cycles_direct or cycles_indirect) over chunks of sample offsets.
+    """Average `function` (cycles_direct or cycles_indirect) over independent chunks.
 
-    Equal to one bake of `samples` samples (up to float rounding). Returns
+    Each chunk gets its own sample offset and its own seed (seed + chunk index): Cycles 4.5
+    and 5.0 ignore the sample offset in a bake (chunks at different offsets came out
+    identical), so the offset alone would repeat one chunk. Returns
     (values, seconds, chunk values list).
     """
     chunks = []
@@ -194,7 +196,7 @@ def cycles_chunked(function, objects, samples, chunk_samples, seed=0, domain="CO
     offset = 0
     while offset < samples:
         count = min(chunk_samples, samples - offset)
-        values, chunk_seconds = function(objects, count, seed, domain, offset, **kwargs)
+        values, chunk_seconds = function(objects, count, seed + len(chunks), domain, offset, **kwargs)
         chunks.append((values.astype(numpy.float64), count))
         seconds += chunk_seconds
         offset += count

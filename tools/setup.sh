@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up bakegi on a fresh Debian 12 machine (as root): installs the Debian packages the
 # build, the tests and Blender need, builds the core (Release), packs the add-on zip with
-# the library inside, and installs + enables it in Blender's user preferences.
+# the library inside, and installs + enables it in Blender's user preferences. (Blender 4.2,
+# 4.5 and 5.0 for the tests come as Python modules: tools/setup_bpy.sh, run by run_tests.sh.)
 #   BAKEGI_SKIP_APT=1  skip apt (packages already there)
 #   BAKEGI_BUILD_DIR   build folder (default: build)
 set -euo pipefail
@@ -11,7 +12,7 @@ build_dir=${BAKEGI_BUILD_DIR:-build}
 packages=(cmake ninja-build g++ pkg-config
           libembree-dev libglm-dev libtbb-dev libopenexr-dev libeigen3-dev libboost-dev
           googletest libgtest-dev libgmock-dev libbenchmark-dev
-          blender python3 python3-numpy python3-matplotlib xvfb xauth)
+          blender python3 python3-numpy python3-matplotlib python3-venv xvfb xauth)
 
 if [ "${BAKEGI_SKIP_APT:-0}" != 1 ]; then
   missing=()

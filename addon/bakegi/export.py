@@ -24,7 +24,7 @@ from typing import Dict, List
 
 import numpy as np
 
-from . import light_units, lightmap_layout, lightmap_uvs, materials, native
+from . import compat, light_units, lightmap_layout, lightmap_uvs, materials, native
 from .native import BakeGIError
 
 MESH_LIKE = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
@@ -513,8 +513,10 @@ class SceneExporter:
             size=getattr(light, "size", 0.0),
             size_y=getattr(light, "size_y", 0.0),
             spread=getattr(light, "spread", math.pi),
-            use_nodes=bool(getattr(light, "use_nodes", False)),
-            node_tree_is_default=_light_tree_is_default(light))
+            use_nodes=compat.uses_nodes(light),
+            node_tree_is_default=_light_tree_is_default(light),
+            cycles_version=compat.cycles_conventions(),
+            **compat.light_settings(light))
         conversion = light_units.convert_light(settings)
         self.warnings.extend(conversion.warnings)
         if conversion.light is not None:
@@ -527,7 +529,7 @@ class SceneExporter:
 
 def _light_tree_is_default(light):
     tree = getattr(light, "node_tree", None)
-    if not getattr(light, "use_nodes", False) or tree is None:
+    if not compat.uses_nodes(light):
         return True
     kinds = sorted(n.type for n in tree.nodes)
     if kinds != ["EMISSION", "OUTPUT_LIGHT"]:
@@ -545,7 +547,7 @@ def world_radiance(world, warnings):
     if world is None:
         return (0.0, 0.0, 0.0)
     what = f"world '{world.name}'"
-    if not world.use_nodes or world.node_tree is None:
+    if not compat.uses_nodes(world):
         return tuple(float(c) for c in world.color[:3])
     tree = world.node_tree
     outputs = [n for n in tree.nodes if n.type == "OUTPUT_WORLD"]
@@ -839,12 +841,19 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
     points = None
     exported_lightmaps = None
     try:
+        linked = set()
         for instance in depsgraph.object_instances:
             obj = instance.object
             if obj.type in MESH_LIKE:
                 exporter.add_instance(obj, instance.matrix_world, instance.is_instance)
             elif obj.type == "LIGHT":
                 exporter.add_light(obj, instance.matrix_world)
+            if (obj.type in MESH_LIKE or obj.type == "LIGHT") and compat.light_linking_in_use(obj):
+                linked.add(obj.name)
+        if linked:
+            warnings.append(f"light linking is ignored (set on {', '.join(sorted(linked)[:5])}"
+                            f"{' ...' if len(linked) > 5 else ''}): their light reaches every "
+                            "object in the bake")
         exporter.set_world(context.scene.world)
 
         if target == "LIGHTMAP":

@@ -18,6 +18,19 @@ Conventions (Cycles 3.4, see CYCLES_FACTS.md and bakegi.h):
                                        radiance).
   emission shader, strength S        : radiance c S, two-sided on meshes in Cycles 3.4.
   world background, strength S       : radiance c S.
+
+What Cycles 4.0 and later do differently (measured against 4.2, 4.5 and 5.0's own Cycles,
+blender_tests/test_light_units.py; `cycles_version` of a BlenderLight picks the rules):
+  area                               : radiance c P / (pi A): 4/pi = 1.273x the 3.4 value;
+                                       with normalize off (4.5+) c P / pi, whatever the size.
+  spot                               : no cosine falloff inside the cone (the core's
+                                       BAKEGI_LIGHT_SPOT_WITHOUT_COSINE).
+  point / spot with soft falloff off : a sphere light (hard falloff); the core models the
+                                       soft falloff, so the light is converted with a warning.
+  normalize off (4.5+)               : point / spot power x 4 pi r^2 (x 4 for r = 0), sun
+                                       irradiance x pi sin^2(angle / 2).
+  exposure E (4.5+)                  : power / strength x 2^E, every light type.
+  temperature T (4.5+, when used)    : color x the blackbody colour of T, of luminance 1.
 """
 
 import math
@@ -50,6 +63,13 @@ class BlenderLight:
     spread: float = math.pi  # area light spread (Cycles 3.0+); pi = Lambertian
     use_nodes: bool = False
     node_tree_is_default: bool = True  # an Emission node of strength 1, white, nothing else
+    # Added in later versions (compat.light_settings: the values that act as if absent).
+    exposure: float = 0.0  # 4.5+: power x 2^exposure
+    use_temperature: bool = False  # 4.5+: color x blackbody(temperature)
+    temperature: float = 6500.0  # K
+    normalize: bool = True  # 4.5+: area power spread over the area (False: per unit area)
+    use_soft_falloff: bool = True  # 4.0+: point/spot radius; False = a true sphere
+    cycles_version: Tuple[int, int] = (3, 4)  # whose conventions: compat.cycles_conventions()
 
 
 @dataclass
@@ -68,6 +88,11 @@ class CoreLight:
     shape: str = "SQUARE"
     size_x: float = 0.0
     size_y: float = 0.0
+    flags: int = 0  # bakegi_light_flags (LIGHT_FLAGS)
+
+
+# bakegi_light_flags (bakegi.h)
+SPOT_WITHOUT_COSINE = 1
 
 
 @dataclass
@@ -113,9 +138,50 @@ def point_intensity(color: Sequence[float], power: float) -> Vec3:
     return _scaled(color, power / (4.0 * math.pi))
 
 
-def area_radiance(color: Sequence[float], power: float, area: float) -> Vec3:
-    """Radiance [W/(m^2 sr)] of a one-sided area light of `power` W and `area` m^2."""
-    return _scaled(color, power / (4.0 * area))
+def area_radiance(color: Sequence[float], power: float, area: float,
+                  cycles_version: Tuple[int, int] = (3, 4)) -> Vec3:
+    """Radiance [W/(m^2 sr)] of a one-sided area light of `power` W and `area` m^2 (pass
+    area 1 for a light that is not normalized)."""
+    divisor = 4.0 if tuple(cycles_version) < (4, 0) else math.pi
+    return _scaled(color, power / (divisor * area))
+
+
+# CIE 1931 colour matching functions as sums of piecewise Gaussians (Wyman, Sloan and Shirley,
+# "Simple Analytic Approximations to the CIE XYZ Color Matching Functions", JCGT 2013, the
+# multi-lobe fit): (weight, mean nm, sigma below the mean, sigma above it).
+_CIE_X = ((1.056, 599.8, 37.9, 31.0), (0.362, 442.0, 16.0, 26.7), (-0.065, 501.1, 20.4, 26.2))
+_CIE_Y = ((0.821, 568.8, 46.9, 40.5), (0.286, 530.9, 16.3, 31.1))
+_CIE_Z = ((1.217, 437.0, 11.8, 36.0), (0.681, 459.0, 26.0, 13.8))
+# XYZ -> linear Rec.709 (Blender's scene-linear colour space), D65.
+_XYZ_TO_REC709 = ((3.2404542, -1.5371385, -0.4985314),
+                  (-0.9692660, 1.8760108, 0.0415560),
+                  (0.0556434, -0.2040259, 1.0572252))
+
+
+def _cie(lobes, wavelength):
+    total = 0.0
+    for weight, mean, below, above in lobes:
+        t = (wavelength - mean) / (below if wavelength < mean else above)
+        total += weight * math.exp(-0.5 * t * t)
+    return total
+
+
+def blackbody_color(temperature: float) -> Vec3:
+    """Linear Rec.709 colour of a black body at `temperature` K, scaled to luminance 1 and
+    clamped at 0, as Blender's light temperature uses it (Blender fits the same curve;
+    clamped to 800-12000 K as Blender does)."""
+    t = min(max(float(temperature), 800.0), 12000.0)
+    x = y = z = 0.0
+    c2 = 1.4387769e-2  # h c / k, m K
+    for nm in range(380, 781, 5):
+        wavelength = nm * 1e-9
+        planck = 1.0 / (wavelength ** 5 * (math.exp(c2 / (wavelength * t)) - 1.0))
+        x += planck * _cie(_CIE_X, nm)
+        y += planck * _cie(_CIE_Y, nm)
+        z += planck * _cie(_CIE_Z, nm)
+    rgb = [max(0.0, r[0] * x + r[1] * y + r[2] * z) for r in _XYZ_TO_REC709]
+    luminance = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+    return (rgb[0] / luminance, rgb[1] / luminance, rgb[2] / luminance)
 
 
 def sun_irradiance(color: Sequence[float], strength: float) -> Vec3:
@@ -147,6 +213,15 @@ def convert_light(light: BlenderLight) -> Conversion:
     if light.use_nodes and not light.node_tree_is_default:
         warnings.append(
             f"light '{name}': its shader nodes are ignored (only color and power are used)")
+    exposure = float(light.exposure)
+    if not math.isfinite(exposure):
+        return Conversion(None, [f"light '{name}': exposure is not finite; left out"])
+    energy = light.energy * 2.0 ** min(max(exposure, -64.0), 64.0)
+    color = tuple(float(c) for c in light.color[:3])
+    if light.use_temperature:
+        tint = blackbody_color(light.temperature)
+        color = (color[0] * tint[0], color[1] * tint[1], color[2] * tint[2])
+    cycles4 = tuple(light.cycles_version) >= (4, 0)
 
     m = light.matrix_world
     position = (float(m[0][3]), float(m[1][3]), float(m[2][3]))
@@ -157,9 +232,19 @@ def convert_light(light: BlenderLight) -> Conversion:
 
     if light.type in ("POINT", "SPOT"):
         core = CoreLight(type=light.type, position=position, direction=down,
-                         color=point_intensity(light.color, light.energy),
+                         color=point_intensity(color, energy),
                          radius=max(0.0, float(light.shadow_soft_size)))
+        if cycles4 and not light.use_soft_falloff and core.radius > 0.0:
+            warnings.append(
+                f"light '{name}': soft falloff is off (a sphere light); bakegi keeps the soft "
+                "falloff, which is darker within a few radii of the light")
+        if cycles4 and not light.normalize:
+            # Measured with Cycles 4.5: the power is then not spread over the sphere's
+            # surface, i.e. multiplied by 4 pi r^2 (by 4 for a point of radius 0).
+            radius = core.radius
+            core.color = _scaled(core.color, 4.0 * math.pi * radius * radius if radius > 0 else 4.0)
         if light.type == "SPOT":
+            core.flags = SPOT_WITHOUT_COSINE if cycles4 else 0
             core.spot_size = min(max(float(light.spot_size), 1e-4), math.pi)
             core.spot_blend = min(max(float(light.spot_blend), 0.0), 1.0)
             sx, sy = _length(_column(m, 0)), _length(_column(m, 1))
@@ -171,8 +256,12 @@ def convert_light(light: BlenderLight) -> Conversion:
 
     if light.type == "SUN":
         core = CoreLight(type="SUN", direction=down,
-                         color=sun_irradiance(light.color, light.energy),
+                         color=sun_irradiance(color, energy),
                          angle=min(max(float(light.angle), 0.0), math.pi * 0.999))
+        if cycles4 and not light.normalize:
+            # Measured with Cycles 4.5: the strength is then a radiance over the sun's disc,
+            # i.e. the irradiance is multiplied by pi sin^2(angle / 2) (0 for angle 0).
+            core.color = _scaled(core.color, math.pi * math.sin(0.5 * core.angle) ** 2)
         return Conversion(core, warnings)
 
     # AREA: sizes measured along the object's scaled X and Y axes.
@@ -197,6 +286,7 @@ def convert_light(light: BlenderLight) -> Conversion:
             "as 180 deg (a Lambertian emitter)")
     core = CoreLight(type="AREA", position=position, direction=down,
                      axis_u=_normalized(axis_x),
-                     color=area_radiance(light.color, light.energy, area),
+                     color=area_radiance(color, energy, area if light.normalize else 1.0,
+                                         light.cycles_version),
                      shape=shape, size_x=size_x, size_y=size_y)
     return Conversion(core, warnings)

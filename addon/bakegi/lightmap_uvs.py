@@ -19,6 +19,7 @@ import math
 
 import bpy
 
+from . import compat
 from .native import BakeGIError
 
 UV_METHODS = ("SMART", "LIGHTMAP_PACK")
@@ -59,10 +60,9 @@ def _restore_active(mesh, previous_active):
 
 
 def _lightmap_pack(obj, layer, margin_fraction):
-    from bl_operators.uvcalc_lightmap import lightmap_uvpack
     obj.data.uv_layers.active = layer
     # PREF_MARGIN_DIV: the margin is 1/div of the packed width.
-    lightmap_uvpack([obj.data], PREF_SEL_ONLY=False, PREF_NEW_UVLAYER=False,
+    compat.lightmap_uvpack([obj.data], PREF_SEL_ONLY=False, PREF_NEW_UVLAYER=False,
                     PREF_PACK_IN_ONE=True, PREF_APPLY_IMAGE=False, PREF_BOX_DIV=12,
                     PREF_MARGIN_DIV=max(int(round(1.0 / max(margin_fraction, 1e-4))), 2))
 
@@ -75,6 +75,7 @@ def _smart_project(context, obj, layer, margin_fraction):
     mesh = obj.data
     # Edit Mode writes the selection back for every element: keep it to restore it.
     saved = {name: _flags(getattr(mesh, name)) for name in ("vertices", "edges", "polygons")}
+    attributes_before = {a.name for a in mesh.attributes}
     try:
         for o in previous_selection:
             o.select_set(False, view_layer=view_layer)
@@ -104,6 +105,21 @@ def _smart_project(context, obj, layer, margin_fraction):
             if len(elements) == len(select):
                 elements.foreach_set("select", select)
                 elements.foreach_set("hide", hide)
+        _remove_new_ui_state(mesh, attributes_before)
+
+
+# Selection and visibility flags Edit Mode stores as hidden attributes (4.x: .hide_*; 5.0 also
+# .uv_select_*). Absent means all false, so the ones Edit Mode added are taken out again once
+# the flags are restored: the mesh leaves the unwrap with the attributes it came with.
+_UI_STATE_PREFIXES = (".select_", ".hide_", ".uv_select_")
+
+
+def _remove_new_ui_state(mesh, attributes_before):
+    for name in [a.name for a in mesh.attributes]:
+        if name not in attributes_before and name.startswith(_UI_STATE_PREFIXES):
+            attribute = mesh.attributes.get(name)
+            if attribute is not None:
+                mesh.attributes.remove(attribute)
 
 
 def _flags(elements):

@@ -51,6 +51,19 @@ class LiveState:
         self.last = {}  # timings and counts of the last update
         self.export_seconds = 0.0
         self.updates = 0
+        # What each light object looked like at the bake or the last relight: Blender 5.0
+        # tags every object's shading when a material changes (BakeGI's own hooks too), so an
+        # update flag alone does not say a light changed.
+        scene = bpy.data.scenes.get(scene_name)
+        self.light_signatures = {o.name_full: light_signature(o) for o in
+                                 (scene.objects if scene else ()) if o.type == "LIGHT"}
+
+    def light_changed(self, obj):
+        signature = light_signature(obj)
+        if self.light_signatures.get(obj.name_full) == signature:
+            return False
+        self.light_signatures[obj.name_full] = signature
+        return True
 
     def close(self):
         if self.running is not None:
@@ -117,6 +130,24 @@ def is_active_for(scene_name):
 # ---- what changed -------------------------------------------------------------------------
 
 
+def light_signature(obj):
+    """A light object's placement and every plain setting of its light, as a comparable tuple
+    (every setting, so settings later versions add are covered too)."""
+    light = obj.data
+    values = []
+    for prop in light.bl_rna.properties:
+        if prop.type in ("POINTER", "COLLECTION") or prop.identifier == "rna_type":
+            continue
+        value = getattr(light, prop.identifier, None)
+        try:
+            value = tuple(value)
+        except TypeError:
+            pass
+        values.append((prop.identifier, value))
+    matrix = tuple(round(x, 7) for row in obj.matrix_world for x in row)
+    return matrix, tuple(values)
+
+
 def classify(updates, live):
     """("relight" | "paused: why" | None) for one depsgraph update's list of updates."""
     relight = False
@@ -128,7 +159,8 @@ def classify(updates, live):
             relight = True
         elif isinstance(original, bpy.types.Object):
             if original.type == "LIGHT":
-                relight = relight or update.is_updated_transform or update.is_updated_shading
+                if update.is_updated_transform or update.is_updated_shading:
+                    relight = live.light_changed(original) or relight
             elif original.type in export.MESH_LIKE and update.is_updated_transform:
                 return f"'{original.name}' moved; Bake Indirect to precompute again"
         elif isinstance(original, bpy.types.Mesh):

@@ -41,7 +41,7 @@ from typing import List, Optional, Tuple
 
 import numpy as np
 
-from . import light_units
+from . import compat, light_units
 
 ATTRIBUTE_NAME = "BakeGI_Indirect"
 NODE_PREFIX = "BakeGI_"
@@ -469,7 +469,7 @@ def read_material(material):
     if material is None:
         return info
     what = f"material '{material.name}'"
-    if not material.use_nodes or material.node_tree is None:
+    if not compat.uses_nodes(material):
         c = material.diffuse_color
         info.albedo = (float(c[0]), float(c[1]), float(c[2]))
         return info
@@ -529,7 +529,7 @@ def _hook_version(material):
 
 
 def can_hook(material, info):
-    return (material is not None and material.use_nodes and material.node_tree is not None
+    return (material is not None and compat.uses_nodes(material)
             and active_output(material.node_tree) is not None and
             (info.color_source is not None or max(info.albedo) > 0.0))
 

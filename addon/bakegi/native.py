@@ -99,6 +99,7 @@ class LightDesc(Structure):
         ("shape", c_int),
         ("size_x", c_float),
         ("size_y", c_float),
+        ("flags", c_uint32),
     ]
 
 
@@ -393,7 +394,7 @@ class Scene(_Handle):
 
     def add_light(self, type, position=(0, 0, 0), direction=(0, 0, -1), axis_u=(1, 0, 0),
                   color=(0, 0, 0), radius=0.0, spot_size=0.0, spot_blend=0.0, angle=0.0,
-                  shape="SQUARE", size_x=0.0, size_y=0.0):
+                  shape="SQUARE", size_x=0.0, size_y=0.0, flags=0):
         """Arguments as in bakegi_light_desc; type and shape by name ('POINT', 'DISK'...).
         light_units.CoreLight's fields can be passed with add_light(**vars(core_light))."""
         if type not in LIGHT_TYPES:
@@ -403,7 +404,7 @@ class Scene(_Handle):
         desc = LightDesc(LIGHT_TYPES[type], _triple(position, "position"),
                          _triple(direction, "direction"), _triple(axis_u, "axis_u"),
                          _triple(color, "color"), radius, spot_size, spot_blend, angle,
-                         AREA_SHAPES[shape], size_x, size_y)
+                         AREA_SHAPES[shape], size_x, size_y, int(flags))
         out = c_uint32()
         _check(load_library().bakegi_scene_add_light(self.handle, byref(desc), byref(out)),
                "bakegi_scene_add_light")

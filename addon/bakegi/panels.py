@@ -96,6 +96,8 @@ class RENDER_PT_bakegi(bpy.types.Panel):
         sub = layout.column()
         sub.use_property_split = False
         sub.prop(settings, "show_debug")
+        if settings.show_debug:
+            sub.prop(settings, "debug_direct")
 
 
 class VIEW3D_PT_bakegi_live(bpy.types.Panel):

@@ -19,11 +19,6 @@ METHOD_ITEMS = [
      "becomes indirect light once, then relights in milliseconds; with Live Indirect the "
      "bake follows the lights as they move"),
 ]
-# Debug only: bakes the DIRECT light (to check light units against Cycles), not indirect.
-DEBUG_METHOD_ITEMS = METHOD_ITEMS + [
-    ("direct", "Direct Light (debug)", "Bakes direct light instead of indirect light, to "
-     "compare light units with Cycles"),
-]
 
 TARGET_ITEMS = [
     ("CORNER", "Face Corners", "One value per face corner: hard edges stay hard"),
@@ -50,10 +45,6 @@ OBJECTS_ITEMS = [
 ]
 
 
-def _method_items(self, context):
-    return DEBUG_METHOD_ITEMS if self.show_debug else METHOD_ITEMS
-
-
 def _live_toggled(self, context):
     if not self.live_indirect:
         from . import live
@@ -64,8 +55,14 @@ class BakeGISettings(bpy.types.PropertyGroup):
     show_debug: BoolProperty(
         name="Debug Methods", default=False,
         description="Offer methods meant for checking the add-on rather than for baking")
-    method: EnumProperty(name="Method", items=_method_items,
+    # Static items: a PropertyGroup with an items callback crashes (4.2) or hangs (4.5) the
+    # bpy module when Python exits, so the debug method is a separate switch.
+    method: EnumProperty(name="Method", items=METHOD_ITEMS,
                          description="How the indirect light is computed")
+    debug_direct: BoolProperty(
+        name="Bake Direct Light", default=False,
+        description="Debug: bake the direct light instead of the indirect light, to compare "
+        "light units with Cycles")
     samples: IntProperty(name="Samples", default=64, min=1, soft_max=4096,
                          description="Paths per bake point: more is slower and less noisy")
     bins: IntProperty(name="Bins", default=300, min=12, max=3072,
@@ -155,9 +152,9 @@ class BakeGISettings(bpy.types.PropertyGroup):
                                 description="JSON report of the last successful bake")
 
     def resolved_method(self):
-        if self.show_debug or self.method in {item[0] for item in METHOD_ITEMS}:
-            return self.method
-        return METHOD_ITEMS[0][0]
+        if self.show_debug and self.debug_direct:
+            return "direct"
+        return self.method
 
     def method_settings(self):
         """Core settings that only the resolved method reads."""

@@ -360,6 +360,10 @@ TEST(ApiErrors, BadLightParameters) {
   area.size_x = 1.0f;
   set_raw(area.shape, 9);
   EXPECT_ERROR(add(area), BAKEGI_ERROR_INVALID_ARGUMENT, "unknown shape 9");
+  area.shape = BAKEGI_AREA_SQUARE;
+  area.flags = 6u;
+  EXPECT_ERROR(add(area), S, "unknown flags 6");
+  area.flags = 0u;
   area.shape = BAKEGI_AREA_DISK;
   area.axis_u[0] = 0.0f;
   area.axis_u[2] = 2.0f;

@@ -154,8 +154,12 @@ TEST(LightsDirect, SunGivesIrradianceTimesCosine) {
 }
 
 // Cycles 3.4.1 spot: intensity I on the axis, times a = cos(angle to the axis) inside the
-// cone, times smoothstep in the blend band, zero outside (direct/spot_light.h).
-TEST(LightsDirect, SpotLightConeAndBlendBand) {
+// cone, times smoothstep in the blend band, zero outside (direct/spot_light.h). With
+// BAKEGI_LIGHT_SPOT_WITHOUT_COSINE (Cycles 4.0+) the same without the factor a.
+class SpotCones : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SpotCones, ConeAndBlendBand) {
+  const bool cosine = GetParam();
   SceneDescription d = plane_scene();
   const float h = 2.0f;
   Light spot = test::point_light({0.0f, 0.0f, h}, glm::vec3(20.0f));
@@ -163,6 +167,7 @@ TEST(LightsDirect, SpotLightConeAndBlendBand) {
   spot.direction = {0, 0, -1};
   spot.spot_size = glm::radians(60.0f);
   spot.spot_blend = 0.5f;
+  spot.flags = cosine ? 0u : BAKEGI_LIGHT_SPOT_WITHOUT_COSINE;
   d.lights.push_back(spot);
   const double cos_half = std::cos(0.5 * spot.spot_size);
   const double smooth = (1.0 - cos_half) * spot.spot_blend;
@@ -177,7 +182,8 @@ TEST(LightsDirect, SpotLightConeAndBlendBand) {
     double attenuation = 0.0;
     if (a > cos_half) {
       const double t = (a - cos_half) / smooth;
-      attenuation = t < 1.0 ? a * t * t * (3.0 - 2.0 * t) : a;
+      const double falloff = cosine ? a : 1.0;
+      attenuation = t < 1.0 ? falloff * t * t * (3.0 - 2.0 * t) : falloff;
     }
     const double dist = h / a;
     const double expected = 20.0 * attenuation * a / (dist * dist) / M_PI;
@@ -188,6 +194,11 @@ TEST(LightsDirect, SpotLightConeAndBlendBand) {
   EXPECT_EQ(values[9].x, 0.0f);  // outside the cone
   EXPECT_EQ(values[10].x, 0.0f);
 }
+
+INSTANTIATE_TEST_SUITE_P(LightsDirect, SpotCones, ::testing::Values(true, false),
+                         [](const auto& info) {
+                           return info.param ? "Cycles3WithCosine" : "Cycles4WithoutCosine";
+                         });
 
 TEST(LightsDirect, SphereLightIsADiskFacingThePoint) {
   // A point light of radius r is a disk of radiance I / (pi r^2) facing the shading point:

@@ -63,6 +63,7 @@ ScenePtr new_full_scene() {
   spot.type = BAKEGI_LIGHT_SPOT;
   spot.direction[0] = 0.3f, spot.direction[2] = -1.0f;
   spot.spot_size = 0.8f, spot.spot_blend = 0.15f;
+  spot.flags = BAKEGI_LIGHT_SPOT_WITHOUT_COSINE;
   EXPECT_EQ(bakegi_scene_add_light(scene.get(), &spot, nullptr), BAKEGI_OK);
   bakegi_light_desc sun{};
   sun.type = BAKEGI_LIGHT_SUN;
@@ -166,6 +167,7 @@ TEST(SceneFile, RoundTripIsExact) {
                 same_bits(x.spot_blend, y.spot_blend) && same_bits(x.angle, y.angle) &&
                 same_bits(x.size_x, y.size_x) && same_bits(x.size_y, y.size_y));
     EXPECT_EQ(x.shape, y.shape);
+    EXPECT_EQ(x.flags, y.flags);
   }
   EXPECT_EQ(a.world_radiance, b.world_radiance);
   EXPECT_EQ(points->points.positions, points_back->points.positions);
@@ -288,7 +290,7 @@ TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   }
 }
 
-// Rewrites the current encoding (version 3) of a scene with one material as an older build
+// Rewrites the current encoding (version 4) of a scene with one material as an older build
 // wrote it: version 2 materials end before the emission texture (48 bytes instead of 52),
 // version 1 ones before the glossy lobe too (32 bytes).
 std::vector<uint8_t> as_version(const std::vector<uint8_t>& current, uint32_t version) {
@@ -372,6 +374,52 @@ TEST(SceneFile, OlderVersionsAreStillRead) {
         "format version " + std::to_string(kSceneFileVersion + 1) + " is not supported";
     EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
   }
+}
+
+// A version 3 file (light records of 80 bytes, no flags) reads with flags 0.
+TEST(SceneFile, Version3LightsHaveNoFlags) {
+  ScenePtr scene = new_scene();
+  bakegi_light_desc spot = point_light(0.1f, 0.2f, 0.9f, 7.0f);
+  spot.type = BAKEGI_LIGHT_SPOT;
+  spot.direction[2] = -1.0f;
+  spot.spot_size = 0.8f;
+  spot.flags = BAKEGI_LIGHT_SPOT_WITHOUT_COSINE;
+  ASSERT_EQ(bakegi_scene_add_light(scene.get(), &spot, nullptr), BAKEGI_OK);
+  ASSERT_EQ(bakegi_scene_add_light(scene.get(), &spot, nullptr), BAKEGI_OK);
+  const std::vector<uint8_t> v4 = encode_scene_file(scene->description, nullptr);
+  auto get_u64 = [](const std::vector<uint8_t>& bytes, size_t at) {
+    uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value |= uint64_t(bytes[at + i]) << (8 * i);
+    return value;
+  };
+  // Sections (id, reserved, u64 size, payload) from byte 24: textures, materials, meshes,
+  // lights. The lights' payload is a u32 count and 84-byte records.
+  size_t at = 24;
+  for (int section = 0; section < 3; ++section) at += 16 + size_t(get_u64(v4, at + 8));
+  ASSERT_EQ(get_u64(v4, at + 8), 4u + 2u * 84u);
+  std::vector<uint8_t> v3(v4.begin(), v4.begin() + std::ptrdiff_t(at + 16 + 4));
+  for (size_t light = 0; light < 2; ++light) {
+    const size_t record = at + 16 + 4 + light * 84;
+    v3.insert(v3.end(), v4.begin() + std::ptrdiff_t(record),
+              v4.begin() + std::ptrdiff_t(record + 80));
+  }
+  v3.insert(v3.end(), v4.begin() + std::ptrdiff_t(at + 16 + 4 + 2 * 84), v4.end());
+  auto put_u64 = [&](size_t where, uint64_t value) {
+    for (int i = 0; i < 8; ++i) v3[where + i] = uint8_t(value >> (8 * i));
+  };
+  v3[8] = 3;
+  put_u64(at + 8, 4 + 2 * 80);
+  put_u64(16, v3.size() - 24 - 8);
+  reseal(v3);
+  const SceneFile read = decode_scene_file(v3, "v3");
+  ASSERT_EQ(read.scene.lights.size(), 2u);
+  for (const Light& l : read.scene.lights) {
+    EXPECT_EQ(l.flags, 0u);
+    EXPECT_EQ(l.type, BAKEGI_LIGHT_SPOT);
+    EXPECT_EQ(l.spot_size, 0.8f);
+  }
+  EXPECT_EQ(decode_scene_file(v4, "v4").scene.lights[1].flags,
+            uint32_t(BAKEGI_LIGHT_SPOT_WITHOUT_COSINE));
 }
 
 TEST(SceneFile, MissingFilesAndForeignFiles) {

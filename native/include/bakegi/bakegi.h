@@ -165,7 +165,16 @@ typedef struct bakegi_light_desc {
   bakegi_area_shape shape; /* area */
   float size_x;            /* area: side length or diameter along axis_u (metres) */
   float size_y;            /* area: along direction x axis_u; ignored for SQUARE and DISK */
+  uint32_t flags;          /* bakegi_light_flags, or-ed; 0 = Cycles 3.x conventions */
 } bakegi_light_desc;
+
+/* Conventions that differ between the Cycles versions a light is matched to. */
+typedef enum bakegi_light_flags {
+  /* spot: inside the cone the intensity is I, softened at the edge by the blend's smoothstep
+   * alone (Cycles 4.0 and later). Without it, it also falls as the cosine to the axis (3.x). */
+  BAKEGI_LIGHT_SPOT_WITHOUT_COSINE = 1u
+} bakegi_light_flags;
+#define BAKEGI_LIGHT_KNOWN_FLAGS 1u
 
 BAKEGI_API bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_desc* light,
                                                 uint32_t* out_light);
@@ -218,7 +227,7 @@ BAKEGI_API bakegi_status bakegi_points_set_display_probes(bakegi_points* points,
 /* A .bgs file holds exactly what the API received: the scene and, optionally, a set of
  * bake points. Little-endian binary, versioned, with a checksum. Files of older format
  * versions are still read (version 1: no glossy lobes; versions 1-2: no emission
- * textures). */
+ * textures; versions 1-3: no light flags, read as 0). */
 BAKEGI_API bakegi_status bakegi_file_write(const char* path, const bakegi_scene* scene,
                                            const bakegi_points* points /* may be NULL */);
 /* out_points may be NULL; *out_points is NULL if the file holds none. */

@@ -27,6 +27,7 @@ inline bakegi_light_desc to_light_desc(const Light& l) {
   d.shape = l.shape;
   d.size_x = l.size_x;
   d.size_y = l.size_y;
+  d.flags = l.flags;
   return d;
 }
 

@@ -185,6 +185,7 @@ bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_des
     l.shape = bakegi::area_shape_from(raw_shape, index);
     l.size_x = light->size_x;
     l.size_y = light->size_y;
+    l.flags = light->flags;
     bakegi::check_light(l, index);
     scene->description.lights.push_back(l);
     if (out_light) *out_light = uint32_t(index);

@@ -5,8 +5,8 @@
 //   otherwise                          -> a
 // where smooth = (1 - cos_half) * spot_blend. The result is multiplied by `a` itself, so
 // the intensity inside the cone falls off as the cosine to the axis (intensity I on the
-// axis, not concentrated by the cone). Later Cycles versions dropped that factor; 3.4.1
-// has it.
+// axis, not concentrated by the cone). Cycles 4.0 dropped that factor (kernel/light/spot.h:
+// smoothstep alone); a light with BAKEGI_LIGHT_SPOT_WITHOUT_COSINE is evaluated that way.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -28,6 +28,7 @@ class SpotCone {
   glm::vec3 axis_{0.0f, 0.0f, -1.0f};
   float cos_half_angle_ = -1.0f;
   float smooth_ = 0.0f;
+  bool cosine_ = true;  // Cycles 3.x: times a
 };
 
 }  // namespace bakegi

@@ -79,6 +79,7 @@ struct Light {
   bakegi_area_shape shape = BAKEGI_AREA_SQUARE;
   float size_x = 0.0f;
   float size_y = 0.0f;
+  uint32_t flags = 0;  // bakegi_light_flags
 };
 
 // Everything the API received, before validation.

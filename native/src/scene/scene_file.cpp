@@ -81,6 +81,7 @@ void write_scene(Writer& w, const SceneDescription& scene) {
     w.u32(uint32_t(l.shape));
     w.f32(l.size_x);
     w.f32(l.size_y);
+    w.u32(l.flags);
   }
   w.end_section(at);
 
@@ -159,10 +160,11 @@ void read_meshes(Reader& r, SceneDescription& scene) {
   }
 }
 
-void read_lights(Reader& r, SceneDescription& scene) {
+void read_lights(Reader& r, SceneDescription& scene, uint32_t version) {
+  const bool has_flags = version >= 4;
   const uint32_t count = r.u32();
   size_t index = 0;
-  r.array(scene.lights, count, 76, "lights", [&] {
+  r.array(scene.lights, count, has_flags ? 84 : 80, "lights", [&] {
     Light l;
     const uint32_t type = r.u32();
     l.position = r.vec3();
@@ -176,6 +178,7 @@ void read_lights(Reader& r, SceneDescription& scene) {
     const uint32_t shape = r.u32();
     l.size_x = r.f32();
     l.size_y = r.f32();
+    if (has_flags) l.flags = r.u32();
     try {
       l.type = light_type_from(type, index);
       l.shape = area_shape_from(shape, index);
@@ -242,7 +245,7 @@ SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& n
     if (expected == kTextures) read_textures(r, file.scene);
     if (expected == kMaterials) read_materials(r, file.scene, version);
     if (expected == kMeshes) read_meshes(r, file.scene);
-    if (expected == kLights) read_lights(r, file.scene);
+    if (expected == kLights) read_lights(r, file.scene, version);
     if (expected == kWorld) file.scene.world_radiance = r.vec3();
     if (expected == kPoints) file.points = read_points(r);
     if (r.position() != end) fail("section size does not match its contents");

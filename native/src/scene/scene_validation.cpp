@@ -226,6 +226,9 @@ void check_light(const Light& light, size_t index) {
     invalid(name + ": " + position_out_of_range_text(light.position));
   }
   if (light.type != BAKEGI_LIGHT_POINT) check_direction(light.direction, name + ": direction");
+  if (light.flags & ~BAKEGI_LIGHT_KNOWN_FLAGS) {
+    invalid(name + ": unknown flags " + std::to_string(light.flags & ~BAKEGI_LIGHT_KNOWN_FLAGS));
+  }
   if (light.type == BAKEGI_LIGHT_POINT || light.type == BAKEGI_LIGHT_SPOT) {
     if (!(std::isfinite(light.radius) && light.radius >= 0)) {
       invalid(name + ": radius must be finite and >= 0, got " + num(light.radius));
