@@ -88,6 +88,9 @@ def prepare_environment(arguments, scratch):
         os.makedirs(os.path.join(scripts, "addons"))
         os.symlink(os.path.join(ROOT, "addon", "bakegi"), os.path.join(scripts, "addons", "bakegi"))
         env["BLENDER_USER_SCRIPTS"] = scripts
+        # What the add-on writes for unsaved files stays in the scratch folder too.
+        env["BLENDER_USER_DATAFILES"] = os.path.join(scratch, "datafiles")
+        env["BLENDER_USER_EXTENSIONS"] = os.path.join(scratch, "extensions")
         env["BAKEGI_LIBRARY"] = library
     # Keep Blender's own config (and an installed add-on's preferences) out of a --library run.
     env.setdefault("PYTHONDONTWRITEBYTECODE", "1")

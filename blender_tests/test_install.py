@@ -41,6 +41,7 @@ result["module_file"] = bakegi.__file__
 from bakegi import native
 native.load_library()
 result["library"] = native.default_library_path()
+result["user_folder"] = sys.modules[bakegi.__name__ + ".compat"].user_folder("bakegi_cache")
 sys.path.insert(0, scenes)
 import cornell_box
 cornell_box.build_cornell_box(subdivisions=2)
@@ -99,6 +100,7 @@ class InstallFromZip(unittest.TestCase):
         env["BLENDER_USER_SCRIPTS"] = os.path.join(scratch, "scripts")
         env["BLENDER_USER_CONFIG"] = os.path.join(scratch, "config")
         env["BLENDER_USER_EXTENSIONS"] = os.path.join(scratch, "extensions")
+        env["BLENDER_USER_DATAFILES"] = os.path.join(scratch, "datafiles")
         child = subprocess.run(
             common.blender_script_command(script, [self.zip_path, os.path.join(common.ROOT, "scenes")]),
             capture_output=True, text=True, timeout=300, env=env)
@@ -113,6 +115,10 @@ class InstallFromZip(unittest.TestCase):
         self.assertTrue(result["enabled"], result)
         self.assertTrue(os.path.realpath(result["module_file"]).startswith(installed_root), result)
         self.assertTrue(os.path.realpath(result["library"]).startswith(installed_root), result)
+        # Unsaved files' caches: the extension's own user folder (4.2+), else user datafiles.
+        user_root = os.path.realpath(
+            env["BLENDER_USER_EXTENSIONS" if bpy.app.version >= (4, 2, 0) else "BLENDER_USER_DATAFILES"])
+        self.assertTrue(os.path.realpath(result["user_folder"]).startswith(user_root), result)
         self.assertGreater(result["points"], 0)
         self.assertTrue(result["finite"])
         self.assertGreater(result["mean"], 0.0)

@@ -117,8 +117,10 @@ class Meshless(common.SmallCornellCase):
         settings.meshless_levels = 3
         settings.objects = "VISIBLE"
         settings.use_cache = True
+        preferences = bpy.context.preferences.addons["bakegi"].preferences
+        self.addCleanup(setattr, preferences, "cache_folder", "")
         with tempfile.TemporaryDirectory() as folder:
-            settings.cache_folder = folder
+            preferences.cache_folder = folder
             results = []
             for _ in range(2):
                 self.assertEqual(bpy.ops.bakegi.bake_indirect(), {"FINISHED"})

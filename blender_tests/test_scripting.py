@@ -34,6 +34,39 @@ class Scripting(common.SmallCornellCase):
         self.assertGreater(report["seconds"]["total"], 0.0)
         print("report:", {k: report[k] for k in ["seconds", "bake_points", "warnings"] + memory})
 
+    def test_add_on_preferences_reach_the_bake(self):
+        """Threads and the memory budget come from the add-on preferences, unless the call
+        names them."""
+        preferences = bpy.context.preferences.addons["bakegi"].preferences
+        self.addCleanup(setattr, preferences, "threads", 0)
+        self.addCleanup(setattr, preferences, "memory_budget_mb", 0)
+        preferences.threads = 1
+        preferences.memory_budget_mb = 3000
+        report = self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects="VISIBLE")
+        self.assertEqual(report["settings"]["threads"], 1)
+        self.assertEqual(report["settings"]["memory_budget_mb"], 3000)
+        report = self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects="VISIBLE",
+                                  threads=2, method_settings={"memory_budget_mb": 2000})
+        self.assertEqual(report["settings"]["threads"], 2)
+        self.assertEqual(report["settings"]["memory_budget_mb"], 2000)
+        # A budget too small for the method is the core's error, naming the setting.
+        preferences.memory_budget_mb = 1
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="antiradiance", target="CORNER", objects="VISIBLE",
+                             method_settings={"fallback": 0})
+        self.assertIn("memory_budget_mb", str(caught.exception))
+
+    def test_an_unsaved_file_writes_its_lightmap_to_the_add_on_user_folder(self):
+        from bakegi import compat
+
+        self.assertEqual(bpy.data.filepath, "")
+        report = self.bakegi.bake(method="pathtrace", samples=4, target="LIGHTMAP", objects=["Floor"],
+                                  texels_per_meter=8.0)
+        folder = os.path.realpath(compat.user_folder("bakegi_lightmaps"))
+        path = os.path.realpath(report["lightmap"]["path"])
+        self.assertTrue(path.startswith(folder + os.sep), (path, folder))
+        self.assertTrue(os.path.isfile(path))
+
     def test_rebake_is_deterministic_and_ignores_its_own_hook(self):
         """A second bake with the same seed reproduces the first exactly: the materials hooked by
         the first bake (albedo x baked indirect) must not feed back into the next export."""

@@ -31,7 +31,7 @@ def _context(context):
 
 
 def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SELECTED",
-         threads=0, hook_materials=True, context=None, method_settings=None, live=False,
+         threads=None, hook_materials=True, context=None, method_settings=None, live=False,
          texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
          lightmap_uv_method="SMART", lightmap_padding=4, lightmap_folder="//bakegi_lightmaps",
          lightmap_full_float=False, lightmap_reject_inside=True, linked_duplicates="SHARED",
@@ -66,7 +66,9 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     90%; report["error_check"] with the error between vertices, per object, and the likely
     causes, also as warnings when it is above 10%).
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
-    scene is changed."""
+    scene is changed.
+    threads: None = the add-on preferences' (0 there = every core); the preferences' memory
+    budget applies unless method_settings names memory_budget_mb."""
     context = _context(context)
     method_settings = dict(method_settings or {})
     if not estimate_error:

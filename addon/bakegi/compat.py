@@ -13,9 +13,12 @@ testing bpy.app.version itself:
 - Materials and worlds always use nodes in 5.0 (`use_nodes` deprecated): `uses_nodes()`.
 - Lightmap Pack's function lost its image arguments in 4.x: `lightmap_uvpack()`.
 - Light linking (4.0+) is not modelled: `light_linking_in_use()` finds it to warn.
+- Files of unsaved .blend files go to the extension's user folder (4.2+ extensions) or to
+  Blender's user data folder (legacy add-ons): `user_folder()`.
 """
 
 import inspect
+import os
 
 import bpy
 
@@ -64,3 +67,15 @@ def lightmap_uvpack(meshes, **preferences):
 
     accepted = inspect.signature(pack).parameters
     return pack(meshes, **{k: v for k, v in preferences.items() if k in accepted})
+
+
+def user_folder(name):
+    """A folder of the add-on's own (created) for files that have no .blend file to sit next
+    to: the extension's user folder (bpy.utils.extension_path_user) when installed as a 4.2+
+    extension, else <Blender's user datafiles>/bakegi."""
+    package = __package__
+    if package.startswith("bl_ext.") and hasattr(bpy.utils, "extension_path_user"):
+        return bpy.utils.extension_path_user(package, path=name, create=True)
+    path = os.path.join(bpy.utils.user_resource("DATAFILES", path="bakegi", create=True), name)
+    os.makedirs(path, exist_ok=True)
+    return path

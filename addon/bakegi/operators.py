@@ -102,7 +102,7 @@ def _session_from_scene(context):
     s = context.scene.bakegi
     return session.BakeSession(context, method=s.resolved_method(), samples=s.samples,
                                seed=s.seed, target=s.target, objects=s.objects,
-                               threads=s.threads, hook_materials=s.hook_materials,
+                               threads=None, hook_materials=s.hook_materials,
                                method_settings=s.method_settings(), live=s.live_requested(),
                                lightmap=s.lightmap_options(),
                                lightmap_folder=s.lightmap_directory(),

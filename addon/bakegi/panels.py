@@ -33,9 +33,6 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             col.prop(settings, "meshless_epsilon")
             col.prop(settings, "seed")
             col.prop(settings, "use_cache")
-            sub = col.column()
-            sub.active = settings.use_cache
-            sub.prop(settings, "cache_folder")
             col.prop(settings, "live_indirect")
         else:
             col.prop(settings, "samples")
@@ -62,7 +59,6 @@ class RENDER_PT_bakegi(bpy.types.Panel):
                 col.label(text=f"{shared} object(s) share a mesh with another: they show its "
                           "light", icon="INFO")
         col.prop(settings, "estimate_error")
-        col.prop(settings, "threads")
         col.prop(settings, "hook_materials")
 
         row = layout.row(align=True)

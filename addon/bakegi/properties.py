@@ -1,11 +1,13 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The bake settings stored on the scene: bpy.types.Scene.bakegi."""
 
-import bpy
 import os
-import tempfile
+
+import bpy
 
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
+
+from . import compat, preferences
 
 # The first item is the default: antiradiance reaches every error level of the Cornell chart
 # 2-5x sooner than the path tracer (docs/methods/antiradiance.md).
@@ -88,10 +90,6 @@ class BakeGISettings(bpy.types.PropertyGroup):
         description="Meshless: save the precomputed basis and transfer, so that baking the "
         "same geometry, materials and settings again (after reopening the file, too) skips "
         "the precompute; a changed scene is detected and computed again")
-    cache_folder: StringProperty(
-        name="Cache Folder", default="//bakegi_cache", subtype="DIR_PATH",
-        description="Where the meshless cache is kept (// = next to the .blend; an unsaved "
-        "file uses the system's temporary folder)")
     seed: IntProperty(name="Seed", default=0, min=0,
                       description="Random seed; a bake is repeatable for a seed")
     target: EnumProperty(name="Target", items=TARGET_ITEMS, default="CORNER",
@@ -123,7 +121,7 @@ class BakeGISettings(bpy.types.PropertyGroup):
     lightmap_folder: StringProperty(
         name="Folder", default="//bakegi_lightmaps", subtype="DIR_PATH",
         description="Lightmaps: where the EXR file is written (// = next to the .blend; an "
-        "unsaved file uses the system's temporary folder)")
+        "unsaved file uses the add-on's user folder)")
     lightmap_float: BoolProperty(
         name="Full Float", default=False,
         description="Lightmaps: 32-bit floats instead of half floats (twice the size; half "
@@ -139,8 +137,6 @@ class BakeGISettings(bpy.types.PropertyGroup):
         name="Check Error", default=True,
         description="After the bake, path-trace a few hundred probe points and estimate the "
         "bake's error (also between vertices); a warning names the likely cause above 10%")
-    threads: IntProperty(name="Threads", default=0, min=0, max=1024,
-                         description="Threads of the bake; 0 uses every core")
     hook_materials: BoolProperty(
         name="Show in Material Preview", default=True,
         description="Add nodes to the baked objects' materials so that Material Preview "
@@ -169,8 +165,9 @@ class BakeGISettings(bpy.types.PropertyGroup):
         return settings
 
     def cache_directory(self):
-        """The cache folder as an absolute path."""
-        return blend_relative_directory(self.cache_folder, "bakegi_cache")
+        """The meshless cache folder: the preferences' (Edit > Preferences > Add-ons), else
+        next to the .blend."""
+        return preferences.current().cache_folder or blend_relative_directory("", "bakegi_cache")
 
     def lightmap_options(self):
         from .export import LightmapOptions
@@ -190,10 +187,10 @@ class BakeGISettings(bpy.types.PropertyGroup):
 
 def blend_relative_directory(folder, name):
     """A folder setting as an absolute path: // is next to the .blend (empty: //<name>);
-    an unsaved file has no folder, so its // folders go to the system's temporary folder."""
+    an unsaved file has no folder, so its // folders go to the add-on's user folder."""
     folder = folder or "//" + name
     if folder.startswith("//") and not bpy.data.filepath:
-        return os.path.join(tempfile.gettempdir(), name)
+        return compat.user_folder(name)
     return os.path.abspath(bpy.path.abspath(folder))
 
 

@@ -16,7 +16,7 @@ import threading
 import time
 from dataclasses import dataclass
 
-from . import error_check, export, live, native, writeback
+from . import error_check, export, live, native, preferences, writeback
 from .native import BakeGIError
 
 METHODS = ("pathtrace", "direct", "antiradiance", "meshless")
@@ -66,14 +66,17 @@ def validate_arguments(method, samples, seed, target, threads, live=False):
 
 class BakeSession:
     def __init__(self, context, method="antiradiance", samples=64, seed=0, target="CORNER",
-                 objects="SELECTED", threads=0, hook_materials=True, method_settings=None,
+                 objects="SELECTED", threads=None, hook_materials=True, method_settings=None,
                  live=False, lightmap=None, lightmap_folder="", lightmap_full_float=False,
                  linked_duplicates="SHARED"):
         """lightmap (target 'LIGHTMAP'): export.LightmapOptions; lightmap_folder: where the
         atlas is written (absolute); lightmap_full_float: 32-bit floats instead of half.
         linked_duplicates (attribute targets): 'SHARED' bakes the first object of a shared
         mesh (the others show its light), 'SINGLE_USER' gives each its own copy of the mesh
-        first (taken back if the bake fails or is cancelled)."""
+        first (taken back if the bake fails or is cancelled). threads None: the add-on
+        preferences' threads; their memory budget applies unless method_settings has one."""
+        machine = preferences.current(context)
+        threads = machine.threads if threads is None else threads
         validate_arguments(method, samples, seed, target, threads, live)
         if linked_duplicates not in export.LINKED_DUPLICATES:
             raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
@@ -94,6 +97,8 @@ class BakeSession:
         self.scene_name = context.scene.name
         # Further core settings of the method (e.g. antiradiance "bins"); the core checks them.
         self.method_settings = dict(method_settings or {})
+        if machine.memory_budget_mb > 0:
+            self.method_settings.setdefault("memory_budget_mb", machine.memory_budget_mb)
         self.lightmap = lightmap if lightmap is not None else export.LightmapOptions()
         self.lightmap_folder = lightmap_folder
         self.lightmap_full_float = bool(lightmap_full_float)
