@@ -13,11 +13,13 @@ import unittest  # noqa: E402
 
 import bpy  # noqa: E402
 
+import cornell_box  # noqa: E402
+
 
 def node_material(name, kind):
     """A material whose output is fed by one new shader node of `kind`; returns (material, node)."""
     material = bpy.data.materials.new(name)
-    material.use_nodes = True
+    cornell_box.use_nodes(material)
     nodes = material.node_tree.nodes
     for node in list(nodes):
         if node.type != "OUTPUT_MATERIAL":

@@ -59,7 +59,7 @@ def make_image():
 
 def textured_material(image, variant):
     material = bpy.data.materials.new("TexturedEmitter")
-    material.use_nodes = True
+    cornell_box.use_nodes(material)
     nodes, links = material.node_tree.nodes, material.node_tree.links
     nodes.clear()
     texture = nodes.new("ShaderNodeTexImage")

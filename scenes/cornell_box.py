@@ -75,10 +75,21 @@ def clear_scene():
             collection.remove(block)
 
 
+def use_nodes(block):
+    """Shade a material or world by its node tree (always so from Blender 5.0, where setting
+    use_nodes is deprecated)."""
+    if bpy.app.version < (5, 0, 0):
+        block.use_nodes = True
+
+
+def uses_nodes(block):
+    return block.node_tree is not None and (bpy.app.version >= (5, 0, 0) or block.use_nodes)
+
+
 def diffuse_material(name, color):
     """A material whose surface is a single Diffuse BSDF of the given colour."""
     material = bpy.data.materials.new(name)
-    material.use_nodes = True
+    use_nodes(material)
     nodes = material.node_tree.nodes
     nodes.clear()
     diffuse = nodes.new("ShaderNodeBsdfDiffuse")
@@ -93,7 +104,7 @@ def diffuse_material(name, color):
 
 def emission_material(name, color, strength):
     material = bpy.data.materials.new(name)
-    material.use_nodes = True
+    use_nodes(material)
     nodes = material.node_tree.nodes
     nodes.clear()
     emission = nodes.new("ShaderNodeEmission")
@@ -205,7 +216,7 @@ def add_box(name, center_x, center_y, height, rotation_degrees, material, subdiv
 
 def set_black_world(scene, color=(0.0, 0.0, 0.0), strength=1.0):
     world = bpy.data.worlds.new("World")
-    world.use_nodes = True
+    use_nodes(world)
     background = world.node_tree.nodes["Background"]
     background.inputs["Color"].default_value = (*color, 1.0)
     background.inputs["Strength"].default_value = strength

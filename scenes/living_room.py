@@ -23,6 +23,8 @@ import sys
 import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import cornell_box  # noqa: E402  (shared helpers)
 DEFAULT_FOLDER = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "scenes", "living-room"))
 
 
@@ -31,7 +33,7 @@ def living_room_folder(folder=None):
 
 
 def _lets_light_through(material):
-    if material is None or not material.use_nodes:
+    if material is None or not cornell_box.uses_nodes(material):
         return False
     for node in material.node_tree.nodes:
         if node.type == "BSDF_PRINCIPLED":
@@ -64,7 +66,7 @@ def build_living_room(folder=None):
         obj.hide_set(True)
         obj.hide_render = True
     world = bpy.data.worlds.new("Sky")
-    world.use_nodes = True
+    cornell_box.use_nodes(world)
     background = world.node_tree.nodes["Background"]
     environment = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
     environment.image = bpy.data.images.load(sky)

@@ -25,6 +25,8 @@ import sys
 import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import cornell_box  # noqa: E402  (shared helpers)
 DEFAULT_SPONZA = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "scenes", "crytek-sponza"))
 
 SPOT_LOCATION = (4.0, 0.8, 17.0)
@@ -69,7 +71,7 @@ def build_sponza(folder=None, spot_power=SPOT_POWER, light="SPOT"):
         scene.camera = camera
 
     world = bpy.data.worlds.new("Black")
-    world.use_nodes = True
+    cornell_box.use_nodes(world)
     background = world.node_tree.nodes.get("Background")
     background.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
     scene.world = world
