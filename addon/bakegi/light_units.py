@@ -88,7 +88,7 @@ class CoreLight:
     shape: str = "SQUARE"
     size_x: float = 0.0
     size_y: float = 0.0
-    flags: int = 0  # bakegi_light_flags (LIGHT_FLAGS)
+    flags: int = 0  # bakegi_light_flags, e.g. SPOT_WITHOUT_COSINE
 
 
 # bakegi_light_flags (bakegi.h)
