@@ -1,6 +1,5 @@
 // The .bgs scene file: an exact round trip of everything the C API received, and refusal
 // of truncated, corrupted or forged files before anything is allocated for them.
-#include <bit>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include "api/handles.h"
 #include "capi_test_scene.h"
 #include "scene/scene_file.h"
+#include "util/bit_cast.h"
 #include "util/error.h"
 
 namespace bakegi::test {
@@ -105,7 +105,7 @@ void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
 }
 
 bool same_bits(float a, float b) {
-  return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b);
+  return bakegi::bit_cast<uint32_t>(a) == bakegi::bit_cast<uint32_t>(b);
 }
 
 TEST(SceneFile, RoundTripIsExact) {

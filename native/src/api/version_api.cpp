@@ -3,7 +3,11 @@
 #else
 #include <embree3/rtcore_config.h>
 #endif
-#include <tbb/version.h>
+#if __has_include(<tbb/version.h>)
+#include <tbb/version.h>  // oneTBB
+#else
+#include <tbb/tbb_stddef.h>  // TBB 2020 (the portable build's Debian 11)
+#endif
 
 #include "bakegi/bakegi.h"
 

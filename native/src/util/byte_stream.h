@@ -3,7 +3,6 @@
 // cache) so that every format reads the same way and checks sizes the same way.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -11,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "util/bit_cast.h"
 #include "util/error.h"
 
 namespace bakegi {
@@ -34,8 +34,8 @@ class ByteWriter {
   void u64(uint64_t v) {
     for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(v >> (8 * i)));
   }
-  void f32(float v) { u32(std::bit_cast<uint32_t>(v)); }
-  void f64(double v) { u64(std::bit_cast<uint64_t>(v)); }
+  void f32(float v) { u32(bakegi::bit_cast<uint32_t>(v)); }
+  void f64(double v) { u64(bakegi::bit_cast<uint64_t>(v)); }
   void vec2(const glm::vec2& v) { f32(v.x), f32(v.y); }
   void vec3(const glm::vec3& v) { f32(v.x), f32(v.y), f32(v.z); }
   // u32 length, then the bytes.
@@ -93,8 +93,8 @@ class ByteReader {
     for (int i = 0; i < 8; ++i) v |= uint64_t(bytes_[at_++]) << (8 * i);
     return v;
   }
-  float f32() { return std::bit_cast<float>(u32()); }
-  double f64() { return std::bit_cast<double>(u64()); }
+  float f32() { return bakegi::bit_cast<float>(u32()); }
+  double f64() { return bakegi::bit_cast<double>(u64()); }
   glm::vec2 vec2() {
     const float x = f32();
     return {x, f32()};

@@ -7,7 +7,11 @@
 #include <limits>
 #include <system_error>
 
-#include <Imath/half.h>
+#if __has_include(<Imath/half.h>)
+#include <Imath/half.h>  // OpenEXR 3
+#else
+#include <half.h>  // OpenEXR 2 (the portable build's Debian 11)
+#endif
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>

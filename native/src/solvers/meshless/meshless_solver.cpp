@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +28,7 @@
 #include "solvers/meshless/point_placement.h"
 #include "solvers/meshless/precomputation_cache.h"
 #include "solvers/meshless/sky_visibility.h"
+#include "util/bit_cast.h"
 #include "solvers/meshless/transfer_refinement.h"
 #include "solvers/meshless/visible_basis.h"
 #include "solvers/meshless/visible_evaluation.h"
@@ -159,7 +159,7 @@ namespace {
 uint64_t points_key(const BakePoints& points, bool visibility) {
   uint64_t key = mix64(points.size() * 2 + (visibility ? 1 : 0));
   auto add = [&key](const glm::vec3& v) {
-    for (int a = 0; a < 3; ++a) key = mix64(key ^ std::bit_cast<uint32_t>(v[a]));
+    for (int a = 0; a < 3; ++a) key = mix64(key ^ bakegi::bit_cast<uint32_t>(v[a]));
   };
   for (size_t i = 0; i < points.size(); ++i) {
     add(points.positions[i]);
