@@ -2,10 +2,13 @@
 """Builds the installable add-on zip: dist/bakegi-<version>-<platform>.zip.
 
     python3 tools/make_addon_zip.py --build-dir build [--out dist]
+    python3 tools/make_addon_zip.py --build-dir D --bundle D --suffix portable   # build_portable.sh
 
 The zip holds bakegi/ (the add-on's Python files, blender_manifest.toml) and
 bakegi/lib/libbakegi.so copied from the build directory, so that installing it through
-Blender's add-on preferences needs no other file. Plain Python, no bpy.
+Blender's add-on preferences needs no other file. With --bundle, every other shared library
+in that folder goes into bakegi/lib/ too (the libraries a portable build carries, found
+through its $ORIGIN run path). Plain Python, no bpy.
 """
 
 import argparse
@@ -54,13 +57,19 @@ def main(argv=None):
                         help=f"CMake build directory holding {LIBRARY_NAME}")
     parser.add_argument("--out", default=REPO / "dist", type=pathlib.Path,
                         help="output directory (default: dist/)")
+    parser.add_argument("--bundle", type=pathlib.Path,
+                        help="a folder of shared libraries to carry beside the core library")
+    parser.add_argument("--suffix", default="", help="added to the zip's name (e.g. portable)")
     args = parser.parse_args(argv)
 
     library = args.build_dir / LIBRARY_NAME
     if not library.is_file():
         raise SystemExit(f"{library} not found: build the 'bakegi' target first")
     args.out.mkdir(parents=True, exist_ok=True)
-    zip_path = args.out / f"bakegi-{addon_version()}-{platform_tag()}.zip"
+    suffix = f"-{args.suffix}" if args.suffix else ""
+    zip_path = args.out / f"bakegi-{addon_version()}-{platform_tag()}{suffix}.zip"
+    bundled = sorted(p for p in args.bundle.iterdir() if ".so" in p.name and p.name != LIBRARY_NAME
+                     and p.is_file()) if args.bundle else []
     with zipfile.ZipFile(zip_path, "w", zipfile.ZIP_DEFLATED) as archive:
         for path, relative in addon_files():
             archive.write(path, (pathlib.Path("bakegi") / relative).as_posix())
@@ -68,6 +77,8 @@ def main(argv=None):
         info.compress_type = zipfile.ZIP_DEFLATED
         with open(library.resolve(), "rb") as source:
             archive.writestr(info, source.read())
+        for path in bundled:
+            archive.write(path, f"bakegi/lib/{path.name}")
     print(zip_path)
     return 0
 

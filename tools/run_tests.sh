@@ -4,7 +4,10 @@
 # Blender 3.4 (blender_tests/, the UI test under Xvfb) and Blender 4.2 LTS, 4.5 LTS and 5.0
 # as Python modules (tools/setup_bpy.sh; every test but the UI one). One line per Blender
 # version, then one line "N passed, N failed, N skipped" over everything.
+# Last, the portable library: built on Debian 11 with its dependencies beside it, loaded and
+# baking the Cornell box in a clean Debian 11 root (tools/build_portable.sh, check_portable.sh).
 #   BAKEGI_BPY_VERSIONS="4.2.23"  run a part of the matrix ("" for Blender 3.4 alone)
+#   BAKEGI_SKIP_PORTABLE=1        leave out the portable library
 set -uo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh || { echo "setup failed"; exit 1; }
@@ -38,8 +41,29 @@ fi
 echo "== Blender versions"
 grep -E "^Blender [0-9.]+.*: [0-9]+ passed" "$results/blender.log"
 
-if [ $native_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ]; then
-  echo "FAILED (exit codes: native $native_rc, asan $asan_rc, blender $blender_rc)"
+portable_rc=0
+if [ "${BAKEGI_SKIP_PORTABLE:-0}" != 1 ]; then
+  echo "== portable library (built on Debian 11, loaded in a clean Debian 11 root)"
+  started=$(date +%s)
+  { bash tools/build_portable.sh && bash tools/check_portable.sh; } > "$results/portable.log" 2>&1
+  portable_rc=$?
+  grep -E "newest glibc|loaded|NRMSE|PORTABLE OK|glibc of|check_portable:|build_portable:" "$results/portable.log"
+  [ $portable_rc -eq 0 ] || tail -n 30 "$results/portable.log"
+  /usr/bin/python3 - "$results/portable.xml" "$portable_rc" "$(( $(date +%s) - started ))" "$results/portable.log" <<'PY'
+import sys, xml.etree.ElementTree as ET
+path, rc, seconds, log = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
+suite = ET.Element("testsuite", name="portable", tests="1", failures=str(int(rc != 0)), errors="0",
+                   skipped="0", time=seconds)
+case = ET.SubElement(suite, "testcase", classname="portable", name="loads_and_bakes_in_a_clean_root",
+                     time=seconds)
+if rc:
+    ET.SubElement(case, "failure", message="see the portable log").text = open(log, errors="replace").read()[-4000:]
+ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
+PY
+fi
+
+if [ $native_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
+  echo "FAILED (exit codes: native $native_rc, asan $asan_rc, blender $blender_rc, portable $portable_rc)"
   status=1
 else
   status=0
