@@ -31,6 +31,8 @@ def main():
     try:
         runpy.run_path(script, run_name="__main__")
     except SystemExit as done:
+        if isinstance(done.code, str):
+            print(done.code, file=sys.stderr)  # sys.exit("message"), as Python prints it
         code = done.code if isinstance(done.code, int) else (0 if done.code is None else 1)
     except BaseException:
         traceback.print_exc()

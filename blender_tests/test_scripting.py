@@ -146,6 +146,23 @@ class ScriptBuiltScene(unittest.TestCase):
         common.new_empty_scene()
         cls.bakegi = common.enable_addon()
 
+    def test_light_linking_is_named_in_the_warnings(self):
+        """Light linking (Blender 4.0+) is not modelled: a bake says which lights set it."""
+        if "light_linking" not in bpy.types.Object.bl_rna.properties:
+            self.skipTest(f"Blender {bpy.app.version_string} has no light linking (it came in 4.0)")
+        import cornell_box
+        common.new_empty_scene()
+        cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+        report = self.bakegi.bake(method="pathtrace", samples=2, objects="VISIBLE")
+        self.assertFalse([w for w in report["warnings"] if "light linking" in w])
+        receivers = bpy.data.collections.new("Lit by the lamp only")
+        receivers.objects.link(bpy.data.objects["Floor"])
+        bpy.data.objects["CeilingLight"].light_linking.receiver_collection = receivers
+        report = self.bakegi.bake(method="pathtrace", samples=2, objects="VISIBLE")
+        linking = [w for w in report["warnings"] if "light linking is ignored" in w]
+        self.assertEqual(len(linking), 1, report["warnings"])
+        self.assertIn("CeilingLight", linking[0])
+
     def test_visible_objects_made_by_the_script_are_baked(self):
         common.new_empty_scene()
         scene = bpy.context.scene
