@@ -30,7 +30,7 @@ if [ "${BAKEGI_BPY_VERSIONS-all}" != "" ]; then
   if interpreters=$(bash tools/setup_bpy.sh); then
     while read -r version python; do
       /usr/bin/python3 blender_tests/run.py --library "$build_dir/libbakegi.so" --bpy "$python" \
-        --junit "$results/blender-$version.xml" | tee -a "$results/blender.log"
+        --junit "$results/blender-$version.xml" < /dev/null | tee -a "$results/blender.log"
       [ "${PIPESTATUS[0]}" -eq 0 ] || blender_rc=1
     done <<< "$interpreters"
   else
