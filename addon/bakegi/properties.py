@@ -150,7 +150,7 @@ class BakeGISettings(bpy.types.PropertyGroup):
     def resolved_method(self):
         if self.show_debug and self.debug_direct:
             return "direct"
-        return self.method
+        return self.method or METHOD_ITEMS[0][0]  # a file saved with the old debug item reads ""
 
     def method_settings(self):
         """Core settings that only the resolved method reads."""
