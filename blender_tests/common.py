@@ -64,14 +64,18 @@ def new_empty_scene():
     return bpy.context.scene
 
 
-class SmallCornellCase(unittest.TestCase):
-    """The add-on enabled once per file; a fresh small Cornell box (cornell_box.TEST_SUBDIVISIONS)
-    before every test, as self.objects (name -> object)."""
+class AddonCase(unittest.TestCase):
+    """An empty scene and the add-on enabled once per class, as cls.bakegi."""
 
     @classmethod
     def setUpClass(cls):
         new_empty_scene()
         cls.bakegi = enable_addon()
+
+
+class SmallCornellCase(AddonCase):
+    """AddonCase with a fresh small Cornell box (cornell_box.TEST_SUBDIVISIONS) before every
+    test, as self.objects (name -> object)."""
 
     def setUp(self):
         import cornell_box

@@ -8,8 +8,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
 import bpy  # noqa: E402
 import numpy  # noqa: E402
 
@@ -88,12 +86,7 @@ def build_floor_by_a_lit_wall():
     return floor
 
 
-class CoarseMeshes(unittest.TestCase):
-
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
+class CoarseMeshes(common.AddonCase):
 
     def test_a_floor_of_four_vertices_is_flagged_and_a_subdivided_copy_holds_the_light(self):
         build_floor_by_a_lit_wall()
@@ -124,12 +117,7 @@ class CoarseMeshes(unittest.TestCase):
         self.assertLess(finer["display_error"], 0.5 * floor["display_error"])
 
 
-class LinkedDuplicates(unittest.TestCase):
-
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
+class LinkedDuplicates(common.AddonCase):
 
     def setUp(self):
         import cornell_box

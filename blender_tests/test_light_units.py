@@ -36,8 +36,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
 import bpy  # noqa: E402
 import numpy  # noqa: E402
 
@@ -56,11 +54,7 @@ TOLERANCE = 0.02
 NOISE_LIMIT = 0.008
 
 
-class LightUnitsAgainstCycles(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
+class LightUnitsAgainstCycles(common.AddonCase):
 
     def bake_receivers(self, kind, built, seeds=(0, 1)):
         """bakegi's direct light at the receivers' corners, one bake per seed; and the

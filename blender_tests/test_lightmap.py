@@ -9,8 +9,6 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
 import bmesh  # noqa: E402
 import bpy  # noqa: E402
 import numpy  # noqa: E402
@@ -258,16 +256,11 @@ class LightmapFiles(LightmapCase):
         self.assertEqual(sorted(f for f in os.listdir(self.folder)), [os.path.basename(path)])
 
 
-class WallBehindWall(unittest.TestCase):
+class WallBehindWall(common.AddonCase):
     """Two rooms under one floor plane, parted by a thick wall; the light is in room 1.
     Every texel of the floor in room 2 must read no light: the floor's texels under the
     wall lie inside it (rejected and filled from neighbours), and none may carry room 1's
     light across."""
-
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
 
     def _box(self, name, lo, hi, inward):
         mesh = bpy.data.meshes.new(name)

@@ -14,8 +14,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
 import bmesh  # noqa: E402
 import bpy  # noqa: E402
 import numpy  # noqa: E402
@@ -53,14 +51,9 @@ def bake_points(bakegi, method, **settings):
     return common.read_color_attribute(names, domain="POINT"), report
 
 
-class MirroredObjects(unittest.TestCase):
+class MirroredObjects(common.AddonCase):
     """Each method on the small Cornell box (open walls, solid boxes), the office (closed
     solids, sun and sky) and the closed two rooms, original against mirrored."""
-
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
 
     def compare(self, build, method, **settings):
         """Bakes seed 0 and seed 1 of the original and seed 0 of the mirrored copy. Another

@@ -14,8 +14,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
 import bpy  # noqa: E402
 import numpy  # noqa: E402
 
@@ -51,11 +49,7 @@ def mark_every_edge_sharp(mesh):
     mesh.update()
 
 
-class Normals(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
+class Normals(common.AddonCase):
 
     def setUp(self):
         common.new_empty_scene()

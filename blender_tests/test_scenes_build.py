@@ -7,8 +7,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
 import bpy  # noqa: E402
 import numpy  # noqa: E402
 
@@ -31,14 +29,9 @@ def mesh_objects(objects):
     return [o for o in objects.values() if o.type == "MESH"]
 
 
-class CornellBoxEmissive(unittest.TestCase):
+class CornellBoxEmissive(common.AddonCase):
     """The emissive-quad variant: the panel fills the ceiling's hole exactly, faces down, and
     is the only light (the area light is gone)."""
-
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
 
     def test_panel_fills_the_hole_and_lights_the_room(self):
         for subdivisions in (cornell_box.TEST_SUBDIVISIONS, cornell_box.DEFAULT_SUBDIVISIONS):
@@ -62,14 +55,9 @@ class CornellBoxEmissive(unittest.TestCase):
                 self.assertGreater(float(common.read_color_attribute(["Floor"]).mean()), 0.0)
 
 
-class Maze(unittest.TestCase):
+class Maze(common.AddonCase):
     """The maze of the real-scene suite: its only opening is the 1 x 1 m skylight, its walls
     are closed solids, and a short path-traced bake finds light deep inside."""
-
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
 
     def test_every_cell_is_reached_from_the_skylight(self):
         # The first layout sealed 21 of the 25 cells off from the skylight's cell: a room that
@@ -99,11 +87,7 @@ class Maze(unittest.TestCase):
         self.assertGreater(float(common.read_color_attribute([o.name for o in walls[-3:]]).mean()), 0.0)
 
 
-class Office(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
+class Office(common.AddonCase):
 
     def setUp(self):
         common.new_empty_scene()
@@ -153,11 +137,7 @@ class Office(unittest.TestCase):
         print("office export:", result["counts"], "warnings:", result["warnings"])
 
 
-class TwoRooms(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
+class TwoRooms(common.AddonCase):
 
     def test_thick_variant_is_closed_and_counts(self):
         common.new_empty_scene()

@@ -6,8 +6,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
 import bpy  # noqa: E402
 import numpy  # noqa: E402
 
@@ -137,14 +135,9 @@ class Scripting(common.SmallCornellCase):
         self.assertEqual(sum(t["count"] for t in result["targets"]), corners)
 
 
-class ScriptBuiltScene(unittest.TestCase):
+class ScriptBuiltScene(common.AddonCase):
     """A script that makes objects with bpy.data and bakes at once: the view layer's object
     list is not updated until something updates it, and the add-on must do that itself."""
-
-    @classmethod
-    def setUpClass(cls):
-        common.new_empty_scene()
-        cls.bakegi = common.enable_addon()
 
     def test_light_linking_is_named_in_the_warnings(self):
         """Light linking (Blender 4.0+) is not modelled: a bake says which lights set it."""
