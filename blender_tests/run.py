@@ -3,7 +3,7 @@
 
     python3 blender_tests/run.py --library build/libbakegi.so [--junit out.xml] [--output out/blender_tests]
     python3 blender_tests/run.py --installed            # use the add-on installed in Blender
-    python3 blender_tests/run.py --library build/libbakegi.so --bpy .venv/bpy-4.2/bin/python
+    python3 blender_tests/run.py --library build/libbakegi.so --bpy ~/.cache/bakegi/bpy/4.2.23/bin/python
 
 With --bpy the tests run in Blender as a Python module (the `bpy` package of that
 interpreter, through blender_tests/bpy_boot.py) instead of the Blender program; the tests
