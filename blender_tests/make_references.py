@@ -1,7 +1,8 @@
 """Make the Cycles references that the in-Blender tests compare bakegi against.
 
     blender -b --factory-startup --python blender_tests/make_references.py -- \
-        [--only cornell|lights|textured] [--cornell-samples 65536] [--light-samples 16384] \
+        [--only cornell|principled|lights|textured] [--cornell-samples 65536] \
+        [--principled-samples 16384] [--light-samples 16384] \
         [--textured-samples 8192] [--chunk 8192]
     blender -b --factory-startup --python blender_tests/make_references.py -- --bounce-study
     <python with bpy> blender_tests/bpy_boot.py blender_tests/make_references.py -- [...]
@@ -11,6 +12,8 @@ own Cycles; --data elsewhere):
 - cornell_indirect.npy: Cycles' indirect light (tools/cycles_bake.py,
   cycles_indirect) per face corner of the small Cornell box
   (scenes/cornell_box.py, TEST_SUBDIVISIONS), float32 (n, 3);
+- cornell_principled_indirect.npy: the same with Principled BSDFs
+  (build_cornell_box(surface="PRINCIPLED"): each version's own Principled, v1 in 3.x, v2 in 4.x);
 - light_<KIND>.npy: Cycles' direct light per face corner of the receivers of
   each one-light scene of scenes/light_units.py;
 - light_EMISSIVE_TEXTURED.npy: the same for the emissive quad with an image
@@ -87,17 +90,19 @@ def common_sidecar(objects, samples, chunk, seed, seconds, noise):
     }
 
 
-def make_cornell(samples, chunk, seed):
+def make_cornell(samples, chunk, seed, surface="DIFFUSE"):
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    built = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+    built = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS, surface=surface)
     objects = [built[name] for name in CORNELL_OBJECTS]
-    log(f"Cornell box, {sum(len(o.data.loops) for o in objects)} corners, {samples} samples")
+    log(f"Cornell box ({surface}), {sum(len(o.data.loops) for o in objects)} corners, {samples} samples")
     values, seconds, noise = chunked_with_halves(cycles_bake.cycles_indirect, objects, samples, chunk, seed)
     sidecar = common_sidecar(objects, samples, chunk, seed, seconds, noise)
     sidecar["light"] = "indirect"
-    sidecar["scene"] = {"builder": "scenes/cornell_box.py build_cornell_box", **cornell_box.scene_parameters(cornell_box.TEST_SUBDIVISIONS)}
-    save("cornell_indirect", values, sidecar)
-    log(f"Cornell indirect: {seconds:.1f} s, noise {100 * noise:.3f}%")
+    sidecar["scene"] = {"builder": "scenes/cornell_box.py build_cornell_box", "surface": surface,
+                        **cornell_box.scene_parameters(cornell_box.TEST_SUBDIVISIONS)}
+    name = "cornell_indirect" if surface == "DIFFUSE" else f"cornell_{surface.lower()}_indirect"
+    save(name, values, sidecar)
+    log(f"Cornell {surface} indirect: {seconds:.1f} s, noise {100 * noise:.3f}%")
 
 
 def make_lights(samples, chunk, seed):
@@ -146,8 +151,9 @@ def main():
 
     argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--only", choices=("cornell", "lights", "textured"))
+    parser.add_argument("--only", choices=("cornell", "principled", "lights", "textured"))
     parser.add_argument("--cornell-samples", type=int, default=65536)
+    parser.add_argument("--principled-samples", type=int, default=16384)
     parser.add_argument("--light-samples", type=int, default=16384)
     parser.add_argument("--textured-samples", type=int, default=8192)
     parser.add_argument("--chunk", type=int, default=8192)
@@ -168,6 +174,9 @@ def main():
                               min(arguments.chunk, arguments.textured_samples // 2), arguments.seed)
     if arguments.only in (None, "cornell"):
         make_cornell(arguments.cornell_samples, arguments.chunk, arguments.seed)
+    if arguments.only in (None, "principled"):
+        make_cornell(arguments.principled_samples, min(arguments.chunk, arguments.principled_samples // 4),
+                     arguments.seed, surface="PRINCIPLED")
     log(f"done in {time.perf_counter() - start:.0f} s")
 
 

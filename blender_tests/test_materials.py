@@ -65,6 +65,8 @@ class Materials(unittest.TestCase):
         for got, expected in zip(info.glossy, (0.9, 0.6, 0.3)):
             self.assertAlmostEqual(got, expected, places=6)
         self.assertAlmostEqual(info.glossy_exponent, phong_exponent(0.3), places=3)
+        # A strong glossy lobe is approximated (docs/compatibility.md): the user is told.
+        self.assertEqual(len([w for w in info.warnings if "Phong lobe" in w]), 1, info.warnings)
 
     def test_dielectric_adds_average_fresnel_and_keeps_its_diffuse_in_3x(self):
         material, node = node_material("plastic", "ShaderNodeBsdfPrincipled")
@@ -78,14 +80,31 @@ class Materials(unittest.TestCase):
             node.inputs["IOR"].default_value = 1.5
             node.inputs["Specular IOR Level"].default_value = 0.5
             f0 = ((1.5 - 1.0) / (1.5 + 1.0)) ** 2
-            diffuse = 0.5 * (1.0 - (f0 + (1.0 - f0) / 21.0))
-        f_avg = f0 + (1.0 - f0) / 21.0
+            diffuse = 0.5 * (1.0 - self.materials.fresnel_hemispherical_average(f0))
+        f_avg = self.materials.fresnel_hemispherical_average(f0)
         info = self.materials.read_material(material)
         for got in info.albedo:
             self.assertAlmostEqual(got, diffuse, places=5)
         for got in info.glossy:
             self.assertAlmostEqual(got, f_avg, places=5)
         self.assertAlmostEqual(info.glossy_exponent, phong_exponent(0.5), places=3)
+        self.assertEqual([w for w in info.warnings if "Phong lobe" in w], [])  # a coat is no metal
+
+    def test_average_fresnel_is_the_exact_dielectric_one(self):
+        """The hemispherical reflectance of a dielectric: none without an interface, 0.0918
+        for glass (n = 1.5, f0 = 0.04; the known reflectance of glass for diffuse light,
+        0.092), all for a perfect reflector."""
+        average = self.materials.fresnel_hemispherical_average
+        self.assertEqual(average(0.0), 0.0)
+        self.assertAlmostEqual(average(0.04), 0.0918, places=4)
+        self.assertEqual(average(1.0), 1.0)
+        # The specular of Principled v2 with Specular IOR Level 0 is gone, so its base is whole.
+        material, node = node_material("matte", "ShaderNodeBsdfPrincipled")
+        node.inputs["Base Color"].default_value = (0.5, 0.5, 0.5, 1.0)
+        node.inputs["Specular IOR Level" if "Specular IOR Level" in node.inputs else "Specular"].default_value = 0.0
+        info = self.materials.read_material(material)
+        self.assertEqual(tuple(info.albedo), (0.5, 0.5, 0.5))
+        self.assertFalse(info.glossy is not None and max(info.glossy) > 0.0)
 
     def test_glossy_bsdf_and_total_reflectance_stays_at_most_one(self):
         material, node = node_material("mirror", "ShaderNodeBsdfGlossy")

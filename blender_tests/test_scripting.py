@@ -156,6 +156,23 @@ class ScriptBuiltScene(common.AddonCase):
         self.assertEqual(len(linking), 1, report["warnings"])
         self.assertIn("CeilingLight", linking[0])
 
+    def test_eevee_raytracing_is_named_in_the_warnings(self):
+        """EEVEE Next's Raytracing spreads the camera-only emission that shows the bake
+        (tools/eevee_double_light_probe.py measured it): a bake with it on says so."""
+        if "use_raytracing" not in bpy.types.SceneEEVEE.bl_rna.properties:
+            self.skipTest(f"Blender {bpy.app.version_string}'s EEVEE has no Raytracing (EEVEE Next came in 4.2)")
+        import cornell_box
+        common.new_empty_scene()
+        cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
+        scene = bpy.context.scene
+        scene.eevee.use_raytracing = False
+        report = self.bakegi.bake(method="pathtrace", samples=2, objects="VISIBLE")
+        self.assertFalse([w for w in report["warnings"] if "Raytracing" in w])
+        scene.eevee.use_raytracing = True
+        report = self.bakegi.bake(method="pathtrace", samples=2, objects="VISIBLE")
+        self.assertEqual(len([w for w in report["warnings"] if "EEVEE's Raytracing is on" in w]), 1,
+                         report["warnings"])
+
     def test_visible_objects_made_by_the_script_are_baked(self):
         common.new_empty_scene()
         scene = bpy.context.scene

@@ -54,6 +54,8 @@ BOXES = (
     ("TallBox", -0.335, 0.29, 1.2, 17.5),
 )
 
+TALL_BOX_METAL_ROUGHNESS = 0.4  # surface="PRINCIPLED_METAL" only
+
 CAMERA_LOCATION = (0.0, -3.9, 1.0)
 CAMERA_FOV_DEGREES = 39.3  # frames the open front of the box exactly
 
@@ -99,6 +101,31 @@ def diffuse_material(name, color):
     output.location = (300, 0)
     material.node_tree.links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
     material.diffuse_color = (*color, 1.0)  # solid-mode viewport colour
+    return material
+
+
+def principled_material(name, color, roughness=0.5, metallic=0.0):
+    """A material whose surface is a Principled BSDF of the given base colour with a dielectric
+    coat of F0 = 0.04 in every version (3.x: Specular 0.5; 4.x: IOR 1.5, Specular IOR Level
+    0.5), which Cycles 3.x adds on top of the diffuse base and 4.x's Principled v2 layers over
+    it (the base then loses what the coat reflects)."""
+    material = bpy.data.materials.new(name)
+    use_nodes(material)
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    principled = nodes.new("ShaderNodeBsdfPrincipled")
+    principled.inputs["Base Color"].default_value = (*color, 1.0)
+    principled.inputs["Roughness"].default_value = roughness
+    principled.inputs["Metallic"].default_value = metallic
+    if "Specular IOR Level" in principled.inputs:
+        principled.inputs["IOR"].default_value = 1.5
+        principled.inputs["Specular IOR Level"].default_value = 0.5
+    else:
+        principled.inputs["Specular"].default_value = 0.5
+    output = nodes.new("ShaderNodeOutputMaterial")
+    output.location = (300, 0)
+    material.node_tree.links.new(principled.outputs["BSDF"], output.inputs["Surface"])
+    material.diffuse_color = (*color, 1.0)
     return material
 
 
@@ -268,7 +295,7 @@ def add_camera(scene, location, rotation_degrees, fov_degrees, collection):
 
 
 def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER, clear=True, resolution=512,
-                      light="AREA"):
+                      light="AREA", surface="DIFFUSE"):
     """Build the Cornell box into the current scene and return {name: object}.
 
     subdivisions: grid cells along a 2 m edge of a wall; box faces get cells in
@@ -276,6 +303,10 @@ def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER
     light: "AREA" (a rectangle area light) or "EMISSIVE" (a mesh quad of the same size and
     place with an Emission shader of the same radiance, the way most Blender scenes are lit;
     mesh emission is two-sided in Cycles 3.4, so its back lights the ceiling 2 cm above too).
+    surface: "DIFFUSE" (Diffuse BSDFs, the classic box), "PRINCIPLED" (Principled BSDFs of the
+    same base colours, roughness 0.5, a dielectric coat of F0 = 0.04: each version's Principled
+    BSDF) or "PRINCIPLED_METAL" (the same with the tall box a rough metal of the white colour,
+    roughness 0.4; Cycles' Diffuse bake of a metal is black, it has no diffuse part).
     """
     if subdivisions < 1:
         raise ValueError("subdivisions must be at least 1")
@@ -283,9 +314,16 @@ def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER
         clear_scene()
     scene = bpy.context.scene
     collection = scene.collection
-    red = diffuse_material("Red", RED)
-    green = diffuse_material("Green", GREEN)
-    white = diffuse_material("White", WHITE)
+    if surface == "DIFFUSE":
+        red, green, white = (diffuse_material(n, c) for n, c in (("Red", RED), ("Green", GREEN), ("White", WHITE)))
+        metal = white
+    elif surface in ("PRINCIPLED", "PRINCIPLED_METAL"):
+        red, green, white = (principled_material(n, c) for n, c in (("Red", RED), ("Green", GREEN), ("White", WHITE)))
+        metal = white
+        if surface == "PRINCIPLED_METAL":
+            metal = principled_material("Metal", WHITE, roughness=TALL_BOX_METAL_ROUGHNESS, metallic=1.0)
+    else:
+        raise ValueError(f"surface must be DIFFUSE, PRINCIPLED or PRINCIPLED_METAL, not {surface!r}")
 
     w, d, top = ROOM_HALF_WIDTH, ROOM_HALF_DEPTH, ROOM_HEIGHT
     objects = {}
@@ -301,7 +339,8 @@ def build_cornell_box(subdivisions=DEFAULT_SUBDIVISIONS, light_power=LIGHT_POWER
     objects["LeftWall"] = add_wall("LeftWall", (-w, -d, 0), (0, 2 * d, 0), (0, 0, top), red, subdivisions, collection)
     objects["RightWall"] = add_wall("RightWall", (w, -d, 0), (0, 0, top), (0, 2 * d, 0), green, subdivisions, collection)
     for name, x, y, height, rotation in BOXES:
-        objects[name] = add_box(name, x, y, height, rotation, white, subdivisions, collection)
+        objects[name] = add_box(name, x, y, height, rotation, metal if name == "TallBox" else white, subdivisions,
+                                collection)
 
     if light == "EMISSIVE":
         # The panel fills the ceiling's hole (the grid cells whose centres lie under the area

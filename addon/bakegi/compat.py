@@ -13,6 +13,8 @@ testing bpy.app.version itself:
 - Materials and worlds always use nodes in 5.0 (`use_nodes` deprecated): `uses_nodes()`.
 - Lightmap Pack's function lost its image arguments in 4.x: `lightmap_uvpack()`.
 - Light linking (4.0+) is not modelled: `light_linking_in_use()` finds it to warn.
+- EEVEE Next (4.2+) with Raytracing on spreads emission to other surfaces whatever Light
+  Path says, the baked light's camera-only emission included: `eevee_raytracing_on()`.
 - Files of unsaved .blend files go to the extension's user folder (4.2+ extensions) or to
   Blender's user data folder (legacy add-ons): `user_folder()`.
 """
@@ -58,6 +60,15 @@ def light_linking_in_use(obj):
     if linking is None:
         return False
     return linking.receiver_collection is not None or linking.blocker_collection is not None
+
+
+def eevee_raytracing_on(scene):
+    """Whether EEVEE (Next, 4.2+) traces rays for indirect light in this scene. Measured with
+    tools/eevee_double_light_probe.py: with it on, a surface whose emission is gated by Is
+    Camera Ray lights its neighbours as much as an ungated one (4.2, 4.5, 5.0); with it off
+    (the default) neither does. 3.4's EEVEE has no such setting."""
+    eevee = getattr(scene, "eevee", None)
+    return VERSION >= (4, 2) and bool(getattr(eevee, "use_raytracing", False))
 
 
 def lightmap_uvpack(meshes, **preferences):

@@ -854,6 +854,11 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             warnings.append(f"light linking is ignored (set on {', '.join(sorted(linked)[:5])}"
                             f"{' ...' if len(linked) > 5 else ''}): their light reaches every "
                             "object in the bake")
+        if compat.eevee_raytracing_on(context.scene):
+            warnings.append("EEVEE's Raytracing is on (Render Properties): EEVEE then adds its "
+                            "own indirect light and spreads the shown bake to other surfaces "
+                            "again, so EEVEE shows more indirect light than the bake (Cycles "
+                            "does not); turn it off to judge the bake in EEVEE")
         exporter.set_world(context.scene.world)
 
         if target == "LIGHTMAP":
