@@ -8,6 +8,10 @@ Blender installs the zip (Blender 4.2 and later: as an extension from disk, with
 bpy.ops.extensions.package_install_files into the user repository; before: as a legacy
 add-on, with bpy.ops.preferences.addon_install), enables it, and bakes a tiny Cornell box.
 On 4.2 and later the zip also passes Blender's own extension validator.
+
+BAKEGI_INSTALL_ZIP=<zip> tests that zip instead of packing one: tools/run_tests.sh passes the
+portable zip (tools/build_portable.sh) so that the library shipped to users is loaded next to
+each version's own TBB and OpenEXR, not only in a root without Blender.
 """
 
 import json
@@ -68,6 +72,12 @@ class InstallFromZip(unittest.TestCase):
     def setUpClass(cls):
         cls.scratch = tempfile.mkdtemp(prefix="bakegi_install_test_")
         cls.zip_path = None
+        given = os.environ.get("BAKEGI_INSTALL_ZIP")
+        if given:
+            if not os.path.isfile(given):
+                raise AssertionError(f"BAKEGI_INSTALL_ZIP={given}: no such file")
+            cls.zip_path = os.path.abspath(given)
+            return
         library = library_under_test()
         if library is None:
             return

@@ -5,7 +5,8 @@
 # as Python modules (tools/setup_bpy.sh; every test but the UI one). One line per Blender
 # version, then one line "N passed, N failed, N skipped" over everything.
 # Last, the portable library: built on Debian 11 with its dependencies beside it, loaded and
-# baking the Cornell box in a clean Debian 11 root (tools/build_portable.sh, check_portable.sh).
+# baking the Cornell box in a clean Debian 11 root (tools/build_portable.sh, check_portable.sh),
+# then its zip installed in each Blender version (test_install with BAKEGI_INSTALL_ZIP).
 #   BAKEGI_BPY_VERSIONS="4.2.23"  run a part of the matrix ("" for Blender 3.4 alone)
 #   BAKEGI_SKIP_PORTABLE=1        leave out the portable library
 set -uo pipefail
@@ -60,6 +61,23 @@ if rc:
     ET.SubElement(case, "failure", message="see the portable log").text = open(log, errors="replace").read()[-4000:]
 ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
 PY
+  # The same zip installed the way each version installs it, its library loaded next to
+  # that version's own TBB and OpenEXR (test_install with BAKEGI_INSTALL_ZIP).
+  zip=$(ls dist/bakegi-*-portable.zip 2>/dev/null | head -n 1)
+  if [ $portable_rc -eq 0 ] && [ -n "$zip" ]; then
+    echo "== portable zip installed in each Blender version"
+    BAKEGI_INSTALL_ZIP="$zip" /usr/bin/python3 blender_tests/run.py --library "$build_dir/libbakegi.so" \
+      --junit "$results/portable-install.xml" test_install < /dev/null > "$results/portable-install.log" 2>&1 \
+      || portable_rc=1
+    while read -r version python; do
+      [ -n "$python" ] || continue
+      BAKEGI_INSTALL_ZIP="$zip" /usr/bin/python3 blender_tests/run.py --library "$build_dir/libbakegi.so" \
+        --bpy "$python" --junit "$results/portable-install-$version.xml" test_install < /dev/null \
+        >> "$results/portable-install.log" 2>&1 || portable_rc=1
+    done <<< "${interpreters:-}"
+    grep -E "^Blender [0-9.]+.*: [0-9]+ passed" "$results/portable-install.log"
+    [ $portable_rc -eq 0 ] || tail -n 40 "$results/portable-install.log"
+  fi
 fi
 
 if [ $native_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then

@@ -257,7 +257,7 @@ def sampled_uv_map(info):
 # the core refuses, the glossy part is clamped to 1 - albedo).
 # Above this luminance of glossy reflectance (metals, Glossy BSDFs; a dielectric coat is 0.09)
 # the Phong approximation's shortfall shows in what the surface lights (measured on the
-# Cornell box with a rough metal tall box: neighbours 8-21% darker than Cycles 4.5).
+# Cornell box with a rough metal tall box: neighbours 6-20% darker than Cycles 4.5).
 STRONG_GLOSSY_REFLECTANCE = 0.25
 MAX_GLOSSY_EXPONENT = 10000.0  # ~0.8 degree lobe: far narrower than any bin or patch
 
@@ -521,7 +521,7 @@ def read_material(material):
             info.warnings.append(
                 f"{what}: glossy reflectance {reflectance:.2f} (a metal or a Glossy BSDF) is "
                 "baked as a Phong lobe, which reflects less than Cycles' GGX at grazing angles: "
-                "surfaces lit by it can bake 10-20% darker than Cycles (docs/compatibility.md)")
+                "surfaces lit by it can bake up to 20% darker than Cycles (docs/compatibility.md)")
     info.texture = texture
     info.emission = tuple(max(float(e), 0.0) for e in emission)
     info.emission_texture = shader.emission_texture if max(info.emission) > 0.0 else None
