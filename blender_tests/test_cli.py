@@ -87,6 +87,14 @@ class CommandLine(common.SmallCornellCase):
         self.assertGreater(result["relight_seconds"], 0.0)
         self.assertEqual(numpy.load(out).shape, (result["points"], 3))
 
+    def test_a_setting_the_method_does_not_read_fails_naming_it(self):
+        completed = self.run_cli("bake", self.scene, "--method", "pathtrace", "--set", "bins=300", "--out",
+                                 os.path.join(self.work, "x.npy"), expect=1)
+        self.assertIn('setting "bins" is not read by method "pathtrace"', completed.stderr)
+        listing = self.run_cli("settings", "antiradiance").stdout
+        self.assertIn("bins", listing)
+        self.assertIn("lighting", listing)
+
     def test_relight_refuses_a_method_without_precomputation(self):
         completed = self.run_cli("relight", self.scene, "--samples", "1", "--out",
                                  os.path.join(self.work, "x.npy"), expect=2)

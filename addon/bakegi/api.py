@@ -52,7 +52,7 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     Returns the report: seconds per stage (export, bake, writeback, total and the core's
     own), bake_points, method, settings, warnings, memory, rays, objects.
     method_settings: further core settings of the method, e.g. {"bins": 300, "iterations":
-    32} for method="antiradiance" (see bakegi.h for the keys).
+    32} for method="antiradiance" (docs/settings.md lists every method's keys).
     method: "antiradiance" (default), "pathtrace" (the Monte Carlo reference; samples
     applies to it only) or "meshless" (precomputed transfer; relights in milliseconds;
     method_settings e.g. {"levels": 0, "epsilon": 0.01, "cache_dir": "/path"}).

@@ -53,8 +53,12 @@ commands:
            --out convergence.json [settings]
       Antiradiance Fig. 5: error after 1..K iterations of the symmetric and asymmetric
       schemes against an R-iteration solution (default 300), by relighting one bake.
+  settings [METHOD] [--markdown | --json]
+      The settings each method reads (all methods without METHOD): key, type, default,
+      range or choices, role (shapes | lighting | execution) and meaning, from the core's
+      schemas. --markdown writes docs/settings.md.
 
-settings (passed to the core, which checks them):
+settings (passed to the core, which checks them against the method's schema):
   --method M          pathtrace (default) | direct | antiradiance | meshless
   --samples N         samples per bake point
   --seed S            random seed (results are deterministic for a seed and thread count)
@@ -63,7 +67,7 @@ settings (passed to the core, which checks them):
   --max-bounces B     path length cap
   --cache-dir D       meshless: save the precomputation in folder D and reuse it when the
                       scene and settings are the same (setting cache_dir)
-  --set key=value     any other setting of the core
+  --set key=value     any other setting of the method ('bakegi settings METHOD' lists them)
 
 error = relative RMSE over bake points, luminance-weighted (Rec. 709):
   sqrt(sum_i sum_c w_c (v_ic - r_ic)^2 / sum_i sum_c w_c r_ic^2), w = (0.2126, 0.7152, 0.0722)
@@ -97,6 +101,7 @@ int main(int argc, char** argv) {
     if (command == "relight") return run_relight_command(args);
     if (command == "converge") return run_converge_command(args);
     if (command == "subset") return run_subset_command(args);
+    if (command == "settings") return run_settings_command(args);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "bakegi: %s\n(run 'bakegi --help' for usage)\n", e.what());

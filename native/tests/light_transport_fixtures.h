@@ -18,7 +18,7 @@
 #include "scene/scene_validation.h"
 #include "solvers/solver.h"
 #include "util/job_context.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi::test {
 

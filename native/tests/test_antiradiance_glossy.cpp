@@ -28,7 +28,7 @@
 #include "util/error.h"
 #include "util/error_metric.h"
 #include "util/random.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 namespace {

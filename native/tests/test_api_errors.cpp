@@ -428,6 +428,19 @@ TEST(ApiErrors, SettingsAreCheckedWhenAJobStarts) {
   EXPECT_EQ(bakegi_settings_set_int(settings.get(), "sampels", 16), BAKEGI_OK);
   EXPECT_ERROR(start(settings.get()), A, "unknown setting \"sampels\"");
 
+  // A key another method reads is refused too, naming it: it would pass silently otherwise.
+  settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "bins", 300), BAKEGI_OK);
+  EXPECT_ERROR(start(settings.get()), A,
+               "setting \"bins\" is not read by method \"pathtrace\" (its settings: method,");
+
+  // A choice outside the schema's is named with the choices.
+  settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_string(settings.get(), "method", "antiradiance"), BAKEGI_OK);
+  EXPECT_EQ(bakegi_settings_set_string(settings.get(), "oracle", "cube"), BAKEGI_OK);
+  EXPECT_ERROR(start(settings.get()), A,
+               "setting \"oracle\" must be \"sphere\" or \"projected\", not \"cube\"");
+
   settings = new_settings();
   EXPECT_EQ(bakegi_settings_set_string(settings.get(), "samples", "many"), BAKEGI_OK);
   EXPECT_ERROR(start(settings.get()), A, "setting \"samples\" must be an integer, got a string");

@@ -25,7 +25,7 @@
 #include "util/byte_stream.h"
 #include "util/error.h"
 #include "util/job_context.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 namespace {
@@ -199,8 +199,16 @@ TEST(MeshlessCache, KeyCoversSettingsAndPlacementPointsButNotLightsOrRelightSett
   const SceneDescription scene = room(kLight);
   const BakePoints points = room_points();
   // What load_or_precompute leaves out of the key.
-  std::vector<std::string> ignored = MeshlessSolver().relight_settings();
-  ignored.insert(ignored.end(), {"threads", "cache_dir", "samples"});
+  const SettingSchema& schema = method_schema("meshless");
+  std::vector<std::string> ignored = schema.keys_with_role(SettingRole::kLighting);
+  for (const std::string& key : schema.keys_with_role(SettingRole::kExecution)) {
+    ignored.push_back(key);
+  }
+  // The same keys as before the settings had a schema, so cache files made then still hit.
+  std::vector<std::string> sorted = ignored;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, (std::vector<std::string>{"bounces", "cache_dir", "direct_samples", "samples",
+                                              "sender_cutoff", "threads"}));
   std::map<std::string, SettingValue> settings = {{"levels", int64_t(3)}, {"epsilon", 0.01}};
   const meshless::CacheKey key = meshless::precomputation_key(scene, settings, ignored, &points);
 

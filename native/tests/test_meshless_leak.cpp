@@ -17,7 +17,7 @@
 #include "solvers/meshless/multilevel_approximation.h"
 #include "solvers/meshless/visible_basis.h"
 #include "util/job_context.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 namespace {

@@ -236,79 +236,16 @@ BAKEGI_API bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_s
 
 /* ---- settings --------------------------------------------------------------------------- */
 
-/* Key/value settings for a bake, validated when a job starts (unknown keys, wrong types
- * and out-of-range values are errors). Keys understood now:
- *   "method"       string  "pathtrace" (default) | "direct" (direct light, E_direct/pi,
- *                          for checking light units against Cycles) | "antiradiance"
- *                          (Dachsbacher et al. 2007: hierarchical radiosity-like transport
- *                          without visibility rays, interpolated at the bake points) |
- *                          "meshless" (Lehtinen et al. 2008: precomputed direct-to-indirect
- *                          transfer in a meshless hierarchical basis; relights in ms)
- *   "samples"      int     samples per bake point, >= 1 (default 64)
- *   "seed"         int     >= 0 (default 0); results are deterministic for a seed
- *   "threads"      int     0 = all cores (default 0)
- *   "max_bounces"  int     >= 1, path length cap for indirect light (default 64; Russian
- *                          roulette ends most paths far sooner)
- *   "memory_budget_mb" int >= 1 (default 4096): a bake whose estimate exceeds it is refused;
- *                          antiradiance coarsens an automatic patch size to fit it (warning)
- *   "error_probes" int     0..65536 (default 256): every full bake (not relights, not method
- *                          "direct") estimates its own error: at this many bake points drawn at
- *                          random, and at the display probes, the path tracer's estimate is
- *                          compared with the result. Report: "estimated_error" (the NRMSE at
- *                          bake points, a fraction; null if no indirect light reached the
- *                          probes), "estimated_error_interval" ([low, high], 90%),
- *                          "error_estimate" (both kinds of probes, per object: "object" is the
- *                          bake points' object id), seconds "error_estimate". 0 = off.
- *   "error_probe_samples" int  16..2^20 (default 512): paths per probe
- *   "fallback"     int     0 | 1 (default 1): a method that cannot model the scene within the
- *                          memory budget (antiradiance on a very large scene) hands the bake
- *                          to the path tracer (at "samples", else 128 paths) with a warning
- *                          instead of failing; report "method_used" says which method baked
- * Antiradiance only ("seed" also picks its direct-light samples):
- *   "bins"         int     directional bins 12..3072 (default 300, rounded to 12*Nside^2)
- *   "iterations"   int     bounces at most, 1..100000 (default 32)
- *   "tolerance"    float   stop when a bounce adds less than this fraction, 0..1 (1e-4)
- *   "scheme"       string  "symmetric" (default) | "asymmetric" (provably convergent)
- *   "patch_size"   float   largest patch edge in metres, 0 = automatic (default 0:
- *                          scene extent / 16, coarsened to fit the memory budget)
- *   "direct_samples" int   direct-light samples per patch, 1..65536 (default 64)
- *   "oracle"       string  how linking measures an element's solid angle: "sphere" (default,
- *                          its bounding sphere's disk) | "projected" (its projected area:
- *                          3-6x fewer links, a little more error)
- *   "oracle_factor" float  refine links while an end subtends more than this many bins,
- *                          0.05..64 (default 1, the paper's criterion)
- *   "glossy_fold_exponent" float  glossy lobes with a lower exponent reflect as diffuse
- *                          (energy kept), 0..1e6 (default 16, roughness above ~0.42; 0 keeps
- *                          every lobe): wide lobes cost the local pass up to m/4 times more
- *   "near_field_rays" int  0..65536 (default 256): bake points near another surface (concave
- *                          edges, contact lines) gather this many rays from the solution
- *                          instead of interpolating patches; 0 = interpolate everywhere
- *   "near_field_distance" float  0..100 (default 0.5): "near" in units of the interpolation's
- *                          support radius (about two patch edges); blended over its last half
- * Meshless only (Lehtinen et al. 2008; in progress, see docs/methods/meshless.md):
- *   "levels"       int     receiver levels of the basis 0..12 (default 0 = automatic, 4)
- *   "coarse_spacing" float Poisson-disk spacing of level 0 in metres (default 0 = automatic)
- *   "sender_levels" int    levels that send light, 0..12 (default 0 = half the levels)
- *   "epsilon"      float   link threshold, the paper's units (default 0.01; the paper used 0.025)
- *   "gather_rays"  int     hemisphere rays per receiver basis function (default 256)
- *   "bounces"      int     bounces at most, the first included (default 16)
- *   "direct_samples" int   direct-light samples per sender point (default 4)
- *   "sender_cutoff" float  0..1 (default 1e-3): senders whose projected direct light is below
- *                          this fraction of the largest are skipped when lighting (§3.3)
- *   "viewpoint"    string  "x,y,z": importance particles start there; empty (default): they
- *                          leave the bake points
- *   "visibility"   int     0 or 1 (default 1): at bake points, leave out basis functions
- *                          whose point the bake point cannot see (occlusion rays)
- *   "cache_dir"    string  a folder (UTF-8; created if missing): the precomputation is saved
- *                          there as meshless-<key>.bgcache and a later bake of the same
- *                          geometry, materials, settings (and bake points, without a
- *                          viewpoint) loads it instead of precomputing; lights and world may
- *                          differ. A stale or corrupt file is rebuilt with a warning; a
- *                          folder that cannot be written is a warning. Empty (default): no
- *                          cache. Report: "meshless_cache" ("hit" | "miss" | "stale" |
- *                          "off"), "meshless_cache_path", "meshless_cache_bytes", seconds
- *                          "meshless_cache_load" / "meshless_cache_save"
- */
+/* Key/value settings for a bake, validated when a job starts against the schema of its
+ * method: a key the method does not read ("bins" in a path-traced bake), a wrong type, a value
+ * out of range or not among its choices is an error (BAKEGI_ERROR_INVALID_ARGUMENT) naming the
+ * key. Every method reads the common settings (method, samples, seed, sample_offset, threads,
+ * memory_budget_mb, error_probes, error_probe_samples, fallback); antiradiance and meshless
+ * also the path tracer's (max_bounces), which finishes their bake when they cannot model the
+ * scene; then each its own. The schemas are the only list of keys: docs/settings.md is made
+ * from them (`bakegi settings --markdown`), and bakegi_settings_describe gives one as JSON.
+ * A setting's role says what a relight may change (bakegi_job_start_relight): "lighting" and
+ * "execution" keys may change, "shapes" keys may not. */
 typedef struct bakegi_settings bakegi_settings;
 
 BAKEGI_API bakegi_status bakegi_settings_create(bakegi_settings** out_settings);
@@ -317,6 +254,14 @@ BAKEGI_API bakegi_status bakegi_settings_set_int(bakegi_settings* settings, cons
                                                  int64_t value);
 BAKEGI_API bakegi_status bakegi_settings_set_float(bakegi_settings* settings, const char* key,
                                                    double value);
+/* The settings schema of `method` ("pathtrace", "direct", "antiradiance", "meshless"; NULL or
+ * "" lists the method names) as JSON: {"method", "summary", "settings": [{"key", "type"
+ * ("integer" | "number" | "text"), "default", "min", "max" or "choices", "role" ("shapes" |
+ * "lighting" | "execution"), "doc"}]}; without a method: {"methods": [names]}. Writes at most
+ * capacity bytes including the NUL and stores the full length (without NUL) in *out_length;
+ * call with capacity 0 to ask for the length. An unknown method is INVALID_ARGUMENT. */
+BAKEGI_API bakegi_status bakegi_settings_describe(const char* method, char* buffer,
+                                                  size_t capacity, size_t* out_length);
 BAKEGI_API bakegi_status bakegi_settings_set_string(bakegi_settings* settings, const char* key,
                                                     const char* value);
 
@@ -360,9 +305,9 @@ BAKEGI_API void bakegi_job_destroy(bakegi_job* job);
 BAKEGI_API int bakegi_job_can_relight(const bakegi_job* job);
 /* Starts a bake of `scene` that reuses the finished `previous` job's precomputation, with
  * the previous job's settings: only direct light and the solve run again. `settings` (NULL =
- * none) may change what does not shape the precomputation (antiradiance: iterations,
- * tolerance, scheme, direct_samples, seed; any method: threads); another changed key fails
- * with BAKEGI_ERROR_INVALID_ARGUMENT. `scene` must have
+ * none) may change the keys whose role in the method's schema is "lighting" or "execution"
+ * (docs/settings.md; antiradiance: samples, iterations, tolerance, scheme, direct_samples,
+ * seed, threads); another changed key fails with BAKEGI_ERROR_INVALID_ARGUMENT. `scene` must have
  * the same meshes, materials and textures as the previous bake's scene (lights and world may
  * differ); a difference fails the new job with BAKEGI_ERROR_INVALID_ARGUMENT. points: NULL =
  * the previous job's points. The previous job may be destroyed while the new one runs. */

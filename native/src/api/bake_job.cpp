@@ -26,14 +26,9 @@ namespace {
 constexpr size_t kEmbreeBytesPerTriangle = 48 + 160;
 constexpr size_t kBytesPerPoint = sizeof(glm::vec3) * 2 + sizeof(uint32_t);
 constexpr size_t kBytesPerResult = sizeof(glm::vec3);
-// The self-check of every full bake: a few hundred probes give the NRMSE to within about
-// +-15% of itself where the error is well above the probes' noise (512 paths: 5-8% per
-// probe on the Cornell box and Sponza), for about a tenth of a path-traced bake's rays.
-constexpr int64_t kDefaultErrorProbes = 256;
 // Paths per bake point when a bake falls back to the path tracer (solve_full): twice the
 // add-on's default of 64 (about 13% noise on the Cornell box); the error estimate says more.
 constexpr int64_t kFallbackSamples = 128;
-constexpr int64_t kDefaultErrorProbeSamples = 512;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -90,10 +85,10 @@ BakeJob::BakeJob(SceneDescription description, BakePoints points,
                 "its method cannot relight)");
   }
   settings_ = previous->settings;
-  const std::vector<std::string> changeable = make_solver(previous->method)->relight_settings();
+  const SettingSchema& schema = method_schema(previous->method);
   for (const auto& [key, value] : overrides.values()) {
-    const bool allowed = key == "threads" ||
-                         std::find(changeable.begin(), changeable.end(), key) != changeable.end();
+    const SettingSpec* spec = schema.find(key);
+    const bool allowed = spec != nullptr && spec->role != SettingRole::kShapes;
     const auto before = settings_.values().find(key);
     const bool same = before != settings_.values().end() && before->second == value;
     if (!allowed && !same) {
@@ -108,24 +103,24 @@ BakeJob::BakeJob(SceneDescription description, BakePoints points,
 }
 
 void BakeJob::start() {
-  settings_.check_known_keys(known_setting_keys());
-  method_ = settings_.get_string("method", "pathtrace");
-  // Common keys are checked here so that a bad value fails at once; their defaults belong
-  // to the solvers, which read them again.
-  constexpr int64_t kMaxInt = std::numeric_limits<int64_t>::max();
-  if (settings_.has("samples")) settings_.get_int("samples", 1, 1, int64_t(1) << 30);
-  if (settings_.has("seed")) settings_.get_int("seed", 0, 0, kMaxInt);
-  if (settings_.has("sample_offset")) {
-    settings_.get_int("sample_offset", 0, 0, int64_t(1) << 40);
+  // The method picks the schema; every given value is then checked at once (before any work).
+  const auto method = settings_.values().find("method");
+  if (method != settings_.values().end() && !std::holds_alternative<std::string>(method->second)) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "setting \"method\" must be a string, got " +
+                                                   std::string(method->second.index() == 0
+                                                                   ? "an integer"
+                                                                   : "a float"));
   }
-  if (settings_.has("max_bounces")) settings_.get_int("max_bounces", 1, 1, 1 << 20);
-  threads_ = int(settings_.get_int("threads", 0, 0, 1024));
-  error_probes_ = settings_.get_int("error_probes", kDefaultErrorProbes, 0, 65536);
-  error_probe_samples_ =
-      settings_.get_int("error_probe_samples", kDefaultErrorProbeSamples, 16, int64_t(1) << 20);
-  memory_budget_bytes_ = size_t(settings_.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30))
-                         << 20;
-  fallback_ = settings_.get_int("fallback", 1, 0, 1) != 0;
+  method_ = method == settings_.values().end() ? "pathtrace" : std::get<std::string>(method->second);
+  const SettingSchema& schema = method_schema(method_);
+  settings_.validate(schema, setting_keys_of_any_method());
+  const SettingReader settings(settings_, schema);
+  settings.get_string("method");  // remembered: the report and cache keys name the method
+  threads_ = int(settings.get_int("threads"));
+  error_probes_ = settings.get_int("error_probes");
+  error_probe_samples_ = settings.get_int("error_probe_samples");
+  memory_budget_bytes_ = size_t(settings.get_int("memory_budget_mb")) << 20;
+  fallback_ = settings.get_int("fallback") != 0;
   solver_ = make_solver(method_);
   if (previous_ && !solver_->can_relight()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
@@ -287,8 +282,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
     Settings fallback_settings = settings_;
     if (!settings_.has("samples")) fallback_settings.set("samples", kFallbackSamples);
     report.warn(std::string(e.what()) + ". Baked with the path tracer instead (" +
-                std::to_string(fallback_settings.get_int("samples", kFallbackSamples, 1,
-                                                         int64_t(1) << 30)) +
+                std::to_string(SettingReader(fallback_settings, method_schema("pathtrace")).get_int("samples")) +
                 " samples; setting fallback=0 refuses instead)");
     method_used = "pathtrace";
     solver_ = make_solver("pathtrace");
@@ -364,7 +358,7 @@ void BakeJob::estimate_error(Report& report) {
   const auto start = std::chrono::steady_clock::now();
   ErrorEstimateSettings settings;
   settings.samples = error_probe_samples_;
-  settings.seed = uint64_t(settings_.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max()));
+  settings.seed = uint64_t(SettingReader(settings_, method_schema(method_)).get_int("seed"));
   const ErrorProbes at_points =
       probes_weighted_by_light(points_, results_, size_t(error_probes_), settings.seed);
   const ErrorEstimate estimate =

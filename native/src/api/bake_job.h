@@ -18,7 +18,7 @@
 #include "field/indirect_field.h"
 #include "scene/scene.h"
 #include "util/job_context.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 
@@ -40,8 +40,9 @@ struct JobPrecomputation {
 
 class BakeJob {
  public:
-  // Checks the settings (unknown keys, types and ranges of the common ones, the method
-  // name) and throws Error(INVALID_ARGUMENT) before anything starts; then starts the thread.
+  // Checks the settings against the method's schema (the method name, keys the method does
+  // not read, types, ranges, choices) and throws Error(INVALID_ARGUMENT) before anything
+  // starts; then starts the thread.
   // `display_probes` (checked against the points) add probes inside faces to the job's
   // estimate of its own error (bake/error_estimate.h).
   BakeJob(SceneDescription description, BakePoints points, Settings settings,
@@ -49,8 +50,8 @@ class BakeJob {
   // A relight: bakes `description`, which must have the same geometry and materials as the
   // previous bake's scene (only lights and world may differ; checked when the job runs), at
   // `points` with the previous bake's settings, reusing its precomputation. `overrides` may
-  // change the settings the method lists in Solver::relight_settings() (and "threads");
-  // another key with another value is refused (Error INVALID_ARGUMENT).
+  // change the settings whose role in the method's schema is lighting or execution; another
+  // key with another value is refused (Error INVALID_ARGUMENT).
   BakeJob(SceneDescription description, BakePoints points,
           std::shared_ptr<const JobPrecomputation> previous, const Settings& overrides = {});
   // Cancels if still running and waits for the thread.

@@ -7,7 +7,7 @@
 #include "bake/error_probes.h"
 #include "bake_points/bake_points.h"
 #include "scene/scene.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 struct bakegi_scene {
   bakegi::SceneDescription description;

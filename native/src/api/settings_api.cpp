@@ -1,9 +1,15 @@
-// bakegi_settings_*: values are stored as given; keys, types and ranges are checked when a
-// job starts (BakeJob) and by the solvers that read them.
+// bakegi_settings_*: values are stored as given; keys, types and ranges are checked against
+// the method's schema when a job starts (BakeJob). bakegi_settings_describe hands the schemas
+// out.
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "api/api_guard.h"
 #include "api/handles.h"
+#include "settings/setting_schema.h"
+#include "solvers/solver.h"
+#include "util/report.h"
 
 using bakegi::Error;
 using bakegi::guarded;
@@ -59,6 +65,32 @@ bakegi_status bakegi_settings_set_string(bakegi_settings* settings, const char* 
     require_key(key);
     require(value, "value");
     settings->settings.set(key, std::string(value));
+  });
+}
+
+bakegi_status bakegi_settings_describe(const char* method, char* buffer, size_t capacity,
+                                       size_t* out_length) {
+  return guarded(__func__, [&] {
+    if (capacity > 0) require(buffer, "buffer");
+    if (capacity == 0 && !out_length) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "capacity is 0 and out_length is NULL");
+    }
+    std::string json;
+    if (!method || method[0] == '\0') {
+      json = "{\"methods\": [";
+      for (const std::string& name : bakegi::method_names()) {
+        json += (json.back() == '[' ? "" : ", ") + bakegi::json_quote(name);
+      }
+      json += "]}";
+    } else {
+      json = bakegi::schema_json(bakegi::method_schema(method));
+    }
+    if (out_length) *out_length = json.size();
+    if (capacity > 0) {
+      const size_t n = std::min(json.size(), capacity - 1);
+      std::memcpy(buffer, json.data(), n);
+      buffer[n] = '\0';
+    }
   });
 }
 

@@ -9,10 +9,12 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "settings/settings.h"
+#include "solvers/solver.h"
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/random.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 
@@ -31,11 +33,13 @@ bool is_finite(const glm::vec3& v) {
 
 }  // namespace
 
-SampleSettings SampleSettings::from(const Settings& settings) {
+SampleSettings SampleSettings::from(const Settings& given) {
+  // The sampling settings are common: every method's schema has them alike.
+  const SettingReader settings(given, method_schema("pathtrace"));
   SampleSettings s;
-  s.samples = settings.get_int("samples", 64, 1, int64_t(1) << 30);
-  s.seed = settings.get_int("seed", 0, 0, INT64_MAX);
-  s.sample_offset = settings.get_int("sample_offset", 0, 0, int64_t(1) << 40);
+  s.samples = settings.get_int("samples");
+  s.seed = settings.get_int("seed");
+  s.sample_offset = settings.get_int("sample_offset");
   return s;
 }
 

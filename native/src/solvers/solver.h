@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "field/indirect_field.h"
+#include "settings/setting_schema.h"
 
 namespace bakegi {
 
@@ -44,8 +45,6 @@ class Solver {
 
   // Whether relight() works for this method.
   virtual bool can_relight() const { return false; }
-  // Setting keys a relight may change (the rest shaped the precomputation).
-  virtual std::vector<std::string> relight_settings() const { return {}; }
   // The precomputation of the last successful solve(), or null.
   virtual std::shared_ptr<const Precomputation> precomputation() const { return nullptr; }
   // Solves again with the lights of inputs.scene, reusing `reuse` (made by a solver of the same
@@ -57,5 +56,13 @@ class Solver {
 
 // Throws bakegi::Error(INVALID_ARGUMENT) for an unknown method name.
 std::unique_ptr<Solver> make_solver(const std::string& method);
+
+// The names of the methods, in the registry's order (solver_registry.cpp).
+const std::vector<std::string>& method_names();
+// A method's settings: the common ones, the path tracer's when the method can hand a bake to
+// it (setting "fallback"), then its own. Throws Error(INVALID_ARGUMENT) for an unknown method.
+const SettingSchema& method_schema(const std::string& method);
+// Every key some method reads (to tell an unknown key from one another method reads).
+const std::vector<std::string>& setting_keys_of_any_method();
 
 }  // namespace bakegi

@@ -27,7 +27,7 @@
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/report.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 namespace {
@@ -71,12 +71,13 @@ struct AntiradianceSettings {
   double near_field_distance = 0.5;
   uint64_t memory_budget_bytes = uint64_t(4096) << 20;
 
-  static AntiradianceSettings from(const Settings& settings) {
+  static AntiradianceSettings from(const Settings& given) {
+    const SettingReader settings(given, method_schema("antiradiance"));
     AntiradianceSettings s;
-    s.bins = settings.get_int("bins", 300, 12, 3072);
-    s.iterations = settings.get_int("iterations", 32, 1, 100000);
-    s.tolerance = settings.get_float("tolerance", 1e-4, 0.0, 1.0);
-    const std::string scheme = settings.get_string("scheme", "symmetric");
+    s.bins = settings.get_int("bins");
+    s.iterations = settings.get_int("iterations");
+    s.tolerance = settings.get_float("tolerance");
+    const std::string scheme = settings.get_string("scheme");
     if (scheme == "symmetric") {
       s.scheme = IterationScheme::kSymmetric;
     } else if (scheme == "asymmetric") {
@@ -86,9 +87,9 @@ struct AntiradianceSettings {
           BAKEGI_ERROR_INVALID_ARGUMENT,
           "setting \"scheme\" must be \"symmetric\" or \"asymmetric\", not \"" + scheme + "\"");
     }
-    s.patch_size = settings.get_float("patch_size", 0.0, 0.0, 1e9);
-    s.direct_samples = settings.get_int("direct_samples", 64, 1, 65536);
-    const std::string oracle = settings.get_string("oracle", "sphere");
+    s.patch_size = settings.get_float("patch_size");
+    s.direct_samples = settings.get_int("direct_samples");
+    const std::string oracle = settings.get_string("oracle");
     if (oracle == "sphere") {
       s.oracle = OracleExtent::kBoundingSphere;
     } else if (oracle == "projected") {
@@ -97,13 +98,13 @@ struct AntiradianceSettings {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                   "setting \"oracle\" must be \"sphere\" or \"projected\", not \"" + oracle + "\"");
     }
-    s.oracle_factor = settings.get_float("oracle_factor", 1.0, 0.05, 64.0);
-    s.glossy_fold_exponent = settings.get_float("glossy_fold_exponent", 16.0, 0.0, 1e6);
-    s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
-    s.near_field_rays = settings.get_int("near_field_rays", 256, 0, 65536);
-    s.near_field_distance = settings.get_float("near_field_distance", 0.5, 0.0, 100.0);
+    s.oracle_factor = settings.get_float("oracle_factor");
+    s.glossy_fold_exponent = settings.get_float("glossy_fold_exponent");
+    s.seed = settings.get_int("seed");
+    s.near_field_rays = settings.get_int("near_field_rays");
+    s.near_field_distance = settings.get_float("near_field_distance");
     s.memory_budget_bytes =
-        uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
+        uint64_t(settings.get_int("memory_budget_mb")) << 20;
     return s;
   }
 };
@@ -437,7 +438,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   // indirect light (a furnished room came out 31% low, Sponza 100% off): not a result to
   // give where the path tracer can give a right one.
   if (result.stopped_early && result.history.size() <= kUnusableIterations &&
-      inputs.settings.get_int("fallback", 1, 0, 1) != 0) {
+      SettingReader(inputs.settings, method_schema("antiradiance")).get_int("fallback") != 0) {
     throw CannotModel("antiradiance: the iteration diverged (" + result.warning +
                       "); the method cannot model this scene at these settings");
   }

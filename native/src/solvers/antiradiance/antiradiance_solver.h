@@ -4,16 +4,8 @@
 // interpolates the patches' indirect irradiance at the bake points (surface_interpolation.h), so
 // evaluation is cheap.
 //
-// Settings (read with ranges; a bad value fails before any work):
-//   bins            directional bins, 12..3072 (default 300; rounded to a HEALPix count)
-//   iterations      bounces at most, 1..100000 (default 32)
-//   tolerance       stop when an iteration adds less than this fraction, 0..1 (default 1e-4)
-//   scheme          "symmetric" (default) or "asymmetric" (§2.2)
-//   patch_size      largest patch edge in metres, 0 = automatic (default 0)
-//   direct_samples  direct-light samples per patch, 1..65536 (default 64)
-//   seed            random stream of the direct-light samples (default 0)
-//   memory_budget_mb  the job's budget; hierarchy, bin tables and links must fit in what the
-//                   ray tracer leaves of it
+// Settings: setting_specs() (antiradiance_setting_specs.cpp; docs/settings.md), read through
+// the job's schema, so a bad value fails before any work.
 // Automatic patch size: the scene's default (extent / 16), coarsened by factors of 2 until
 // the estimate fits the budget, with a warning whenever it coarsens. A requested patch size
 // that does not fit is refused, naming one that would.
@@ -47,14 +39,12 @@ struct AntiradiancePrecomputation;
 
 class AntiradianceSolver : public Solver {
  public:
+  static const std::vector<SettingSpec>& setting_specs();
   std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
 
   // Relighting without relinking (§3.3): bins, hierarchy and links stay; direct light is
   // initialized anew from inputs.scene's lights and the iteration runs again.
   bool can_relight() const override { return true; }
-  std::vector<std::string> relight_settings() const override {
-    return {"iterations", "tolerance", "scheme", "direct_samples", "seed"};
-  }
   std::shared_ptr<const Precomputation> precomputation() const override { return precomputation_; }
   std::unique_ptr<IndirectField> relight(const SolveInputs& inputs, const Precomputation& reuse,
                                          JobContext& context) override;

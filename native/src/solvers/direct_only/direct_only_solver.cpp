@@ -2,7 +2,7 @@
 
 #include "direct/direct_light.h"
 #include "util/sampling.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 

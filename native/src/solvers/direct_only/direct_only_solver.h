@@ -1,6 +1,6 @@
 // The "direct" method: E_direct / pi at the bake points, what a Cycles Diffuse bake with
 // only Direct enabled (Color off) writes. Used to pin light units against Cycles.
-// Settings: samples (>= 1, default 64), seed, sample_offset.
+// Settings: the common sampling ones (samples, seed, sample_offset); none of its own.
 #pragma once
 
 #include <memory>

@@ -37,7 +37,7 @@
 #include "util/job_context.h"
 #include "util/random.h"
 #include "util/report.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 
@@ -61,22 +61,23 @@ struct MeshlessSettings {
   uint64_t memory_budget_bytes = uint64_t(4096) << 20;
   std::string cache_dir;  // empty: no precomputation cache
 
-  static MeshlessSettings from(const Settings& settings) {
+  static MeshlessSettings from(const Settings& given) {
+    const SettingReader settings(given, method_schema("meshless"));
     MeshlessSettings s;
-    s.levels = settings.get_int("levels", 0, 0, 12);
-    s.coarse_spacing = settings.get_float("coarse_spacing", 0.0, 0.0, 1e9);
-    s.sender_levels = settings.get_int("sender_levels", 0, 0, 12);
-    s.epsilon = settings.get_float("epsilon", 0.01, 0.0, 10.0);
-    s.gather_rays = settings.get_int("gather_rays", 256, 1, 65536);
-    s.bounces = settings.get_int("bounces", 16, 1, 1000);
-    s.direct_samples = settings.get_int("direct_samples", 4, 1, 65536);
-    s.sender_cutoff = settings.get_float("sender_cutoff", 1e-3, 0.0, 1.0);
-    s.visibility = settings.get_int("visibility", 1, 0, 1) != 0;
-    s.seed = settings.get_int("seed", 0, 0, std::numeric_limits<int64_t>::max());
+    s.levels = settings.get_int("levels");
+    s.coarse_spacing = settings.get_float("coarse_spacing");
+    s.sender_levels = settings.get_int("sender_levels");
+    s.epsilon = settings.get_float("epsilon");
+    s.gather_rays = settings.get_int("gather_rays");
+    s.bounces = settings.get_int("bounces");
+    s.direct_samples = settings.get_int("direct_samples");
+    s.sender_cutoff = settings.get_float("sender_cutoff");
+    s.visibility = settings.get_int("visibility") != 0;
+    s.seed = settings.get_int("seed");
     s.memory_budget_bytes =
-        uint64_t(settings.get_int("memory_budget_mb", 4096, 1, int64_t(1) << 30)) << 20;
-    s.cache_dir = settings.get_string("cache_dir", "");
-    const std::string viewpoint = settings.get_string("viewpoint", "");
+        uint64_t(settings.get_int("memory_budget_mb")) << 20;
+    s.cache_dir = settings.get_string("cache_dir");
+    const std::string viewpoint = settings.get_string("viewpoint");
     if (!viewpoint.empty()) {
       std::istringstream in(viewpoint);
       char comma1 = 0, comma2 = 0;
@@ -235,9 +236,12 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::load_or_precompute
   Report& report = context.report();
   auto start = std::chrono::steady_clock::now();
   // Everything that shapes the precomputation: all settings read so far (MeshlessSettings
-  // read every meshless key, with fallbacks) except those that only light or evaluate.
-  std::vector<std::string> ignored = relight_settings();
-  ignored.insert(ignored.end(), {"threads", "cache_dir", "samples"});
+  // read every meshless key, with defaults) except those whose role is lighting or execution.
+  const SettingSchema& schema = method_schema("meshless");
+  std::vector<std::string> ignored = schema.keys_with_role(SettingRole::kLighting);
+  for (const std::string& key : schema.keys_with_role(SettingRole::kExecution)) {
+    ignored.push_back(key);
+  }
   const CacheKey key =
       precomputation_key(inputs.scene.description, inputs.settings.used_values(), ignored,
                          settings.has_viewpoint ? nullptr : inputs.points);

@@ -5,31 +5,12 @@
 // sender points, e = P† E, i = S e. The field evaluates the indirect vector irradiance i at
 // bake points through the basis (Eq. 6) and dots it with their normals.
 //
-// Settings (read with ranges; a bad value fails before any work):
-//   levels          receiver levels L + 1, 0 = automatic (point_placement.h: 4)
-//   coarse_spacing  R_coarse in metres, 0 = automatic
-//   sender_levels   sender levels (the first ones), 0 = automatic: all receiver levels but the
-//                   finest (the paper: 6 receiver / 3 sender levels; Cornell 5.2% -> 4.6%)
-//   epsilon         the link threshold ε in the paper's units (default 0.01; the paper's 0.025
-//                   drops links that carry energy here: Cornell 7.8% -> 6.3% at 0.01)
-//   gather_rays     hemisphere rays per receiver of Eq. 16 (default 256)
-//   bounces         bounces at most, the first included (default 16; the paper simulated 4)
-//   direct_samples  direct-light samples per sender point (default 4: P† averages them over
-//                   the sender basis; Cornell 4.62% at 16, 4.71% at 4, Sponza relight 2x faster)
-//   sender_cutoff   lighting skips senders whose coefficient is below this fraction of the
-//                   largest (§3.3 "skipping senders below ε"; default 1e-3, 0 = none)
-//   viewpoint       "x,y,z": importance particles start there (§2.3); empty (default): they
-//                   leave the bake points, which define the surfaces that matter for a bake
-//   visibility      1 (default): at bake points, leave out basis functions whose point the
-//                   bake point cannot see (visible_evaluation.h); 0: plain Eq. 6
-//   seed, memory_budget_mb
-//   cache_dir       a folder (UTF-8): solve() saves the precomputation there and a later solve
-//                   of the same scene and settings loads it instead of precomputing
-//                   (precomputation_cache.h: keyed by geometry, materials, the settings that
-//                   shape it and the bake points that placed it; a stale or corrupt file is
-//                   rebuilt with a warning, an unwritable folder is a warning). Empty
-//                   (default): no cache. The report says "meshless_cache": hit, miss, stale
-//                   or off, with "meshless_cache_path", the load/save seconds and the bytes.
+// Settings: setting_specs() (meshless_setting_specs.cpp; docs/settings.md), read through the
+// job's schema, so a bad value fails before any work. cache_dir: solve() saves the
+// precomputation there and a later solve of the same scene and settings loads it
+// (precomputation_cache.h: keyed by geometry, materials, the settings whose role is "shapes"
+// and the bake points that placed it; a stale or corrupt file is rebuilt with a warning, an
+// unwritable folder is a warning).
 #pragma once
 
 #include <memory>
@@ -64,16 +45,10 @@ class MeshlessField : public IndirectField {
 
 class MeshlessSolver : public Solver {
  public:
+  static const std::vector<SettingSpec>& setting_specs();
   std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
 
   bool can_relight() const override { return true; }
-  // Not "visibility": the gather's visibility test (gather_integral.h) shapes T, so a relight
-  // or a cache hit with another value would reuse links made under the other rule.
-  // "bounces": the series runs when lighting (apply_operator); only the reported bounce
-  // statistics of the precomputation used it.
-  std::vector<std::string> relight_settings() const override {
-    return {"direct_samples", "sender_cutoff", "bounces", "cache_dir"};
-  }
   std::shared_ptr<const Precomputation> precomputation() const override { return precomputation_; }
   std::unique_ptr<IndirectField> relight(const SolveInputs& inputs, const Precomputation& reuse,
                                          JobContext& context) override;

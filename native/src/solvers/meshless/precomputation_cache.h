@@ -29,7 +29,7 @@
 #include "bake_points/bake_points.h"
 #include "scene/scene.h"
 #include "solvers/meshless/meshless_precomputation.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 class JobContext;

@@ -3,14 +3,14 @@
 #include "direct/direct_light.h"
 #include "solvers/pathtrace/indirect_path.h"
 #include "util/job_context.h"
-#include "util/settings.h"
+#include "settings/settings.h"
 
 namespace bakegi {
 
 PathTraceSettings PathTraceSettings::from(const Settings& settings) {
   PathTraceSettings s;
   s.sampling = SampleSettings::from(settings);
-  s.max_bounces = int(settings.get_int("max_bounces", 64, 1, 1 << 16));
+  s.max_bounces = int(SettingReader(settings, method_schema("pathtrace")).get_int("max_bounces"));
   return s;
 }
 

@@ -1,6 +1,6 @@
 // The Monte Carlo reference solver ("pathtrace"). Solving does no work: the returned field
 // traces paths at whatever points it is evaluated at (indirect_path.h).
-// Settings: samples (>= 1, default 64), seed, sample_offset, max_bounces (default 64).
+// Settings: the common sampling ones (samples, seed, sample_offset) and setting_specs().
 #pragma once
 
 #include <memory>
@@ -31,6 +31,7 @@ class PathTracedField : public IndirectField {
 
 class PathTracer : public Solver {
  public:
+  static const std::vector<SettingSpec>& setting_specs();
   std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
 };
 
