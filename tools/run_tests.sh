@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up (tools/setup.sh) and runs every test: the native GoogleTest suite (Release), the
-# same suite under AddressSanitizer + UBSan, and the tests inside real Blender: Debian's
+# add-on's bpy-free modules under pytest (python_tests/, no Blender), the native suite under
+# AddressSanitizer + UBSan, and the tests inside real Blender: Debian's
 # Blender 3.4 (blender_tests/, the UI test under Xvfb) and Blender 4.2 LTS, 4.5 LTS and 5.0
 # as Python modules (tools/setup_bpy.sh; every test but the UI one). One line per Blender
 # version, then one line "N passed, N failed, N skipped" over everything.
@@ -18,6 +19,11 @@ results=$(mktemp -d)
 echo "== native tests (Release)"
 ctest --test-dir "$build_dir" --output-on-failure -j2 --output-junit "$results/native.xml"
 native_rc=$?
+
+echo "== add-on tests without Blender (pytest: bpy-free modules and the ctypes binding)"
+BAKEGI_LIBRARY="$build_dir/libbakegi.so" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -m pytest -q \
+  -p no:cacheprovider python_tests --junitxml "$results/python.xml"
+python_rc=$?
 
 echo "== native tests (AddressSanitizer + UBSan)"
 BAKEGI_JUNIT="$results/asan.xml" bash .ci/asan
@@ -80,8 +86,8 @@ PY
   fi
 fi
 
-if [ $native_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
-  echo "FAILED (exit codes: native $native_rc, asan $asan_rc, blender $blender_rc, portable $portable_rc)"
+if [ $native_rc -ne 0 ] || [ $python_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
+  echo "FAILED (exit codes: native $native_rc, python $python_rc, asan $asan_rc, blender $blender_rc, portable $portable_rc)"
   status=1
 else
   status=0

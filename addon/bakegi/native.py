@@ -24,6 +24,9 @@ LIBRARY_ENV = "BAKEGI_LIBRARY"
 LIBRARY_NAME = {"win32": "bakegi.dll", "darwin": "libbakegi.dylib"}.get(sys.platform,
                                                                        "libbakegi.so")
 NO_TEXTURE = 0xFFFFFFFF
+# BAKEGI_ABI_VERSION of the bakegi.h these bindings mirror (checked at load, with the sizes of
+# the structs below).
+ABI_VERSION = 1
 
 STATUS_NAMES = (
     "BAKEGI_OK",
@@ -109,6 +112,9 @@ _PP = POINTER(c_void_p)
 # name: (restype, argtypes)
 _SIGNATURES = {
     "bakegi_version": (c_uint32, []),
+    "bakegi_abi_version": (c_uint32, []),
+    "bakegi_struct_size": (c_size_t, [c_char_p]),
+    "bakegi_settings_describe": (c_int, [c_char_p, c_char_p, c_size_t, POINTER(c_size_t)]),
     "bakegi_version_string": (c_char_p, []),
     "bakegi_status_string": (c_char_p, [c_int]),
     "bakegi_last_error": (c_char_p, []),
@@ -212,8 +218,40 @@ def load_library(path=None):
             raise BakeGIError("BAKEGI_ERROR_IO",
                               f"the bakegi core library at {path} lacks {', '.join(missing)}; "
                               "it does not match this add-on version")
+        _check_binary_interface(lib, path)
         _library = lib
         return lib
+
+
+def _check_binary_interface(lib, path):
+    """Refuses a library whose structs these bindings would misread (a stale lib/ next to a
+    newer add-on, or the other way round)."""
+    abi = int(lib.bakegi_abi_version())
+    if abi != ABI_VERSION:
+        raise BakeGIError("BAKEGI_ERROR_IO",
+                          f"the bakegi core library at {path} has binary interface {abi}, this "
+                          f"add-on expects {ABI_VERSION}; reinstall the add-on zip, which "
+                          "carries the matching library")
+    for name, struct in (("bakegi_material_desc", MaterialDesc), ("bakegi_mesh_desc", MeshDesc),
+                         ("bakegi_light_desc", LightDesc),
+                         ("bakegi_lightmap_info", LightmapInfo)):
+        theirs, ours = int(lib.bakegi_struct_size(name.encode())), ctypes.sizeof(struct)
+        if theirs != ours:
+            raise BakeGIError("BAKEGI_ERROR_IO",
+                              f"the bakegi core library at {path} does not match this add-on: "
+                              f"{name} is {theirs} bytes there and {ours} here")
+
+
+def describe_settings(method=""):
+    """The settings schema of a method as a dict (bakegi_settings_describe; docs/settings.md),
+    or {"methods": [...]} for method ""."""
+    lib = load_library()
+    key = method.encode("utf-8")
+    length = c_size_t(0)
+    _check(lib.bakegi_settings_describe(key, None, 0, byref(length)), "describing settings")
+    buffer = ctypes.create_string_buffer(length.value + 1)
+    _check(lib.bakegi_settings_describe(key, buffer, len(buffer), None), "describing settings")
+    return json.loads(buffer.value.decode("utf-8"))
 
 
 def library_loaded():

@@ -43,6 +43,16 @@ BAKEGI_API uint32_t bakegi_version(void);
 /* e.g. "0.1.0 (embree 3.13.5, tbb 2021.8)". Static storage. */
 BAKEGI_API const char* bakegi_version_string(void);
 
+/* The binary interface: raised whenever a struct below or a function's signature changes, so a
+ * binding (the add-on's ctypes, addon/bakegi/native.py) can refuse a library it does not
+ * match instead of passing misread memory. */
+#define BAKEGI_ABI_VERSION 1
+BAKEGI_API uint32_t bakegi_abi_version(void);
+/* sizeof a public struct by its name ("bakegi_material_desc", "bakegi_mesh_desc",
+ * "bakegi_light_desc", "bakegi_lightmap_info"), 0 for another name: a binding checks its own
+ * layouts against the library's. */
+BAKEGI_API size_t bakegi_struct_size(const char* name);
+
 /* ---- errors ----------------------------------------------------------------------------- */
 
 typedef enum bakegi_status {

@@ -9,9 +9,23 @@
 #include <tbb/tbb_stddef.h>  // TBB 2020 (the portable build's Debian 11)
 #endif
 
+#include <string_view>
+
 #include "bakegi/bakegi.h"
 
 extern "C" {
+
+uint32_t bakegi_abi_version(void) { return BAKEGI_ABI_VERSION; }
+
+size_t bakegi_struct_size(const char* name) {
+  if (!name) return 0;
+  const std::string_view n(name);
+  if (n == "bakegi_material_desc") return sizeof(bakegi_material_desc);
+  if (n == "bakegi_mesh_desc") return sizeof(bakegi_mesh_desc);
+  if (n == "bakegi_light_desc") return sizeof(bakegi_light_desc);
+  if (n == "bakegi_lightmap_info") return sizeof(bakegi_lightmap_info);
+  return 0;
+}
 
 uint32_t bakegi_version(void) {
   return BAKEGI_VERSION_MAJOR * 10000 + BAKEGI_VERSION_MINOR * 100 + BAKEGI_VERSION_PATCH;

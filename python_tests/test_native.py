@@ -1,0 +1,75 @@
+"""The ctypes binding (bakegi.native) against the built library: it loads only a library whose
+binary interface it matches, describes every method's settings, and bakes an analytic case."""
+
+import ctypes
+import math
+
+import numpy as np
+import pytest
+
+
+def test_the_binding_matches_the_library(native):
+    lib = native.load_library()
+    assert lib.bakegi_abi_version() == native.ABI_VERSION
+    for name, struct in (("bakegi_material_desc", native.MaterialDesc),
+                         ("bakegi_mesh_desc", native.MeshDesc),
+                         ("bakegi_light_desc", native.LightDesc),
+                         ("bakegi_lightmap_info", native.LightmapInfo)):
+        assert lib.bakegi_struct_size(name.encode()) == ctypes.sizeof(struct), name
+    assert lib.bakegi_struct_size(b"bakegi_nothing") == 0
+
+
+def test_a_mismatched_struct_is_refused_with_its_name(native, monkeypatch):
+    lib = native.load_library()
+
+    class Shorter(ctypes.Structure):
+        _fields_ = [("x", ctypes.c_float)]
+
+    monkeypatch.setattr(native, "LightDesc", Shorter)
+    with pytest.raises(native.BakeGIError, match="bakegi_light_desc is .* bytes there and 4 here"):
+        native._check_binary_interface(lib, "libbakegi.so")
+    monkeypatch.setattr(native, "ABI_VERSION", native.ABI_VERSION + 1)
+    with pytest.raises(native.BakeGIError, match="binary interface"):
+        native._check_binary_interface(lib, "libbakegi.so")
+
+
+def test_every_method_describes_its_settings(native):
+    methods = native.describe_settings()["methods"]
+    assert methods == ["pathtrace", "direct", "antiradiance", "meshless"]
+    for method in methods:
+        schema = native.describe_settings(method)
+        keys = [s["key"] for s in schema["settings"]]
+        assert len(keys) == len(set(keys))
+        assert {"method", "samples", "seed", "threads"} <= set(keys)
+        for s in schema["settings"]:
+            assert s["role"] in ("shapes", "lighting", "execution")
+            if s["type"] in ("integer", "number"):
+                assert s["min"] <= s["default"] <= s["max"], s
+    antiradiance = {s["key"]: s for s in native.describe_settings("antiradiance")["settings"]}
+    assert antiradiance["bins"]["default"] == 300
+    assert antiradiance["scheme"]["choices"] == ["symmetric", "asymmetric"]
+    with pytest.raises(native.BakeGIError, match="unknown method 'radiosity'"):
+        native.describe_settings("radiosity")
+
+
+def test_direct_light_of_a_point_light_on_a_plane_is_the_inverse_square_law(native):
+    """E / pi = I cos(theta) / (pi d^2) under a point light of intensity I (W/sr) at height h:
+    the "direct" method's output at points of a plane, exactly (no sampling noise for a point
+    light with radius 0, no occluder)."""
+    scene = native.Scene()
+    scene.add_material((0.5, 0.5, 0.5))
+    half = 50.0
+    scene.add_mesh([(-half, -half, 0), (half, -half, 0), (half, half, 0), (-half, half, 0)],
+                   [(0, 1, 2), (0, 2, 3)])
+    intensity, height = 10.0, 2.0
+    scene.add_light("POINT", position=(0, 0, height), color=(intensity,) * 3)
+    xs = np.array([0.0, 1.0, 2.0, 4.0])
+    positions = np.stack([xs, np.zeros_like(xs), np.full_like(xs, 1e-3)], axis=1)
+    normals = np.tile([0.0, 0.0, 1.0], (len(xs), 1))
+    points = native.Points(positions, normals, np.zeros(len(xs), np.uint32))
+    job = native.Job(scene, points, native.Settings(method="direct", samples=1, error_probes=0))
+    job.wait()
+    got = job.result()[:, 1]
+    d2 = xs ** 2 + (height - 1e-3) ** 2
+    expected = intensity * ((height - 1e-3) / np.sqrt(d2)) / (math.pi * d2)
+    np.testing.assert_allclose(got, expected, rtol=1e-4)
