@@ -9,7 +9,7 @@
 #include "file_error.h"
 #include "npy_file.h"
 #include "usage_error.h"
-#include "util/error_metric.h"
+#include "error_metric.h"
 
 namespace bakegi::cli {
 

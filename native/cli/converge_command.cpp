@@ -21,7 +21,7 @@
 #include "json_value.h"
 #include "scene_file.h"
 #include "usage_error.h"
-#include "util/error_metric.h"
+#include "error_metric.h"
 
 namespace bakegi::cli {
 

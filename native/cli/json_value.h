@@ -10,7 +10,7 @@
 #include <variant>
 #include <vector>
 
-#include "util/report.h"
+#include "json_text.h"
 
 namespace bakegi::cli {
 

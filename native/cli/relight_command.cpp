@@ -19,7 +19,7 @@
 #include "npy_file.h"
 #include "scene_file.h"
 #include "usage_error.h"
-#include "util/error_metric.h"
+#include "error_metric.h"
 
 namespace bakegi::cli {
 

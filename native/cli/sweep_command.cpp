@@ -18,7 +18,7 @@
 #include "report_summary.h"
 #include "scene_file.h"
 #include "usage_error.h"
-#include "util/error_metric.h"
+#include "error_metric.h"
 
 namespace bakegi::cli {
 namespace {

@@ -1,5 +1,5 @@
 // The project's error metric (util/error_metric.h) on cases whose value is known exactly.
-#include "util/error_metric.h"
+#include "error_metric.h"
 
 #include <cmath>
 #include <limits>

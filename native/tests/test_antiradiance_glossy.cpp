@@ -26,7 +26,7 @@
 #include "solvers/antiradiance/local_pass.h"
 #include "solvers/antiradiance/radiance_tables.h"
 #include "util/error.h"
-#include "util/error_metric.h"
+#include "error_metric.h"
 #include "util/random.h"
 #include "settings/settings.h"
 

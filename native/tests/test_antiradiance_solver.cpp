@@ -10,7 +10,7 @@
 #include "light_transport_fixtures.h"
 #include "solvers/antiradiance/antiradiance_solver.h"
 #include "util/error.h"
-#include "util/error_metric.h"
+#include "error_metric.h"
 #include "util/random.h"
 #include "util/sampling.h"
 

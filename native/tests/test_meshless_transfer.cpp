@@ -18,7 +18,7 @@
 #include "solvers/meshless/visible_evaluation.h"
 #include "solvers/pathtrace/path_tracer.h"
 #include "util/error.h"
-#include "util/error_metric.h"
+#include "error_metric.h"
 #include "util/sampling.h"
 
 namespace bakegi {

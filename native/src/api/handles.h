@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "api/bake_job.h"
+#include "bake/bake_job.h"
 #include "bake/error_probes.h"
 #include "bake_points/bake_points.h"
 #include "scene/scene.h"

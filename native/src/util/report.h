@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "json_text.h"
+
 namespace bakegi {
 
 class Report {
@@ -34,11 +36,5 @@ class Report {
   std::map<std::string, std::string> json_values_;
   std::vector<std::string> warnings_;
 };
-
-// A JSON string literal for any UTF-8 text: quotes, backslashes and control characters
-// escaped.
-std::string json_quote(const std::string& text);
-// A JSON number; NaN and infinities (not representable in JSON) become null.
-std::string json_number(double value);
 
 }  // namespace bakegi

@@ -1,4 +1,4 @@
-#include "api/bake_job.h"
+#include "bake/bake_job.h"
 
 #include <algorithm>
 #include <chrono>

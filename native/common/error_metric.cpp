@@ -1,4 +1,4 @@
-#include "util/error_metric.h"
+#include "error_metric.h"
 
 #include <cmath>
 
