@@ -144,7 +144,7 @@ class Lightmap(LightmapCase):
         atlas. At the defaults (40 texels per metre, antiradiance with its near-field
         gather) they agree within 2% of the value, the issue's bound (measured 1.6%).
 
-        The writer stitches seams (writers/seam_stitching.*); without it the charts'
+        The writer stitches seams (lightmap/seam_stitching.*); without it the charts'
         edge samples, up to a texel apart, differed by up to 2.6% on smooth light and 6%
         along the walls, where the near-field gather changes fast."""
         floor = self.objects["Floor"]

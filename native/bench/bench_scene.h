@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "bakegi/bakegi.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"

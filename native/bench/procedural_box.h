@@ -2,7 +2,7 @@
 // walls as grids of quads), so that the benchmarks run without Blender or a scene file.
 #pragma once
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "scene/scene.h"
 
 namespace bakegi::bench {

@@ -1,5 +1,5 @@
 // bakegi compare values.npy reference.npy: prints the project's error metric
-// (util/error_metric.h) of values against reference, so that scripts (the Cycles side of
+// (native/common/error_metric.h) of values against reference, so that scripts (the Cycles side of
 // the sweep) use the same code as `bakegi sweep`.
 #include <cstdio>
 

@@ -1,7 +1,7 @@
 // bakegi sweep scene.bgs --method M --samples 1,2,4,... --reference ref.npy --out sweep.json
 //                        [--seed S] [--threads T] [--repeat R] [--set key=value ...]
 // Bakes at each quality setting, times each bake and measures its error against the
-// reference (util/error_metric.h). With --repeat R each setting is baked R times and the
+// reference (native/common/error_metric.h). With --repeat R each setting is baked R times and the
 // fastest wall time is kept (the machine is shared; the minimum is the least disturbed).
 #include <algorithm>
 #include <cstdio>

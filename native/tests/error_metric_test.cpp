@@ -1,4 +1,4 @@
-// The project's error metric (util/error_metric.h) on cases whose value is known exactly.
+// The project's error metric (native/common/error_metric.h) on cases whose value is known exactly.
 #include "error_metric.h"
 
 #include <cmath>

@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "direct/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"

@@ -12,7 +12,7 @@
 #include "bakegi/bakegi.h"
 #include "bakegi/bakegi_handles.hpp"
 #include "lightmap_test_scene.h"
-#include "writers/exr_writer.h"
+#include "lightmap/exr_writer.h"
 
 namespace bakegi::test {
 namespace {

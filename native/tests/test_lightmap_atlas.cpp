@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "bake_points/texel_rasterizer.h"
+#include "lightmap/texel_rasterizer.h"
 #include "bakegi/bakegi.h"
 #include "lightmap_test_scene.h"
 #include "util/error.h"
-#include "writers/exr_writer.h"
+#include "lightmap/exr_writer.h"
 
 namespace bakegi::test {
 namespace {

@@ -4,7 +4,7 @@
 // top, or in the open, are not.
 #include <gtest/gtest.h>
 
-#include "bake_points/backface_rejection.h"
+#include "lightmap/backface_rejection.h"
 #include "scene/scene_validation.h"
 #include "util/error.h"
 

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "util/error.h"
-#include "writers/exr_writer.h"
+#include "lightmap/exr_writer.h"
 
 namespace bakegi::test {
 namespace {

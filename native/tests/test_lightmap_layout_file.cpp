@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bake_points/lightmap_layout_file.h"
+#include "lightmap/lightmap_layout_file.h"
 #include "bakegi/bakegi.h"
 #include "bakegi/bakegi_handles.hpp"
 #include "lightmap_test_scene.h"

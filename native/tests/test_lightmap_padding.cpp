@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "writers/lightmap_padding.h"
+#include "lightmap/lightmap_padding.h"
 
 namespace bakegi::test {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bake_points/texel_rasterizer.h"
+#include "lightmap/texel_rasterizer.h"
 #include "util/error.h"
 
 namespace bakegi::test {

@@ -10,14 +10,14 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
-#include "bake_points/lightmap_layout_file.h"
-#include "bake_points/lightmap_seams.h"
+#include "lightmap/lightmap_layout_file.h"
+#include "lightmap/lightmap_seams.h"
 #include "bakegi/bakegi.h"
 #include "bakegi/bakegi_handles.hpp"
 #include "lightmap_test_scene.h"
-#include "writers/exr_writer.h"
-#include "writers/lightmap_padding.h"
-#include "writers/seam_stitching.h"
+#include "lightmap/exr_writer.h"
+#include "lightmap/lightmap_padding.h"
+#include "lightmap/seam_stitching.h"
 
 namespace bakegi::test {
 namespace {

@@ -445,7 +445,7 @@ BAKEGI_API bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* ligh
  * (bakegi.export_scene_file(target='LIGHTMAP') writes both). Files of format version 1
  * (before seams were stored) are still read, as lightmaps without seams. Little-endian,
  * versioned, checksummed, and read with every count checked against the bytes left before
- * anything is allocated (format in native/src/bake_points/lightmap_layout_file.h). A
+ * anything is allocated (format in native/src/lightmap/lightmap_layout_file.h). A
  * lightmaps object read back gives the same points, info and EXRs as the one written.
  * Write: atomic (a temporary file beside path, then a rename); BAKEGI_ERROR_IO if it cannot
  * be written. Read: BAKEGI_ERROR_IO if the file cannot be read, BAKEGI_ERROR_BAD_FILE

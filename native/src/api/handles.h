@@ -5,7 +5,7 @@
 
 #include "bake/bake_job.h"
 #include "bake/error_probes.h"
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "scene/scene.h"
 #include "settings/settings.h"
 

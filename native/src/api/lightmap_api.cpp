@@ -8,16 +8,16 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
-#include "bake_points/backface_rejection.h"
-#include "bake_points/lightmap_layout.h"
-#include "bake_points/lightmap_layout_file.h"
-#include "bake_points/lightmap_seams.h"
-#include "bake_points/texel_rasterizer.h"
+#include "lightmap/backface_rejection.h"
+#include "lightmap/lightmap_layout.h"
+#include "lightmap/lightmap_layout_file.h"
+#include "lightmap/lightmap_seams.h"
+#include "lightmap/texel_rasterizer.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
-#include "writers/exr_writer.h"
-#include "writers/lightmap_padding.h"
-#include "writers/seam_stitching.h"
+#include "lightmap/exr_writer.h"
+#include "lightmap/lightmap_padding.h"
+#include "lightmap/seam_stitching.h"
 
 using bakegi::Error;
 using bakegi::guarded;

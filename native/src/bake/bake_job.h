@@ -14,7 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "bake/error_probes.h"
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "field/indirect_field.h"
 #include "scene/scene.h"
 #include "util/job_context.h"

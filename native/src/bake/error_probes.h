@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 
 namespace bakegi {
 

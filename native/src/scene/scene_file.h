@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "scene/scene.h"
 
 namespace bakegi {

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "util/error.h"
 
 namespace bakegi {

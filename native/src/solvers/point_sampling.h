@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "direct/surface_point.h"
 
 namespace bakegi {

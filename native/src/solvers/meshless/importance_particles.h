@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "util/random.h"
 
 namespace bakegi {

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "solvers/meshless/importance_particles.h"
 #include "solvers/meshless/weight_function.h"
 

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 #include "scene/scene.h"
 #include "solvers/meshless/meshless_precomputation.h"
 #include "settings/settings.h"

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "bake_points/lightmap_seams.h"
-#include "bake_points/texel_rasterizer.h"
+#include "lightmap/lightmap_seams.h"
+#include "lightmap/texel_rasterizer.h"
 
 namespace bakegi {
 

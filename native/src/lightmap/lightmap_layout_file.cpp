@@ -1,4 +1,4 @@
-#include "bake_points/lightmap_layout_file.h"
+#include "lightmap/lightmap_layout_file.h"
 
 #include <cmath>
 #include <cstring>

@@ -21,7 +21,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake_points/bake_points.h"
+#include "scene/bake_points.h"
 
 namespace bakegi {
 

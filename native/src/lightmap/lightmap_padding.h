@@ -10,8 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "bake_points/texel_rasterizer.h"
-#include "writers/exr_writer.h"
+#include "lightmap/texel_rasterizer.h"
+#include "lightmap/exr_writer.h"
 
 namespace bakegi {
 

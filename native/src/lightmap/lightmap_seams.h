@@ -1,6 +1,6 @@
 // UV seams of a lightmap: mesh edges whose two triangles read the lightmap in different
 // places (a chart boundary), found when a mesh is rasterized and kept with the lightmap so
-// that the EXR writer can stitch them (writers/seam_stitching.h).
+// that the EXR writer can stitch them (lightmap/seam_stitching.h).
 //
 // An edge is a seam when exactly two triangles share it (the same two vertex indices, in
 // either order) and their lightmap UVs at either end differ by more than kSeamUvEpsilon.
@@ -17,7 +17,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake_points/texel_rasterizer.h"
+#include "lightmap/texel_rasterizer.h"
 
 namespace bakegi {
 

@@ -1,4 +1,4 @@
-#include "bake_points/backface_rejection.h"
+#include "lightmap/backface_rejection.h"
 
 #include <algorithm>
 #include <cmath>

@@ -34,8 +34,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "bake_points/lightmap_seams.h"
-#include "writers/exr_writer.h"
+#include "lightmap/lightmap_seams.h"
+#include "lightmap/exr_writer.h"
 
 namespace bakegi {
 

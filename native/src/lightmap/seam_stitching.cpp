@@ -1,4 +1,4 @@
-#include "writers/seam_stitching.h"
+#include "lightmap/seam_stitching.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "bake_points/texel_rasterizer.h"
+#include "lightmap/texel_rasterizer.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "writers/lightmap_padding.h"
+#include "lightmap/lightmap_padding.h"
 
 #include "util/error.h"
 

@@ -1,4 +1,4 @@
-#include "writers/exr_writer.h"
+#include "lightmap/exr_writer.h"
 
 #include <atomic>
 #include <cmath>

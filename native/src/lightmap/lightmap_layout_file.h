@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "bake_points/lightmap_layout.h"
+#include "lightmap/lightmap_layout.h"
 
 namespace bakegi {
 

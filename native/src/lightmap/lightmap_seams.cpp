@@ -1,4 +1,4 @@
-#include "bake_points/lightmap_seams.h"
+#include "lightmap/lightmap_seams.h"
 
 #include <cmath>
 #include <string>
