@@ -21,7 +21,7 @@ from .native import BakeGIError
 LIGHTMAP_PROPERTIES = (LIGHTMAP_SCALE, LIGHTMAP_OFFSET, LIGHTMAP_WEIGHT)
 
 
-def resolve_targets(data, targets):
+def look_up_targets(data, targets):
     """[(target, original mesh)] looked up by name; raises BakeGIError if a target's mesh
     can no longer take its slice of the result (object deleted, mesh replaced or edited
     into another topology, Edit Mode)."""
@@ -56,7 +56,7 @@ def resolve_targets(data, targets):
 def write_results(data, targets, rgb):
     """rgb: (points, 3) float32 in the order of the targets' slices. All targets are
     checked before anything is written."""
-    resolved = resolve_targets(data, targets)
+    resolved = look_up_targets(data, targets)
     rgb = np.asarray(rgb, np.float32).reshape(-1, 3)
     for t, obj, mesh in resolved:
         _drop_lightmap(obj)
@@ -90,7 +90,7 @@ def write_lightmap(data, exported, rgb, path, scene_name, full_float=False, blen
     it (the atlas was rewritten without them). Returns (image, [names of objects dropped])."""
     import bpy
 
-    resolved = resolve_targets(data, exported.targets)
+    resolved = look_up_targets(data, exported.targets)
     lightmaps = exported.lightmaps
     folder = os.path.dirname(path)
     try:
@@ -143,7 +143,7 @@ def hook_materials(data, material_infos, targets, lightmap_image=None, uv_map="B
     """Hooks the materials (name_full -> MaterialInfo) used by the targets (and points hooked
     ones at lightmap_image, if given); returns the names of the materials hooked now."""
     used = set()
-    for t, obj, mesh in resolve_targets(data, targets):
+    for t, obj, mesh in look_up_targets(data, targets):
         for m in list(mesh.materials) + [s.material for s in obj.material_slots]:
             if m is not None:
                 used.add(m.name_full)

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "bench_scene.h"
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "solvers/antiradiance/bin_spreading.h"
 #include "solvers/antiradiance/direct_initialization.h"
 #include "solvers/antiradiance/directional_bins.h"

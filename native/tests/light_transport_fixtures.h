@@ -12,7 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/bake_points.h"
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "scene/scene_validation.h"

@@ -1,5 +1,5 @@
 // Direct light (method "direct", E_direct / pi) against closed forms for every light type,
-// in the conventions of bakegi.h and Cycles 3.4.1 (see direct/*.h).
+// in the conventions of bakegi.h and Cycles 3.4.1 (see lights/*.h).
 //
 // Tolerances: delta lights (point, spot, sun with angle 0) have no Monte Carlo noise at
 // all, so they are checked to float rounding (1e-4 relative; the ray-origin offset of
@@ -12,7 +12,7 @@
 
 #include <cstdio>
 
-#include "direct/emissive_triangles.h"
+#include "lights/emissive_triangles.h"
 #include "light_transport_fixtures.h"
 #include "scene/triangle_cells.h"
 #include "util/random.h"
@@ -154,7 +154,7 @@ TEST(LightsDirect, SunGivesIrradianceTimesCosine) {
 }
 
 // Cycles 3.4.1 spot: intensity I on the axis, times a = cos(angle to the axis) inside the
-// cone, times smoothstep in the blend band, zero outside (direct/spot_light.h). With
+// cone, times smoothstep in the blend band, zero outside (lights/spot_light.h). With
 // BAKEGI_LIGHT_SPOT_WITHOUT_COSINE (Cycles 4.0+) the same without the factor a.
 class SpotCones : public ::testing::TestWithParam<bool> {};
 

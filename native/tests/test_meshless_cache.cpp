@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "capi_test_scene.h"
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "light_transport_fixtures.h"
 #include "meshless_test_scenes.h"
 #include "scene/ray_tracer.h"

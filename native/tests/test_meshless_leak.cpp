@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "light_transport_fixtures.h"
 #include "meshless_test_scenes.h"
 #include "scene/ray_tracer.h"

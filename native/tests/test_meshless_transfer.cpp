@@ -16,7 +16,7 @@
 #include "solvers/meshless/meshless_solver.h"
 #include "solvers/meshless/multilevel_approximation.h"
 #include "solvers/meshless/visible_evaluation.h"
-#include "solvers/pathtrace/path_tracer.h"
+#include "solvers/pathtrace/path_trace_solver.h"
 #include "util/error.h"
 #include "error_metric.h"
 #include "util/sampling.h"
@@ -292,7 +292,7 @@ TEST(MeshlessSolver, SingleBounceAgreesWithThePathTracer) {
   Settings path_settings;
   path_settings.set("samples", int64_t(2048));
   path_settings.set("max_bounces", int64_t(1));
-  PathTracer path_tracer;
+  PathTraceSolver path_tracer;
   JobContext path_context;
   const auto path_field =
       path_tracer.solve(SolveInputs{scene, tracer, direct, path_settings, &points}, path_context);

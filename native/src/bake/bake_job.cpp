@@ -9,7 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "bake/error_estimate.h"
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "solvers/solver.h"

@@ -10,7 +10,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
-#include "direct/surface_point.h"
+#include "lights/surface_point.h"
 #include "solvers/pathtrace/indirect_path.h"
 #include "util/job_context.h"
 #include "util/random.h"

@@ -12,7 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/bake_points.h"
-#include "direct/surface_point.h"
+#include "lights/surface_point.h"
 
 namespace bakegi {
 

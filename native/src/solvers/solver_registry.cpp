@@ -8,7 +8,7 @@
 #include "solvers/antiradiance/antiradiance_solver.h"
 #include "solvers/direct_only/direct_only_solver.h"
 #include "solvers/meshless/meshless_solver.h"
-#include "solvers/pathtrace/path_tracer.h"
+#include "solvers/pathtrace/path_trace_solver.h"
 #include "solvers/solver.h"
 #include "util/error.h"
 
@@ -35,8 +35,8 @@ std::unique_ptr<Solver> make() {
 }
 
 const MethodEntry kMethods[] = {
-    {"pathtrace", "Monte Carlo path tracing: the reference (DESIGN.md).", false, make<PathTracer>,
-     PathTracer::setting_specs},
+    {"pathtrace", "Monte Carlo path tracing: the reference (DESIGN.md).", false, make<PathTraceSolver>,
+     PathTraceSolver::setting_specs},
     {"direct",
      "Direct light only, E_direct / pi: what a Cycles Diffuse bake with only Direct writes "
      "(for checking light units against Cycles).",
@@ -86,7 +86,7 @@ const SettingSchema& method_schema(const std::string& method) {
     std::map<std::string, SettingSchema> all;
     for (const MethodEntry& e : kMethods) {
       std::vector<const std::vector<SettingSpec>*> parts = {&common_setting_specs()};
-      if (e.hands_to_path_tracer) parts.push_back(&PathTracer::setting_specs());
+      if (e.hands_to_path_tracer) parts.push_back(&PathTraceSolver::setting_specs());
       parts.push_back(&e.specs());
       all.emplace(e.name, SettingSchema(e.name, e.summary, parts));
     }

@@ -13,7 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "solvers/antiradiance/back_sides.h"
 #include "solvers/antiradiance/bin_spreading.h"

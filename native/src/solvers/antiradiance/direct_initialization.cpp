@@ -8,7 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "direct/surface_point.h"
+#include "lights/surface_point.h"
 #include "scene/triangle_geometry.h"
 #include "solvers/antiradiance/push_pull.h"
 #include "util/error.h"

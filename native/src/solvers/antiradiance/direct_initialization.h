@@ -23,7 +23,7 @@
 
 #include <glm/glm.hpp>
 
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "solvers/antiradiance/directional_bins.h"
 #include "solvers/antiradiance/element_hierarchy.h"
 #include "solvers/antiradiance/glossy_direct_reflection.h"

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "direct/direct_light.h"
-#include "direct/surface_point.h"
+#include "lights/direct_light.h"
+#include "lights/surface_point.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "util/random.h"

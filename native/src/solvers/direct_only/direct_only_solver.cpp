@@ -1,6 +1,6 @@
 #include "solvers/direct_only/direct_only_solver.h"
 
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "util/sampling.h"
 #include "settings/settings.h"
 

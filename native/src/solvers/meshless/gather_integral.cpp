@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "direct/surface_point.h"
+#include "lights/surface_point.h"
 #include "scene/phong_lobe.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"

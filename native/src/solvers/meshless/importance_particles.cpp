@@ -6,7 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "direct/surface_point.h"
+#include "lights/surface_point.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "util/error.h"

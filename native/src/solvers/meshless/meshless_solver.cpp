@@ -16,8 +16,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "direct/direct_light.h"
-#include "direct/surface_point.h"
+#include "lights/direct_light.h"
+#include "lights/surface_point.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "scene/scene_validation.h"

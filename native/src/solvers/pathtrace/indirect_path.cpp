@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "scene/surface_bsdf.h"
 #include "util/random.h"
 #include "util/sampling.h"

@@ -20,7 +20,7 @@
 
 #include <glm/glm.hpp>
 
-#include "direct/surface_point.h"
+#include "lights/surface_point.h"
 
 namespace bakegi {
 

@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
-#include "direct/light_sample.h"
-#include "direct/spherical_rectangle.h"
+#include "lights/light_sample.h"
+#include "lights/spherical_rectangle.h"
 #include "scene/scene.h"
 
 namespace bakegi {

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "direct/light_sample.h"
+#include "lights/light_sample.h"
 #include "scene/scene.h"
 #include "util/sampling.h"
 

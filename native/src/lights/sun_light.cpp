@@ -1,4 +1,4 @@
-#include "direct/sun_light.h"
+#include "lights/sun_light.h"
 
 #include <cmath>
 #include <limits>

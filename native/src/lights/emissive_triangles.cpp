@@ -1,4 +1,4 @@
-#include "direct/emissive_triangles.h"
+#include "lights/emissive_triangles.h"
 
 #include <algorithm>
 #include <cmath>

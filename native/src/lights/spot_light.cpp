@@ -1,4 +1,4 @@
-#include "direct/spot_light.h"
+#include "lights/spot_light.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "direct/spherical_rectangle.h"
+#include "lights/spherical_rectangle.h"
 
 #include <algorithm>
 #include <cmath>

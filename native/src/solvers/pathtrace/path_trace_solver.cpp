@@ -1,6 +1,6 @@
-#include "solvers/pathtrace/path_tracer.h"
+#include "solvers/pathtrace/path_trace_solver.h"
 
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 #include "solvers/pathtrace/indirect_path.h"
 #include "util/job_context.h"
 #include "settings/settings.h"
@@ -28,7 +28,7 @@ void PathTracedField::evaluate(const BakePoints& points, std::span<glm::vec3> ou
       context);
 }
 
-std::unique_ptr<IndirectField> PathTracer::solve(const SolveInputs& inputs, JobContext& context) {
+std::unique_ptr<IndirectField> PathTraceSolver::solve(const SolveInputs& inputs, JobContext& context) {
   // Settings are read here so that a bad value fails before any tracing starts.
   return std::make_unique<PathTracedField>(inputs.direct, PathTraceSettings::from(inputs.settings));
 }

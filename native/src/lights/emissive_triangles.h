@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "direct/light_sample.h"
+#include "lights/light_sample.h"
 #include "scene/scene.h"
 
 namespace bakegi {

@@ -1,4 +1,4 @@
-#include "direct/surface_point.h"
+#include "lights/surface_point.h"
 
 namespace bakegi {
 

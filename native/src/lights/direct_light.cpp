@@ -1,4 +1,4 @@
-#include "direct/direct_light.h"
+#include "lights/direct_light.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "direct/area_light.h"
+#include "lights/area_light.h"
 
 #include <cmath>
 
-#include "direct/spherical_rectangle.h"
+#include "lights/spherical_rectangle.h"
 #include "util/sampling.h"
 
 namespace bakegi {

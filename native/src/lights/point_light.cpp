@@ -1,4 +1,4 @@
-#include "direct/point_light.h"
+#include "lights/point_light.h"
 
 #include <cmath>
 

@@ -5,8 +5,8 @@
 
 #include <glm/glm.hpp>
 
-#include "direct/light_sample.h"
-#include "direct/spot_light.h"
+#include "lights/light_sample.h"
+#include "lights/spot_light.h"
 #include "scene/scene.h"
 
 namespace bakegi {

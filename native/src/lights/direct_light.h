@@ -18,11 +18,11 @@
 
 #include <glm/glm.hpp>
 
-#include "direct/area_light.h"
-#include "direct/emissive_triangles.h"
-#include "direct/point_light.h"
-#include "direct/sun_light.h"
-#include "direct/surface_point.h"
+#include "lights/area_light.h"
+#include "lights/emissive_triangles.h"
+#include "lights/point_light.h"
+#include "lights/sun_light.h"
+#include "lights/surface_point.h"
 #include "scene/ray_tracer.h"
 #include "scene/surface_bsdf.h"
 

@@ -29,7 +29,7 @@ class PathTracedField : public IndirectField {
   PathTraceSettings settings_;
 };
 
-class PathTracer : public Solver {
+class PathTraceSolver : public Solver {
  public:
   static const std::vector<SettingSpec>& setting_specs();
   std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
