@@ -101,12 +101,13 @@ class ErrorPaths(common.SmallCornellCase):
         self.assertSceneUnchanged(before)
 
     def test_cancel_leaves_the_scene_unchanged(self):
+        from bakegi.request import BakeRequest
         from bakegi.session import BakeSession
 
         before = common.scene_snapshot()
         # Far more work than can finish in the moments before cancel.
-        session = BakeSession(bpy.context, method="pathtrace", samples=1 << 20, seed=0, target="CORNER",
-                              objects="VISIBLE")
+        session = BakeSession(bpy.context, BakeRequest(method="pathtrace", samples=1 << 20, seed=0,
+                                                       target="CORNER", objects="VISIBLE"))
         session.prepare()
         session.start()
         time.sleep(0.5)

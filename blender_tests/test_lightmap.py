@@ -238,16 +238,15 @@ class LightmapFiles(LightmapCase):
         return bpy.data.objects[name]["bakegi_lightmap_scale"][0] * report["lightmap"]["width"]
 
     def test_cancel_keeps_the_finished_texture(self):
-        from bakegi import export, session
+        from bakegi import request, session
         self.bake_lightmap()
         path = os.path.join(self.folder, "BakeGI_Lightmap_" + bpy.context.scene.name + ".exr")
         with open(path, "rb") as f:
             written = f.read()
         before = common.scene_snapshot()
-        bake = session.BakeSession(bpy.context, method="pathtrace", samples=1 << 20,
-                                   target="LIGHTMAP", objects="VISIBLE",
-                                   lightmap=export.LightmapOptions(texels_per_meter=24.0),
-                                   lightmap_folder=self.folder)
+        bake = session.BakeSession(bpy.context, request.BakeRequest(
+            method="pathtrace", samples=1 << 20, target="LIGHTMAP", objects="VISIBLE",
+            lightmap=request.LightmapOptions(texels_per_meter=24.0), lightmap_folder=self.folder))
         bake.start()
         bake.cancel()
         with open(path, "rb") as f:

@@ -17,6 +17,7 @@ import bpy
 
 from . import export, live, operators, properties, session, writeback
 from .native import BakeGIError
+from .request import BakeRequest, LightmapOptions
 
 
 def _context(context):
@@ -73,18 +74,17 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     method_settings = dict(method_settings or {})
     if not estimate_error:
         method_settings["error_probes"] = 0
-    lightmap = export.LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
-                                      max_side=lightmap_max_size, padding=lightmap_padding,
-                                      uv_method=lightmap_uv_method,
-                                      reject_inside=bool(lightmap_reject_inside))
+    lightmap = LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
+                               max_side=lightmap_max_size, padding=lightmap_padding,
+                               uv_method=lightmap_uv_method,
+                               reject_inside=bool(lightmap_reject_inside))
     folder = properties.lightmap_directory(lightmap_folder) if target == "LIGHTMAP" else ""
-    report = session.BakeSession(context, method=method, samples=samples, seed=seed,
-                                 target=target, objects=objects, threads=threads,
-                                 hook_materials=hook_materials,
-                                 method_settings=method_settings, live=live,
-                                 lightmap=lightmap, lightmap_folder=folder,
-                                 lightmap_full_float=lightmap_full_float,
-                                 linked_duplicates=linked_duplicates).run()
+    request = BakeRequest(method=method, samples=samples, seed=seed, target=target,
+                          objects=objects, threads=threads, hook_materials=hook_materials,
+                          method_settings=method_settings, live=live, lightmap=lightmap,
+                          lightmap_folder=folder, lightmap_full_float=lightmap_full_float,
+                          linked_duplicates=linked_duplicates)
+    report = session.BakeSession(context, request).run()
     scene = context.scene
     if hasattr(scene, "bakegi"):
         operators.store_report(scene, report)
@@ -114,9 +114,9 @@ def export_scene_file(path, target="CORNER", objects="SELECTED", context=None,
     warnings and, per target object, its slice of the bake points."""
     context = _context(context)
     start = time.perf_counter()
-    lightmap = export.LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
-                                      max_side=lightmap_max_size, padding=lightmap_padding,
-                                      uv_method=lightmap_uv_method)
+    lightmap = LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
+                               max_side=lightmap_max_size, padding=lightmap_padding,
+                               uv_method=lightmap_uv_method)
     exported = export.export_scene(context, target, objects, lightmap=lightmap)
     layout_path = None
     try:

@@ -26,10 +26,10 @@ import numpy as np
 
 from . import compat, light_units, lightmap_layout, lightmap_uvs, materials, native
 from .native import BakeGIError
+from .request import LINKED_DUPLICATES, TARGET_DOMAINS, LightmapOptions  # noqa: F401 (re-exported)
 
 MESH_LIKE = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
 # Where a bake goes: a color attribute on face corners or vertices, or lightmap textures.
-TARGET_DOMAINS = ("CORNER", "POINT", "LIGHTMAP")
 
 
 @dataclass
@@ -47,18 +47,6 @@ class BakeTarget:
     # tile's side in texels.
     atlas_scale_offset: tuple = ()
     tile_side: int = 0
-
-
-@dataclass
-class LightmapOptions:
-    """What a LIGHTMAP bake needs besides the scene (see lightmap_layout, lightmap_uvs)."""
-
-    uv_map: str = "BakeGI"
-    texels_per_meter: float = 40.0
-    max_side: int = 1024
-    padding: int = 4
-    uv_method: str = "SMART"
-    reject_inside: bool = True
 
 
 @dataclass
@@ -190,7 +178,6 @@ def resolve_targets(context, objects, shared_meshes=False):
 
 # What an attribute bake does with linked duplicates (objects sharing one mesh, which holds
 # one color attribute for all of them).
-LINKED_DUPLICATES = ("SHARED", "SINGLE_USER")
 
 
 def linked_duplicates(context, objects):

@@ -99,15 +99,7 @@ def _has_mesh_target(context, objects):
 
 
 def _session_from_scene(context):
-    s = context.scene.bakegi
-    return session.BakeSession(context, method=s.resolved_method(), samples=s.samples,
-                               seed=s.seed, target=s.target, objects=s.objects,
-                               threads=None, hook_materials=s.hook_materials,
-                               method_settings=s.method_settings(), live=s.live_requested(),
-                               lightmap=s.lightmap_options(),
-                               lightmap_folder=s.lightmap_directory(),
-                               lightmap_full_float=s.lightmap_float,
-                               linked_duplicates=s.linked_duplicates)
+    return session.BakeSession(context, context.scene.bakegi.request())
 
 
 def _report_warnings(operator, report):

@@ -8,6 +8,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 from . import compat, preferences
+from .request import BakeRequest, LightmapOptions
 
 # The first item is the default: antiradiance reaches every error level of the Cornell chart
 # 2-5x sooner than the path tracer (docs/methods/antiradiance.md).
@@ -169,8 +170,18 @@ class BakeGISettings(bpy.types.PropertyGroup):
         next to the .blend."""
         return preferences.current().cache_folder or blend_relative_directory("", "bakegi_cache")
 
+    def request(self):
+        """The bake these settings ask for (threads: the add-on preferences')."""
+        return BakeRequest(method=self.resolved_method(), samples=self.samples, seed=self.seed,
+                           target=self.target, objects=self.objects,
+                           hook_materials=self.hook_materials,
+                           method_settings=self.method_settings(), live=self.live_requested(),
+                           lightmap=self.lightmap_options(),
+                           lightmap_folder=self.lightmap_directory(),
+                           lightmap_full_float=self.lightmap_float,
+                           linked_duplicates=self.linked_duplicates)
+
     def lightmap_options(self):
-        from .export import LightmapOptions
         return LightmapOptions(uv_map=self.lightmap_uv_map, texels_per_meter=self.texels_per_meter,
                                max_side=self.lightmap_max_size, padding=self.lightmap_padding,
                                uv_method=self.lightmap_uv_method,

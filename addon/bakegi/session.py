@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """One bake from start to end: the single code path of the operator and of bakegi.bake().
 
-    session = BakeSession(context, method="pathtrace", samples=64, ...)
+    session = BakeSession(context, BakeRequest(method="pathtrace", samples=64, ...))
     session.prepare()      # export (raises BakeGIError; changes nothing in Blender)
     session.start()        # the core bakes on its own threads
     session.poll()         # -> Progress(fraction, stage, eta_seconds, done)
@@ -18,10 +18,6 @@ from dataclasses import dataclass
 
 from . import error_check, export, live, native, preferences, writeback
 from .native import BakeGIError
-
-METHODS = ("pathtrace", "direct", "antiradiance", "meshless")
-# Methods whose finished bake can be kept for live indirect (relit when lights change).
-LIVE_METHODS = ("meshless",)
 
 
 @dataclass
@@ -43,68 +39,36 @@ def _duration(seconds):
     return f"{max(seconds, 0):.0f} s"
 
 
-def validate_arguments(method, samples, seed, target, threads, live=False):
-    if method not in METHODS:
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                          f"method must be one of {METHODS}, not {method!r}")
-    if live and target == "LIGHTMAP":
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                          "live indirect writes the color attribute; bake it to face corners or "
-                          "vertices, not to lightmaps")
-    if live and method not in LIVE_METHODS:
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                          f"live indirect needs a method that relights ({', '.join(LIVE_METHODS)})"
-                          f", not {method!r}")
-    for name, value, low in (("samples", samples, 1), ("seed", seed, 0), ("threads", threads, 0)):
-        if isinstance(value, bool) or not isinstance(value, int) or value < low:
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                              f"{name} must be an integer >= {low}, not {value!r}")
-    if target not in export.TARGET_DOMAINS:
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                          f"target must be one of {export.TARGET_DOMAINS}, not {target!r}")
-
-
 class BakeSession:
-    def __init__(self, context, method="antiradiance", samples=64, seed=0, target="CORNER",
-                 objects="SELECTED", threads=None, hook_materials=True, method_settings=None,
-                 live=False, lightmap=None, lightmap_folder="", lightmap_full_float=False,
-                 linked_duplicates="SHARED"):
-        """lightmap (target 'LIGHTMAP'): export.LightmapOptions; lightmap_folder: where the
-        atlas is written (absolute); lightmap_full_float: 32-bit floats instead of half.
-        linked_duplicates (attribute targets): 'SHARED' bakes the first object of a shared
-        mesh (the others show its light), 'SINGLE_USER' gives each its own copy of the mesh
-        first (taken back if the bake fails or is cancelled). threads None: the add-on
-        preferences' threads; their memory budget applies unless method_settings has one."""
+    def __init__(self, context, request):
+        """request: a request.BakeRequest (checked here; the core checks its settings). Its
+        threads None take the add-on preferences' threads; their memory budget applies unless
+        the request's method_settings has one."""
         machine = preferences.current(context)
-        threads = machine.threads if threads is None else threads
-        validate_arguments(method, samples, seed, target, threads, live)
-        if linked_duplicates not in export.LINKED_DUPLICATES:
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                              f"linked_duplicates must be one of {export.LINKED_DUPLICATES}, "
-                              f"not {linked_duplicates!r}")
-        self.linked_duplicates = linked_duplicates
+        if request.threads is None:
+            request = request.with_threads(machine.threads)
+        request.validate()
+        self.request = request
+        self.linked_duplicates = request.linked_duplicates
         self._single_users = []  # (object, shared mesh, its copy) made by prepare()
         self.context = context
-        self.method = method
-        self.samples = samples
-        self.seed = seed
-        self.target = target
-        self.objects = objects
-        self.threads = threads
-        self.hook_materials = hook_materials
+        self.method = request.method
+        self.samples = request.samples
+        self.seed = request.seed
+        self.target = request.target
+        self.objects = request.objects
+        self.threads = request.threads
+        self.hook_materials = request.hook_materials
         # Keep the finished job for live indirect (live.py) instead of releasing it.
-        self.live = bool(live)
+        self.live = bool(request.live)
         self.scene_name = context.scene.name
         # Further core settings of the method (e.g. antiradiance "bins"); the core checks them.
-        self.method_settings = dict(method_settings or {})
+        self.method_settings = dict(request.method_settings)
         if machine.memory_budget_mb > 0:
             self.method_settings.setdefault("memory_budget_mb", machine.memory_budget_mb)
-        self.lightmap = lightmap if lightmap is not None else export.LightmapOptions()
-        self.lightmap_folder = lightmap_folder
-        self.lightmap_full_float = bool(lightmap_full_float)
-        if target == "LIGHTMAP" and not lightmap_folder:
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                              "a lightmap bake needs a folder to write its EXR file to")
+        self.lightmap = request.lightmap
+        self.lightmap_folder = request.lightmap_folder
+        self.lightmap_full_float = bool(request.lightmap_full_float)
         self.exported = None
         self.job = None
         # Lightmaps: the worker thread that rasterizes the texels, then starts the job.
@@ -123,8 +87,8 @@ class BakeSession:
 
     @property
     def settings(self):
-        return {"method": self.method, "samples": self.samples, "seed": self.seed,
-                "threads": self.threads, **self.method_settings}
+        """The core's settings: the request's, with the preferences' memory budget."""
+        return {**self.request.core_settings(), **self.method_settings}
 
     def prepare(self):
         """Exports the scene. The context is used only here (and by finish() when no data

@@ -1,0 +1,91 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""What a bake is asked to do: one typed BakeRequest from the panel (properties.py,
+BakeGISettings.request) and from scripting (api.bake) to the session (session.BakeSession).
+
+The core checks its own settings (method_settings) against the method's schema
+(docs/settings.md); validate() checks what the add-on itself decides: method, target,
+counts, live and lightmap choices. No bpy: tested without Blender (python_tests/).
+"""
+
+from dataclasses import dataclass, field, replace
+from typing import Any, Dict, Optional
+
+from .native import BakeGIError
+
+METHODS = ("pathtrace", "direct", "antiradiance", "meshless")
+# Methods whose finished bake can be kept for live indirect (relit when lights change).
+LIVE_METHODS = ("meshless",)
+TARGET_DOMAINS = ("CORNER", "POINT", "LIGHTMAP")
+LINKED_DUPLICATES = ("SHARED", "SINGLE_USER")
+
+
+@dataclass(frozen=True)
+class LightmapOptions:
+    """What a LIGHTMAP bake needs besides the scene (see lightmap_layout, lightmap_uvs)."""
+
+    uv_map: str = "BakeGI"
+    texels_per_meter: float = 40.0
+    max_side: int = 1024
+    padding: int = 4
+    uv_method: str = "SMART"
+    reject_inside: bool = True
+
+
+@dataclass(frozen=True)
+class BakeRequest:
+    """One bake. objects: 'SELECTED', 'VISIBLE' or a list of objects (or names).
+    threads None: the add-on preferences' (0 = every core); their memory budget applies
+    unless method_settings names memory_budget_mb. lightmap_folder: where a LIGHTMAP bake
+    writes its atlas (absolute). linked_duplicates (attribute targets): 'SHARED' bakes the
+    first object of a shared mesh (the others show its light), 'SINGLE_USER' gives each its
+    own copy first. live: keep the precomputation so light changes relight (meshless)."""
+
+    method: str = "antiradiance"
+    samples: int = 64
+    seed: int = 0
+    target: str = "CORNER"
+    objects: Any = "SELECTED"
+    threads: Optional[int] = None
+    hook_materials: bool = True
+    method_settings: Dict[str, Any] = field(default_factory=dict)
+    live: bool = False
+    lightmap: LightmapOptions = field(default_factory=LightmapOptions)
+    lightmap_folder: str = ""
+    lightmap_full_float: bool = False
+    linked_duplicates: str = "SHARED"
+
+    def with_threads(self, threads):
+        return replace(self, threads=threads)
+
+    def validate(self):
+        """Raises BakeGIError(INVALID_ARGUMENT) naming the first choice the add-on refuses."""
+        def refuse(message):
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", message)
+
+        if self.method not in METHODS:
+            refuse(f"method must be one of {METHODS}, not {self.method!r}")
+        if self.target not in TARGET_DOMAINS:
+            refuse(f"target must be one of {TARGET_DOMAINS}, not {self.target!r}")
+        if self.live and self.target == "LIGHTMAP":
+            refuse("live indirect writes the color attribute; bake it to face corners or "
+                   "vertices, not to lightmaps")
+        if self.live and self.method not in LIVE_METHODS:
+            refuse(f"live indirect needs a method that relights ({', '.join(LIVE_METHODS)}), "
+                   f"not {self.method!r}")
+        threads = 0 if self.threads is None else self.threads
+        for name, value, low in (("samples", self.samples, 1), ("seed", self.seed, 0),
+                                 ("threads", threads, 0)):
+            if isinstance(value, bool) or not isinstance(value, int) or value < low:
+                refuse(f"{name} must be an integer >= {low}, not {value!r}")
+        if self.linked_duplicates not in LINKED_DUPLICATES:
+            refuse(f"linked_duplicates must be one of {LINKED_DUPLICATES}, "
+                   f"not {self.linked_duplicates!r}")
+        if not isinstance(self.method_settings, dict):
+            refuse(f"method_settings must be a dict, not {type(self.method_settings).__name__}")
+        if self.target == "LIGHTMAP" and not self.lightmap_folder:
+            refuse("a lightmap bake needs a folder to write its EXR file to")
+
+    def core_settings(self):
+        """The settings the core receives (method_settings may add or override)."""
+        return {"method": self.method, "samples": self.samples, "seed": self.seed,
+                "threads": 0 if self.threads is None else self.threads, **self.method_settings}

@@ -1,0 +1,45 @@
+"""bakegi.request: the one typed request from the panel and from bakegi.bake() to a session."""
+
+import pytest
+
+from bakegi.native import BakeGIError
+from bakegi.request import BakeRequest, LightmapOptions
+
+
+def test_the_defaults_are_a_valid_request():
+    BakeRequest().validate()
+    assert BakeRequest().method == "antiradiance"  # the add-on's default method
+
+
+@pytest.mark.parametrize("changes, message", [
+    ({"method": "radiosity"}, "method must be one of"),
+    ({"target": "TEXTURE"}, "target must be one of"),
+    ({"samples": 0}, "samples must be an integer >= 1"),
+    ({"samples": True}, "samples must be an integer"),
+    ({"seed": -1}, "seed must be an integer >= 0"),
+    ({"threads": 2.5}, "threads must be an integer"),
+    ({"live": True, "method": "pathtrace"}, "live indirect needs a method that relights"),
+    ({"live": True, "method": "meshless", "target": "LIGHTMAP", "lightmap_folder": "/tmp"},
+     "live indirect writes the color attribute"),
+    ({"linked_duplicates": "COPY"}, "linked_duplicates must be one of"),
+    ({"target": "LIGHTMAP"}, "needs a folder"),
+    ({"method_settings": [("bins", 300)]}, "method_settings must be a dict"),
+])
+def test_a_refused_choice_is_named(changes, message):
+    with pytest.raises(BakeGIError, match=message) as caught:
+        BakeRequest(**changes).validate()
+    assert caught.value.status == "BAKEGI_ERROR_INVALID_ARGUMENT"
+
+
+def test_core_settings_carry_the_method_settings_last():
+    request = BakeRequest(method="pathtrace", samples=16, method_settings={"max_bounces": 4})
+    assert request.core_settings() == {"method": "pathtrace", "samples": 16, "seed": 0,
+                                       "threads": 0, "max_bounces": 4}
+    assert request.with_threads(3).core_settings()["threads"] == 3
+    assert request.threads is None  # requests do not change: with_threads made a new one
+
+
+def test_lightmap_options_default_to_the_panels():
+    options = LightmapOptions()
+    assert (options.uv_map, options.texels_per_meter, options.max_side, options.padding) == \
+        ("BakeGI", 40.0, 1024, 4)
