@@ -221,50 +221,67 @@ def convert_light(light: BlenderLight) -> Conversion:
     if light.use_temperature:
         tint = blackbody_color(light.temperature)
         color = (color[0] * tint[0], color[1] * tint[1], color[2] * tint[2])
-    cycles4 = tuple(light.cycles_version) >= (4, 0)
 
     m = light.matrix_world
-    position = (float(m[0][3]), float(m[1][3]), float(m[2][3]))
     try:
         down = _normalized(_scaled(_column(m, 2), -1.0))  # the light's -Z axis
     except ValueError:
         return Conversion(None, [f"light '{name}': its object has zero scale; left out"])
+    convert = {"POINT": _point_or_spot, "SPOT": _point_or_spot, "SUN": _sun,
+               "AREA": _area}[light.type]
+    return convert(light, color, energy, down, warnings)
 
-    if light.type in ("POINT", "SPOT"):
-        core = CoreLight(type=light.type, position=position, direction=down,
-                         color=point_intensity(color, energy),
-                         radius=max(0.0, float(light.shadow_soft_size)))
-        if cycles4 and not light.use_soft_falloff and core.radius > 0.0:
+
+def _position(light: BlenderLight) -> Vec3:
+    m = light.matrix_world
+    return (float(m[0][3]), float(m[1][3]), float(m[2][3]))
+
+
+def _cycles4(light: BlenderLight) -> bool:
+    return tuple(light.cycles_version) >= (4, 0)
+
+
+def _point_or_spot(light, color, energy, down, warnings) -> Conversion:
+    name, m = light.name, light.matrix_world
+    cycles4 = _cycles4(light)
+    core = CoreLight(type=light.type, position=_position(light), direction=down,
+                     color=point_intensity(color, energy),
+                     radius=max(0.0, float(light.shadow_soft_size)))
+    if cycles4 and not light.use_soft_falloff and core.radius > 0.0:
+        warnings.append(
+            f"light '{name}': soft falloff is off (a sphere light); bakegi keeps the soft "
+            "falloff, which is darker within a few radii of the light")
+    if cycles4 and not light.normalize:
+        # Measured with Cycles 4.5: the power is then not spread over the sphere's
+        # surface, i.e. multiplied by 4 pi r^2 (by 4 for a point of radius 0).
+        radius = core.radius
+        core.color = _scaled(core.color, 4.0 * math.pi * radius * radius if radius > 0 else 4.0)
+    if light.type == "SPOT":
+        core.flags = SPOT_WITHOUT_COSINE if cycles4 else 0
+        core.spot_size = min(max(float(light.spot_size), 1e-4), math.pi)
+        core.spot_blend = min(max(float(light.spot_blend), 0.0), 1.0)
+        sx, sy = _length(_column(m, 0)), _length(_column(m, 1))
+        if abs(sx - sy) > 1e-4 * max(sx, sy):
             warnings.append(
-                f"light '{name}': soft falloff is off (a sphere light); bakegi keeps the soft "
-                "falloff, which is darker within a few radii of the light")
-        if cycles4 and not light.normalize:
-            # Measured with Cycles 4.5: the power is then not spread over the sphere's
-            # surface, i.e. multiplied by 4 pi r^2 (by 4 for a point of radius 0).
-            radius = core.radius
-            core.color = _scaled(core.color, 4.0 * math.pi * radius * radius if radius > 0 else 4.0)
-        if light.type == "SPOT":
-            core.flags = SPOT_WITHOUT_COSINE if cycles4 else 0
-            core.spot_size = min(max(float(light.spot_size), 1e-4), math.pi)
-            core.spot_blend = min(max(float(light.spot_blend), 0.0), 1.0)
-            sx, sy = _length(_column(m, 0)), _length(_column(m, 1))
-            if abs(sx - sy) > 1e-4 * max(sx, sy):
-                warnings.append(
-                    f"spot light '{name}': non-uniform object scale (an elliptic cone) is "
-                    "approximated by a round cone")
-        return Conversion(core, warnings)
+                f"spot light '{name}': non-uniform object scale (an elliptic cone) is "
+                "approximated by a round cone")
+    return Conversion(core, warnings)
 
-    if light.type == "SUN":
-        core = CoreLight(type="SUN", direction=down,
-                         color=sun_irradiance(color, energy),
-                         angle=min(max(float(light.angle), 0.0), math.pi * 0.999))
-        if cycles4 and not light.normalize:
-            # Measured with Cycles 4.5: the strength is then a radiance over the sun's disc,
-            # i.e. the irradiance is multiplied by pi sin^2(angle / 2) (0 for angle 0).
-            core.color = _scaled(core.color, math.pi * math.sin(0.5 * core.angle) ** 2)
-        return Conversion(core, warnings)
 
-    # AREA: sizes measured along the object's scaled X and Y axes.
+def _sun(light, color, energy, down, warnings) -> Conversion:
+    core = CoreLight(type="SUN", direction=down,
+                     color=sun_irradiance(color, energy),
+                     angle=min(max(float(light.angle), 0.0), math.pi * 0.999))
+    if _cycles4(light) and not light.normalize:
+        # Measured with Cycles 4.5: the strength is then a radiance over the sun's disc,
+        # i.e. the irradiance is multiplied by pi sin^2(angle / 2) (0 for angle 0).
+        core.color = _scaled(core.color, math.pi * math.sin(0.5 * core.angle) ** 2)
+    return Conversion(core, warnings)
+
+
+def _area(light, color, energy, down, warnings) -> Conversion:
+    """Sizes measured along the object's scaled X and Y axes."""
+    name, m = light.name, light.matrix_world
     if light.shape not in AREA_SHAPES:
         return Conversion(None, [f"area light '{name}': unknown shape {light.shape}; left out"])
     axis_x, axis_y = _column(m, 0), _column(m, 1)
@@ -284,7 +301,7 @@ def convert_light(light: BlenderLight) -> Conversion:
         warnings.append(
             f"area light '{name}': spread {math.degrees(light.spread):.0f} deg is approximated "
             "as 180 deg (a Lambertian emitter)")
-    core = CoreLight(type="AREA", position=position, direction=down,
+    core = CoreLight(type="AREA", position=_position(light), direction=down,
                      axis_u=_normalized(axis_x),
                      color=area_radiance(color, energy, area if light.normalize else 1.0,
                                          light.cycles_version),

@@ -344,6 +344,37 @@ def _warn_light_passing(node, transmission, info, what):
                              f"leaves) is read as opaque; {_PASSING_LIGHT_ADVICE}")
 
 
+def _read_principled(node, info, what):
+    """A Principled BSDF: diffuse base x (1 - metallic) x (1 - transmission) (x (1 - F_avg)
+    in 4.x), a glossy lobe of metal colour and dielectric F_avg, and its emission."""
+    base, texture, color_socket = _read_color(_input(node, "Base Color"), info, what)
+    metallic = _float_input(node, ("Metallic",), 0.0, info, what)
+    transmission = _float_input(node, ("Transmission Weight", "Transmission"), 0.0, info,
+                                what)
+    dielectric = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
+    _warn_light_passing(node, transmission, info, what)
+    roughness = _float_input(node, ("Roughness",), 0.5, info, what)
+    f_avg = fresnel_hemispherical_average(_principled_f0(node, info, what))
+    if texture is not None and metallic > 0.0:
+        info.warnings.append(f"{what}: a textured metallic color is read as the base "
+                             "color's default value for the glossy lobe")
+    metal_color = _color_value(_input(node, "Base Color")) if texture is not None else base
+    glossy = _glossy_lobe([metallic * c + dielectric * f_avg for c in metal_color],
+                          roughness)
+    # Cycles 4.x's Principled v2 layers the specular over the diffuse base (which loses
+    # what the coat reflects); 3.x's v1 adds it on top, leaving the diffuse untouched, so
+    # each version is matched as rendered (the glossy part is clamped to 1 - albedo below).
+    layered = _input(node, "Specular IOR Level") is not None
+    factor = dielectric * (1.0 - f_avg) if layered else dielectric
+    emission, emission_texture = (0.0, 0.0, 0.0), None
+    em_socket = _input(node, "Emission Color", "Emission")
+    if em_socket is not None:
+        strength = _float_input(node, ("Emission Strength",), 1.0, info, what)
+        emission, emission_texture = _read_emission(em_socket, strength, info, what)
+    return _Shader(_scaled(base, factor), texture, emission, color_socket, factor, glossy,
+                   emission_texture)
+
+
 def _read_shader(socket_out, info, what, depth=0):
     """Reads the shader behind output socket `socket_out` into a _Shader."""
     node = socket_out.node
@@ -352,32 +383,7 @@ def _read_shader(socket_out, info, what, depth=0):
         info.warnings.append(f"{what}: shader tree too deep; read as black")
         return _Shader()
     if kind == "BSDF_PRINCIPLED":
-        base, texture, color_socket = _read_color(_input(node, "Base Color"), info, what)
-        metallic = _float_input(node, ("Metallic",), 0.0, info, what)
-        transmission = _float_input(node, ("Transmission Weight", "Transmission"), 0.0, info,
-                                    what)
-        dielectric = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
-        _warn_light_passing(node, transmission, info, what)
-        roughness = _float_input(node, ("Roughness",), 0.5, info, what)
-        f_avg = fresnel_hemispherical_average(_principled_f0(node, info, what))
-        if texture is not None and metallic > 0.0:
-            info.warnings.append(f"{what}: a textured metallic color is read as the base "
-                                 "color's default value for the glossy lobe")
-        metal_color = _color_value(_input(node, "Base Color")) if texture is not None else base
-        glossy = _glossy_lobe([metallic * c + dielectric * f_avg for c in metal_color],
-                              roughness)
-        # Cycles 4.x's Principled v2 layers the specular over the diffuse base (which loses
-        # what the coat reflects); 3.x's v1 adds it on top, leaving the diffuse untouched, so
-        # each version is matched as rendered (the glossy part is clamped to 1 - albedo below).
-        layered = _input(node, "Specular IOR Level") is not None
-        factor = dielectric * (1.0 - f_avg) if layered else dielectric
-        emission, emission_texture = (0.0, 0.0, 0.0), None
-        em_socket = _input(node, "Emission Color", "Emission")
-        if em_socket is not None:
-            strength = _float_input(node, ("Emission Strength",), 1.0, info, what)
-            emission, emission_texture = _read_emission(em_socket, strength, info, what)
-        return _Shader(_scaled(base, factor), texture, emission, color_socket, factor, glossy,
-                       emission_texture)
+        return _read_principled(node, info, what)
     if kind == "BSDF_DIFFUSE":
         base, texture, color_socket = _read_color(node.inputs["Color"], info, what)
         return _Shader(base, texture, color_socket=color_socket)

@@ -305,7 +305,10 @@ size_t estimate_scene_bytes(const SceneDescription& description) {
   return triangles * (sizeof(Triangle) + sizeof(uint32_t));
 }
 
-Scene build_scene(const SceneDescription& description) {
+namespace {
+
+// Textures, materials (and their texture indices), lights and world, in that order.
+void check_scene_parts(const SceneDescription& description) {
   for (size_t i = 0; i < description.textures.size(); ++i) {
     check_texture(description.textures[i], i);
   }
@@ -327,15 +330,10 @@ Scene build_scene(const SceneDescription& description) {
   }
   for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
   check_world(description.world_radiance);
+}
 
-  Scene scene;
-  scene.description = description;
-  const size_t material_count = description.materials.size();
-  auto material_range = [&](uint32_t material) {
-    return "material index " + std::to_string(material) + " out of range (" +
-           std::to_string(material_count) + " materials)";
-  };
-
+// Checks every mesh and returns their triangle count (refused beyond 32-bit indices).
+size_t checked_triangle_count(const SceneDescription& description) {
   size_t total_triangles = 0;
   for (size_t m = 0; m < description.meshes.size(); ++m) {
     check_mesh(description.meshes[m], m);
@@ -345,75 +343,107 @@ Scene build_scene(const SceneDescription& description) {
     invalid("the scene has " + std::to_string(total_triangles) +
             " triangles; at most 4294967294 are supported");
   }
-  scene.triangles.reserve(total_triangles);
+  return total_triangles;
+}
+
+std::string material_out_of_range(uint32_t material, size_t material_count) {
+  return "material index " + std::to_string(material) + " out of range (" +
+         std::to_string(material_count) + " materials)";
+}
+
+// Appends mesh m's triangles (degenerate ones dropped, with a warning) to the scene;
+// returns how many were dropped.
+size_t append_mesh_triangles(Scene& scene, size_t m) {
+  const SceneDescription& description = scene.description;
+  const Mesh& mesh = description.meshes[m];
+  const size_t material_count = description.materials.size();
+  const size_t triangle_count = mesh.indices.size() / 3;
+  if (triangle_count == 0) return 0;
+  if (mesh.triangle_materials.empty() && mesh.material >= material_count) {
+    invalid(mesh_name(mesh, m) + ": " + material_out_of_range(mesh.material, material_count));
+  }
+  size_t dropped = 0;
+  bool textured_without_uvs = false;
+  for (size_t t = 0; t < triangle_count; ++t) {
+    Triangle tri;
+    tri.material = mesh.triangle_materials.empty() ? mesh.material : mesh.triangle_materials[t];
+    if (tri.material >= material_count) {
+      invalid(mesh_name(mesh, m) + ", triangle " + std::to_string(t) + ": " +
+              material_out_of_range(tri.material, material_count));
+    }
+    for (int c = 0; c < 3; ++c) tri.p[c] = mesh.positions[mesh.indices[3 * t + c]];
+    // In double: the cross product of nearby float points loses most of its digits.
+    const glm::dvec3 e1 = glm::dvec3(tri.p[1]) - glm::dvec3(tri.p[0]);
+    const glm::dvec3 e2 = glm::dvec3(tri.p[2]) - glm::dvec3(tri.p[0]);
+    const glm::dvec3 e3 = glm::dvec3(tri.p[2]) - glm::dvec3(tri.p[1]);
+    const glm::dvec3 cross = glm::cross(e1, e2);
+    const double twice_area = glm::length(cross);
+    const double longest2 = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
+    if (!(twice_area > kDegenerateRelativeArea * longest2) || twice_area == 0.0) {
+      ++dropped;
+      continue;
+    }
+    tri.face_normal = glm::vec3(cross / twice_area);
+    tri.area = float(0.5 * twice_area);
+    for (int c = 0; c < 3; ++c) {
+      glm::vec3 n = tri.face_normal;
+      if (!mesh.corner_normals.empty()) {
+        const glm::dvec3 given(mesh.corner_normals[3 * t + c]);
+        const double length = glm::length(given);
+        if (length > 1e-20) n = glm::vec3(given / length);
+      }
+      tri.n[c] = n;
+      tri.uv[c] = mesh.corner_uvs.empty() ? glm::vec2(0.0f) : mesh.corner_uvs[3 * t + c];
+    }
+    tri.mesh = uint32_t(m);
+    tri.mesh_triangle = uint32_t(t);
+    const Material& material = description.materials[tri.material];
+    if (mesh.corner_uvs.empty() && (material.albedo_texture != BAKEGI_NO_TEXTURE ||
+                                    material.emission_texture != BAKEGI_NO_TEXTURE)) {
+      textured_without_uvs = true;
+    }
+    if (material.is_emissive()) {
+      scene.emissive_triangles.push_back(uint32_t(scene.triangles.size()));
+    }
+    scene.triangles.push_back(tri);
+  }
+  if (dropped > 0) {
+    scene.warnings.push_back(mesh_name(mesh, m) + ": " + std::to_string(dropped) + " of " +
+                             std::to_string(triangle_count) +
+                             " triangles dropped as degenerate (zero area)");
+  }
+  if (textured_without_uvs) {
+    scene.warnings.push_back(mesh_name(mesh, m) +
+                             " uses a textured material but has no UVs; the texture is "
+                             "sampled at uv (0, 0)");
+  }
+  return dropped;
+}
+
+void compute_bounds(Scene& scene) {
+  scene.bounds_min = scene.bounds_max = scene.triangles[0].p[0];
+  for (const Triangle& tri : scene.triangles) {
+    for (const glm::vec3& p : tri.p) {
+      scene.bounds_min = glm::min(scene.bounds_min, p);
+      scene.bounds_max = glm::max(scene.bounds_max, p);
+    }
+  }
+}
+
+}  // namespace
+
+Scene build_scene(const SceneDescription& description) {
+  check_scene_parts(description);
+  Scene scene;
+  scene.description = description;
+  scene.triangles.reserve(checked_triangle_count(description));
 
   size_t dropped_total = 0;
   for (size_t m = 0; m < description.meshes.size(); ++m) {
     const Mesh& mesh = description.meshes[m];
     scene.mesh_topology.push_back(analyze_mesh_topology(mesh.positions, mesh.indices));
-    const size_t triangle_count = mesh.indices.size() / 3;
-    if (triangle_count == 0) continue;
-    if (mesh.triangle_materials.empty() && mesh.material >= material_count) {
-      invalid(mesh_name(mesh, m) + ": " + material_range(mesh.material));
-    }
-    size_t dropped = 0;
-    bool textured_without_uvs = false;
-    for (size_t t = 0; t < triangle_count; ++t) {
-      Triangle tri;
-      tri.material = mesh.triangle_materials.empty() ? mesh.material : mesh.triangle_materials[t];
-      if (tri.material >= material_count) {
-        invalid(mesh_name(mesh, m) + ", triangle " + std::to_string(t) + ": " +
-                material_range(tri.material));
-      }
-      for (int c = 0; c < 3; ++c) tri.p[c] = mesh.positions[mesh.indices[3 * t + c]];
-      // In double: the cross product of nearby float points loses most of its digits.
-      const glm::dvec3 e1 = glm::dvec3(tri.p[1]) - glm::dvec3(tri.p[0]);
-      const glm::dvec3 e2 = glm::dvec3(tri.p[2]) - glm::dvec3(tri.p[0]);
-      const glm::dvec3 e3 = glm::dvec3(tri.p[2]) - glm::dvec3(tri.p[1]);
-      const glm::dvec3 cross = glm::cross(e1, e2);
-      const double twice_area = glm::length(cross);
-      const double longest2 = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
-      if (!(twice_area > kDegenerateRelativeArea * longest2) || twice_area == 0.0) {
-        ++dropped;
-        continue;
-      }
-      tri.face_normal = glm::vec3(cross / twice_area);
-      tri.area = float(0.5 * twice_area);
-      for (int c = 0; c < 3; ++c) {
-        glm::vec3 n = tri.face_normal;
-        if (!mesh.corner_normals.empty()) {
-          const glm::dvec3 given(mesh.corner_normals[3 * t + c]);
-          const double length = glm::length(given);
-          if (length > 1e-20) n = glm::vec3(given / length);
-        }
-        tri.n[c] = n;
-        tri.uv[c] = mesh.corner_uvs.empty() ? glm::vec2(0.0f) : mesh.corner_uvs[3 * t + c];
-      }
-      tri.mesh = uint32_t(m);
-      tri.mesh_triangle = uint32_t(t);
-      if (mesh.corner_uvs.empty() &&
-          (description.materials[tri.material].albedo_texture != BAKEGI_NO_TEXTURE ||
-           description.materials[tri.material].emission_texture != BAKEGI_NO_TEXTURE)) {
-        textured_without_uvs = true;
-      }
-      if (description.materials[tri.material].is_emissive()) {
-        scene.emissive_triangles.push_back(uint32_t(scene.triangles.size()));
-      }
-      scene.triangles.push_back(tri);
-    }
-    if (dropped > 0) {
-      scene.warnings.push_back(mesh_name(mesh, m) + ": " + std::to_string(dropped) + " of " +
-                               std::to_string(triangle_count) +
-                               " triangles dropped as degenerate (zero area)");
-    }
-    if (textured_without_uvs) {
-      scene.warnings.push_back(mesh_name(mesh, m) +
-                               " uses a textured material but has no UVs; the texture is "
-                               "sampled at uv (0, 0)");
-    }
-    dropped_total += dropped;
+    dropped_total += append_mesh_triangles(scene, m);
   }
-
   if (scene.triangles.empty()) {
     if (dropped_total > 0) {
       invalid("the scene is empty: all " + std::to_string(dropped_total) +
@@ -424,14 +454,7 @@ Scene build_scene(const SceneDescription& description) {
 
   normalize_lights_and_require_one(scene);
   scene.emission_cells = build_emission_cells(scene);
-
-  scene.bounds_min = scene.bounds_max = scene.triangles[0].p[0];
-  for (const Triangle& tri : scene.triangles) {
-    for (const glm::vec3& p : tri.p) {
-      scene.bounds_min = glm::min(scene.bounds_min, p);
-      scene.bounds_max = glm::max(scene.bounds_max, p);
-    }
-  }
+  compute_bounds(scene);
   return scene;
 }
 

@@ -550,6 +550,62 @@ void fold_wide_glossy_lobes(std::vector<PatchSeed>& seeds, float below_exponent)
 
 }  // namespace
 
+namespace {
+
+struct PatchCounts {
+  std::vector<uint32_t> group_at;   // the group starting at each piece, else kNoElement
+  std::vector<uint8_t> group_back;  // per group: whether it gets a back side
+  uint64_t patch_count = 0;         // saturating
+};
+
+// How many patches the plan makes (a triangle's leaves, one per group, twice with a back
+// side), before any is made, so the budget can refuse first.
+PatchCounts count_patches(const Scene& scene, const PatchPlan& plan,
+                          const std::vector<uint8_t>& back_side) {
+  const auto has_back = [&](uint32_t t) { return !back_side.empty() && back_side[t] != 0; };
+  PatchCounts counts;
+  // Groups are in order of their first piece.
+  counts.group_at.assign(plan.pieces.size(), kNoElement);
+  counts.group_back.assign(plan.groups.size(), 0);
+  uint64_t patch_count = 0;
+  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+    if (plan.leaves[i] == 0) continue;
+    const uint64_t sides = has_back(i) ? 2 : 1;
+    patch_count = saturating_add(patch_count, sides * plan.leaves[i]);
+  }
+  if (plan.saturated) patch_count = std::numeric_limits<uint64_t>::max();
+  for (size_t g = 0; g < plan.groups.size(); ++g) {
+    const std::span<const uint32_t> group = plan.groups.group(g);
+    counts.group_at[group.front()] = uint32_t(g);
+    counts.group_back[g] =
+        !back_side.empty() && group_has_back_side(plan.pieces, group, back_side);
+    patch_count += counts.group_back[g] ? 2 : 1;
+  }
+  counts.patch_count = patch_count;
+  return counts;
+}
+
+// Refuses (OUT_OF_MEMORY, naming a patch size that fits) a hierarchy of more elements than
+// the budget: a binary tree over n patches has 2n - 1 elements.
+void check_element_budget(const Scene& scene, float max_edge, uint64_t patch_count,
+                          const HierarchyOptions& options) {
+  const uint64_t elements = patch_count > std::numeric_limits<uint64_t>::max() / 2
+                                ? std::numeric_limits<uint64_t>::max()
+                                : 2 * patch_count - 1;
+  const uint64_t budget = options.max_elements > 0
+                              ? std::min(options.max_elements, kHardElementLimit)
+                              : kHardElementLimit;
+  if (elements > budget) {
+    std::ostringstream message;
+    message << "antiradiance: patches of at most " << max_edge << " m would make " << elements
+            << " elements, more than the budget of " << budget << "; a patch size of "
+            << PatchCount(scene).max_edge_within_budget(max_edge, budget) << " m fits";
+    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, message.str());
+  }
+}
+
+}  // namespace
+
 ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& options) {
   max_edge_ = options.max_edge == 0.0f ? default_max_edge(scene) : options.max_edge;
   check_max_edge(max_edge_);
@@ -563,35 +619,11 @@ ElementHierarchy::ElementHierarchy(const Scene& scene, const HierarchyOptions& o
   std::vector<uint8_t> back_side;
   if (options.back_sides != nullptr) back_side = exposed_back_sides(scene, *options.back_sides);
   const auto has_back = [&](uint32_t t) { return !back_side.empty() && back_side[t] != 0; };
-  // The group starting at each piece (groups are in order of their first piece).
-  std::vector<uint32_t> group_at(plan.pieces.size(), kNoElement);
-  std::vector<uint8_t> group_back(plan.groups.size(), 0);
-  uint64_t patch_count = 0;
-  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
-    if (plan.leaves[i] == 0) continue;
-    const uint64_t sides = has_back(i) ? 2 : 1;
-    patch_count = saturating_add(patch_count, sides * plan.leaves[i]);
-  }
-  if (plan.saturated) patch_count = std::numeric_limits<uint64_t>::max();
-  for (size_t g = 0; g < plan.groups.size(); ++g) {
-    const std::span<const uint32_t> group = plan.groups.group(g);
-    group_at[group.front()] = uint32_t(g);
-    group_back[g] = !back_side.empty() && group_has_back_side(plan.pieces, group, back_side);
-    patch_count += group_back[g] ? 2 : 1;
-  }
-  const uint64_t elements = patch_count > std::numeric_limits<uint64_t>::max() / 2
-                                ? std::numeric_limits<uint64_t>::max()
-                                : 2 * patch_count - 1;
-  const uint64_t budget = options.max_elements > 0
-                              ? std::min(options.max_elements, kHardElementLimit)
-                              : kHardElementLimit;
-  if (elements > budget) {
-    std::ostringstream message;
-    message << "antiradiance: patches of at most " << max_edge_ << " m would make " << elements
-            << " elements, more than the budget of " << budget << "; a patch size of "
-            << PatchCount(scene).max_edge_within_budget(max_edge_, budget) << " m fits";
-    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, message.str());
-  }
+  const PatchCounts counts = count_patches(scene, plan, back_side);
+  const std::vector<uint32_t>& group_at = counts.group_at;
+  const std::vector<uint8_t>& group_back = counts.group_back;
+  const uint64_t patch_count = counts.patch_count;
+  check_element_budget(scene, max_edge_, patch_count, options);
 
   // (mesh, material, side) -> id
   std::map<std::tuple<uint32_t, uint32_t, bool>, uint32_t> surfaces;
