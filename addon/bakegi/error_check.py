@@ -10,7 +10,7 @@ bpy here: facts about the objects come in as plain data (export.mesh_facts).
 
 from dataclasses import dataclass
 
-# Above this estimated NRMSE a bake is flagged (issue 12: "above 10% the user sees a warning").
+# Above this estimated NRMSE a bake is flagged: the user sees a warning.
 THRESHOLD = 0.10
 # A target's vertices are too few for its light when what a viewer sees between them is off
 # by more than THRESHOLD and clearly more than at the vertices themselves: by half as much
@@ -87,7 +87,7 @@ def assess(report, object_names, facts=None, method="", samples=0):
                                    "display_interval": seen[1] if seen else None})
     verdict["objects"].sort(key=lambda o: -max(o["error"] or 0.0, o["display_error"] or 0.0))
 
-    # Too few vertices for the light (issue 12, part 6): flagged whatever the overall error,
+    # Too few vertices for the light: flagged whatever the overall error,
     # but only when even the low end of the object's interval says so (8-16 probes of an
     # object can be noisy).
     for o in verdict["objects"]:

@@ -34,7 +34,7 @@ def summary(report):
 
 
 def _meshless_summary(report):
-    """The precomputation's figures (issue 4): basis size, links kept, cache."""
+    """The precomputation's figures: basis size, links kept, cache."""
     points = report.get("meshless_points")
     if not isinstance(points, int):
         return ""

@@ -1,5 +1,5 @@
-// One interface for every method of DESIGN.md (pathtrace, antiradiance, meshless, ivg,
-// splatting). make_solver() in solver_registry.cpp picks one by the "method" setting.
+// One interface for every method (the registry, solver_registry.cpp, lists them: pathtrace,
+// direct, antiradiance, meshless); make_solver() picks one by the "method" setting.
 #pragma once
 
 #include <memory>
@@ -30,7 +30,9 @@ struct SolveInputs {
 
 // What a method computed from geometry, materials and settings alone, so that a later bake
 // with other lights can skip it ("relighting without relinking", Antiradiance §3.3).
-// Immutable once made; jobs share it.
+// Jobs share it (shared_ptr to const). What it holds is fixed when made, except caches
+// derived from it on first use (meshless: the visible relations and evaluation weights, made
+// under a mutex for the bake points that need them).
 class Precomputation {
  public:
   virtual ~Precomputation() = default;

@@ -303,7 +303,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   const uint64_t available =
       settings.memory_budget_bytes > used ? settings.memory_budget_bytes - used : 0;
   const bool automatic = settings.patch_size == 0.0;
-  // Automatic: extent / 32, coarsened while the estimate exceeds kAutomaticElementLimit
+  // Automatic: extent / 16 (default_max_edge, element_hierarchy.cpp), coarsened while the estimate exceeds kAutomaticElementLimit
   // elements (a detailed scene otherwise multiplies elements and links for little gain; the
   // paper's office had 18k elements).
   const PatchCount count(scene);

@@ -12,7 +12,7 @@
 //   distance of the centers: the solid angle of the disk of the bounding sphere's radius
 //   facing the viewer (exact for a far sphere, an upper bound of a flat patch's, and defined
 //   for clusters, which have no normal). OracleExtent::kProjectedArea uses the projected area
-//   instead (fewer links; measured trade-offs in the report of issue 3). If either exceeds the
+//   instead (fewer links, a little more error: docs/methods/antiradiance.md). If either exceeds the
 //   bound, the element with the larger radius that is not a patch is subdivided (the sender
 //   on a tie) and its children are linked recursively. When both are patches, the link is
 //   kept as it is (the discretization threshold of §3.2) and carries the spreading class of

@@ -1,7 +1,7 @@
-// Small input triangles grouped into one patch each (issue 12: "model no more than the scene
-// needs"). The element count of antiradiance should follow the patch size, not the
-// tessellation: a floor of a million triangles, a 10,000-triangle chair, a tessellated column
-// are each a handful of patches of the chosen size, while a 2-triangle wall is still split
+// Small input triangles grouped into one patch each (model no more than the scene needs).
+// The element count of antiradiance should follow the patch size, not the tessellation: a
+// floor of a million triangles, a 10,000-triangle chair, a tessellated column are each a
+// handful of patches of the chosen size, while a 2-triangle wall is still split
 // (element_hierarchy.h). Each group becomes one planar patch with the group's total area, its
 // area-weighted mean normal and albedo; its light is what the group's triangles receive on
 // average (direct light is sampled over the members, direct_initialization.h).

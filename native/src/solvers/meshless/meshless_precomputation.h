@@ -17,7 +17,7 @@
 
 namespace bakegi {
 
-// What a bake reports about the precomputation (issue 4, item 7), kept with it so that a
+// What a bake reports about the precomputation, kept with it so that a
 // bake that loads it from the cache reports the same as the bake that made it.
 struct MeshlessStatistics {
   uint32_t sender_levels = 0;

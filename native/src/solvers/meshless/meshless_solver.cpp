@@ -115,7 +115,7 @@ std::string json_array(const std::vector<T>& values) {
 }
 
 // What a bake reports about the precomputation, the same whether it was just made or loaded
-// from the cache (issue 4, item 7). Rays and stage times are the caller's: a load casts none.
+// from the cache. Rays and stage times are the caller's: a load casts none.
 void report_statistics(const MeshlessPrecomputation& system, Report& report) {
   const MeshlessStatistics& s = system.statistics;
   if (s.levels_reduced) {
@@ -411,7 +411,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   system->transfer = solve_bounces(system->all, single, bounces, context, bounce_stats);
   report.add_seconds("meshless_bounces", seconds_since(start));
 
-  // Statistics (issue 4, item 7), kept with the precomputation for cache hits.
+  // Statistics, kept with the precomputation for cache hits.
   MeshlessStatistics& statistics = system->statistics;
   statistics.sender_levels = sender_levels;
   statistics.receivers_per_level = refinement_stats.receivers_per_level;

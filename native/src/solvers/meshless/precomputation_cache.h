@@ -1,4 +1,4 @@
-// The meshless precomputation on disk (issue 4, item 5): the basis points, S and the
+// The meshless precomputation on disk: the basis points, S and the
 // statistics, saved after a solve and reloaded by a later solve of the same scene, so that
 // reopening a file and relighting costs no precompute. The R-trees and the DAG are rebuilt
 // from the points on load (BasisHierarchy's constructor), which is a small part of the
