@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "capi_test_scene.h"
+#include "util/job_context.h"
 #include "util/report.h"
 
 namespace bakegi::test {
@@ -472,3 +473,30 @@ TEST(BakeJob, AMethodThatCannotModelTheSceneHandsTheBakeToThePathTracer) {
 
 }  // namespace
 }  // namespace bakegi::test
+
+// Each stage covers its part of the range the job handed out: a solver counts from 0 to 1
+// in [0.1, 0.6] of the bake, and overall progress never goes back.
+TEST(JobContext, ProgressRangesMapStagesIntoTheirPart) {
+  bakegi::JobContext context;
+  context.set_stage("building", 0.0, 0.1);
+  context.set_stage_progress(1.0);
+  EXPECT_DOUBLE_EQ(context.progress(), 0.1);
+  {
+    const bakegi::ProgressRange solving(context, 0.1, 0.6);
+    context.set_stage("solver: first half", 0.0, 0.5);
+    context.set_stage_progress(0.5);
+    EXPECT_DOUBLE_EQ(context.progress(), 0.1 + 0.25 * 0.5);
+    {
+      const bakegi::ProgressRange inner(context, 0.5, 1.0);  // ranges nest
+      context.set_stage("solver: second half", 0.0, 1.0);
+      context.set_stage_progress(1.0);
+      EXPECT_DOUBLE_EQ(context.progress(), 0.6);
+    }
+    context.set_stage("solver: an earlier stage again", 0.0, 0.1);
+    EXPECT_DOUBLE_EQ(context.progress(), 0.6);  // never backwards
+  }
+  context.set_stage("evaluating", 0.6, 1.0);  // the whole job's range again
+  context.set_stage_progress(0.5);
+  EXPECT_DOUBLE_EQ(context.progress(), 0.8);
+  EXPECT_EQ(context.stage(), "evaluating");
+}

@@ -111,7 +111,8 @@ void BakeJob::start() {
                                                                    ? "an integer"
                                                                    : "a float"));
   }
-  method_ = method == settings_.values().end() ? "pathtrace" : std::get<std::string>(method->second);
+  method_ = method == settings_.values().end() ? std::string("pathtrace")
+                                               : std::get<std::string>(method->second);
   const SettingSchema& schema = method_schema(method_);
   settings_.validate(schema, setting_keys_of_any_method());
   const SettingReader settings(settings_, schema);
@@ -270,25 +271,29 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   const SolveInputs inputs{scene, *tracer_, *direct_, settings_, &points_};
   std::unique_ptr<IndirectField> field;
   std::string method_used = method_;
-  try {
-    field = solver_->solve(inputs, context_);
-  } catch (const Error& e) {
-    // A scene too large for a hierarchical solver's model, or one its model cannot solve
-    // (antiradiance diverging on a furnished room), still gets a bake the user can trust: the
-    // path tracer's, whose error the estimate below states, with the reason in the warnings.
-    const bool cannot_model =
-        e.status() == BAKEGI_ERROR_OUT_OF_MEMORY || dynamic_cast<const CannotModel*>(&e) != nullptr;
-    if (!cannot_model || !fallback_ || method_ == "pathtrace") throw;
-    Settings fallback_settings = settings_;
-    if (!settings_.has("samples")) fallback_settings.set("samples", kFallbackSamples);
-    report.warn(std::string(e.what()) + ". Baked with the path tracer instead (" +
-                std::to_string(SettingReader(fallback_settings, method_schema("pathtrace")).get_int("samples")) +
-                " samples; setting fallback=0 refuses instead)");
-    method_used = "pathtrace";
-    solver_ = make_solver("pathtrace");
-    fallback_settings_ = std::make_unique<Settings>(std::move(fallback_settings));
-    const SolveInputs fallback_inputs{scene, *tracer_, *direct_, *fallback_settings_, &points_};
-    field = solver_->solve(fallback_inputs, context_);
+  {
+    const ProgressRange solving(context_, 0.1, 0.6);  // the solver counts from 0 to 1 in it
+    try {
+      field = solver_->solve(inputs, context_);
+    } catch (const Error& e) {
+      // A scene too large for a hierarchical solver's model, or one its model cannot solve
+      // (antiradiance diverging on a furnished room), still gets a bake the user can trust: the
+      // path tracer's, whose error the estimate below states, with the reason in the warnings.
+      const bool cannot_model = e.status() == BAKEGI_ERROR_OUT_OF_MEMORY ||
+                                dynamic_cast<const CannotModel*>(&e) != nullptr;
+      if (!cannot_model || !fallback_ || method_ == "pathtrace") throw;
+      Settings fallback_settings = settings_;
+      if (!settings_.has("samples")) fallback_settings.set("samples", kFallbackSamples);
+      const SettingReader fallback_reader(fallback_settings, method_schema("pathtrace"));
+      report.warn(std::string(e.what()) + ". Baked with the path tracer instead (" +
+                  std::to_string(fallback_reader.get_int("samples")) +
+                  " samples; setting fallback=0 refuses instead)");
+      method_used = "pathtrace";
+      solver_ = make_solver("pathtrace");
+      fallback_settings_ = std::make_unique<Settings>(std::move(fallback_settings));
+      const SolveInputs fallback_inputs{scene, *tracer_, *direct_, *fallback_settings_, &points_};
+      field = solver_->solve(fallback_inputs, context_);
+    }
   }
   report.set_text("method_used", method_used);
   report.add_seconds("solve", seconds_since(stage_start));
@@ -340,7 +345,11 @@ std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
   const RayTracer& tracer = *tracer_;
   direct_ = std::make_unique<const DirectLight>(scene, tracer);
   const SolveInputs inputs{scene, tracer, *direct_, settings_, &points_};
-  std::unique_ptr<IndirectField> field = solver_->relight(inputs, *previous_->solver, context_);
+  std::unique_ptr<IndirectField> field;
+  {
+    const ProgressRange relighting(context_, 0.1, 0.6);  // the solver counts from 0 to 1 in it
+    field = solver_->relight(inputs, *previous_->solver, context_);
+  }
   report.add_seconds("solve", seconds_since(stage_start));
   report.add_count("memory_bytes", tracer.memory_bytes() + description_bytes(description_) +
                                        scene.triangles.capacity() * sizeof(Triangle) +

@@ -123,8 +123,9 @@ void Settings::validate(const SettingSchema& schema,
       continue;
     }
     if (std::find(known_anywhere.begin(), known_anywhere.end(), key) == known_anywhere.end()) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "unknown setting \"" + key + "\" (known settings: " + listed(known_anywhere) + ")");
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "unknown setting \"" + key +
+                                                     "\" (known settings: " +
+                                                     listed(known_anywhere) + ")");
     }
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "setting \"" + key + "\" is not read by method \"" + schema.method() +

@@ -35,8 +35,8 @@ std::unique_ptr<Solver> make() {
 }
 
 const MethodEntry kMethods[] = {
-    {"pathtrace", "Monte Carlo path tracing: the reference (DESIGN.md).", false, make<PathTraceSolver>,
-     PathTraceSolver::setting_specs},
+    {"pathtrace", "Monte Carlo path tracing: the reference (DESIGN.md).", false,
+     make<PathTraceSolver>, PathTraceSolver::setting_specs},
     {"direct",
      "Direct light only, E_direct / pi: what a Cycles Diffuse bake with only Direct writes "
      "(for checking light units against Cycles).",

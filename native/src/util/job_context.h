@@ -12,8 +12,9 @@ namespace bakegi {
 
 class JobContext {
  public:
-  // Progress of the current stage in [0,1]; the job maps stages onto overall progress
-  // [begin, end]. Overall progress never decreases. Thread-safe.
+  // A stage covers [begin, end] of the current range (the whole job, or the part a
+  // ProgressRange handed out: a solver counts its own work from 0 to 1, whichever part of
+  // the job it runs in). Overall progress never decreases. Thread-safe.
   void set_stage(const std::string& name, double begin, double end);
   void set_stage_progress(double fraction);
   // Changes only the stage text (e.g. "tracing 32/256 samples"), not the progress range.
@@ -30,14 +31,31 @@ class JobContext {
   const Report& report() const { return report_; }
 
  private:
+  friend class ProgressRange;
   void raise_progress(double value);
 
+  std::atomic<double> range_begin_{0.0}, range_end_{1.0};
   std::atomic<double> progress_{0.0};
   std::atomic<bool> cancelled_{false};
   std::atomic<double> stage_begin_{0.0}, stage_end_{1.0};
   mutable std::mutex stage_mutex_;
   std::string stage_;
   Report report_;
+};
+
+// While alive, stages set on `context` cover [begin, end] of the range that was current (the
+// job hands each stage its part: the solver gets [0.1, 0.6] of the bake). Restores the
+// previous range when destroyed. Only the thread that runs the job makes ranges.
+class ProgressRange {
+ public:
+  ProgressRange(JobContext& context, double begin, double end);
+  ~ProgressRange();
+  ProgressRange(const ProgressRange&) = delete;
+  ProgressRange& operator=(const ProgressRange&) = delete;
+
+ private:
+  JobContext& context_;
+  double previous_begin_, previous_end_;
 };
 
 }  // namespace bakegi

@@ -289,7 +289,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   const Scene& scene = inputs.scene;
   Report& report = context.report();
 
-  context.set_stage("antiradiance: bins", 0.10, 0.11);
+  context.set_stage("antiradiance: bins", 0.0, 0.02);
   auto stage_start = std::chrono::steady_clock::now();
   DirectionalBins bins = DirectionalBins::from_bin_count(settings.bins);
   BinSpreading spreading(bins);
@@ -350,7 +350,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   LinkSet link_set;
   double hierarchy_seconds = 0.0, linking_seconds = 0.0;
   for (int attempt = 0;; ++attempt) {
-    context.set_stage("antiradiance: hierarchy", 0.11, 0.12);
+    context.set_stage("antiradiance: hierarchy", 0.02, 0.04);
     stage_start = std::chrono::steady_clock::now();
     hierarchy = ElementHierarchy(
         scene, HierarchyOptions{max_edge, 0, &inputs.tracer, float(settings.glossy_fold_exponent)});
@@ -359,7 +359,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
 
     const uint64_t fixed = bytes_without_links(count, max_edge, m);
     const uint64_t max_links = available > fixed ? (available - fixed) / kPeakBytesPerLink : 0;
-    context.set_stage("antiradiance: linking", 0.12, 0.30);
+    context.set_stage("antiradiance: linking", 0.04, 0.40);
     stage_start = std::chrono::steady_clock::now();
     try {
       if (max_links == 0) {
@@ -415,7 +415,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   RadianceTables tables(hierarchy.element_count(), hierarchy.patch_count(), m);
   report.add_seconds("antiradiance_tables", seconds_since(stage_start));
 
-  context.set_stage("antiradiance: direct light", 0.30, 0.40);
+  context.set_stage("antiradiance: direct light", 0.40, 0.60);
   stage_start = std::chrono::steady_clock::now();
   const DirectLightAtPatches direct = direct_light_at_patches(
       hierarchy, bins, inputs.direct, settings.direct_samples, uint64_t(settings.seed), context);
@@ -423,7 +423,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   const double direct_seconds = seconds_since(stage_start);
   context.throw_if_cancelled();
 
-  context.set_stage("antiradiance: iterating", 0.40, 0.58);
+  context.set_stage("antiradiance: iterating", 0.60, 0.96);
   stage_start = std::chrono::steady_clock::now();
   IterationOptions options;
   options.scheme = settings.scheme;
@@ -444,7 +444,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inpu
   }
   if (!result.warning.empty()) report.warn("antiradiance: " + result.warning);
 
-  context.set_stage("antiradiance: output", 0.58, 0.60);
+  context.set_stage("antiradiance: output", 0.96, 1.0);
   stage_start = std::chrono::steady_clock::now();
   std::vector<SurfaceSample> samples(hierarchy.patch_count());
   const std::span<const glm::vec3> irradiance = tables.accumulated_irradiance();

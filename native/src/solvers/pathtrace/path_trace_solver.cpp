@@ -28,7 +28,8 @@ void PathTracedField::evaluate(const BakePoints& points, std::span<glm::vec3> ou
       context);
 }
 
-std::unique_ptr<IndirectField> PathTraceSolver::solve(const SolveInputs& inputs, JobContext& context) {
+std::unique_ptr<IndirectField> PathTraceSolver::solve(const SolveInputs& inputs,
+                                                      JobContext& context) {
   // Settings are read here so that a bad value fails before any tracing starts.
   return std::make_unique<PathTracedField>(inputs.direct, PathTraceSettings::from(inputs.settings));
 }
