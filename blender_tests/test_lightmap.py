@@ -175,6 +175,17 @@ class Lightmap(LightmapCase):
         self.assertGreater(len(spreads), 20)
         self.assertLess(spreads.max(), 0.02)
 
+    def test_the_texel_samples_are_held_to_the_bakes_memory_budget(self):
+        """A 1 MB budget refuses the texels before they are made (no fixed 4 GiB any more),
+        and the scene is left as it was."""
+        before = common.scene_snapshot()
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bake_lightmap(method="pathtrace", samples=1, texels_per_meter=200.0,
+                               method_settings={"memory_budget_mb": 1})
+        self.assertEqual(caught.exception.status, "BAKEGI_ERROR_OUT_OF_MEMORY")
+        self.assertIn("1 MiB budget", str(caught.exception))
+        self.assertEqual(common.snapshot_difference(before, common.scene_snapshot()), [])
+
     def test_a_failed_bake_takes_back_the_uv_maps_it_made(self):
         before = common.scene_snapshot()
         uv_maps = {n: [l.name for l in self.objects[n].data.uv_layers] for n in NAMES}

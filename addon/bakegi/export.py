@@ -949,7 +949,9 @@ def _lightmap_points(exporter, targets, options, warnings):
         warnings.append(f"the lightmaps did not fit one {lightmap_layout.MAX_ATLAS_SIDE}-texel "
                         f"atlas; every object got {atlas.density_scale:.0%} of the asked "
                         "density")
-    result = ExportedLightmaps(native.Lightmaps(), atlas.width, atlas.height, options,
+    samples = native.Lightmaps()
+    samples.set_memory_budget(options.memory_budget_mb)
+    result = ExportedLightmaps(samples, atlas.width, atlas.height, options,
                                density_scale=atlas.density_scale, scene=exporter.scene,
                                pending=[(s.mesh_id, atlas.to_atlas(i, s.uvs))
                                         for i, s in enumerate(sources)])

@@ -159,6 +159,7 @@ _SIGNATURES = {
     "bakegi_job_can_relight": (c_int, [_P]),
     "bakegi_job_start_relight": (c_int, [_P, _P, _P, _P, _PP]),
     "bakegi_lightmaps_create": (c_int, [_PP]),
+    "bakegi_lightmaps_set_memory_budget": (c_int, [c_void_p, c_uint64]),
     "bakegi_lightmaps_destroy": (None, [_P]),
     "bakegi_lightmaps_add": (c_int, [_P, _P, c_uint32, POINTER(c_float), c_uint32, c_uint32,
                                      POINTER(c_uint32)]),
@@ -571,6 +572,11 @@ class Lightmaps(_Handle):
             _check(lib.bakegi_lightmaps_create(byref(out)), "bakegi_lightmaps_create")
             handle = out.value
         super().__init__(handle)
+
+    def set_memory_budget(self, megabytes):
+        """What the texel samples may take (MB): refused before they are made beyond it."""
+        _check(load_library().bakegi_lightmaps_set_memory_budget(self.handle, int(megabytes)),
+               "bakegi_lightmaps_set_memory_budget")
 
     def add(self, scene, mesh, uvs, width, height):
         """A width x height lightmap for core mesh `mesh` of `scene`; uvs: (3*T, 2) lightmap

@@ -29,6 +29,7 @@ class LightmapOptions:
     padding: int = 4
     uv_method: str = "SMART"
     reject_inside: bool = True
+    memory_budget_mb: int = 4096  # what the texel samples may take (the session sets the bake's)
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ run() does all of it synchronously (background mode and scripts).
 import os
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from . import error_check, export, live, native, preferences, writeback
 from .native import BakeGIError
@@ -66,7 +66,12 @@ class BakeSession:
         self.method_settings = dict(request.method_settings)
         if machine.memory_budget_mb > 0:
             self.method_settings.setdefault("memory_budget_mb", machine.memory_budget_mb)
-        self.lightmap = request.lightmap
+        budget = self.method_settings.get("memory_budget_mb")
+        # The texel samples are held to the bake's budget too (a bad value is the core's to
+        # refuse when the job starts).
+        self.lightmap = (replace(request.lightmap, memory_budget_mb=budget)
+                         if isinstance(budget, int) and not isinstance(budget, bool) and budget >= 1
+                         else request.lightmap)
         self.lightmap_folder = request.lightmap_folder
         self.lightmap_full_float = bool(request.lightmap_full_float)
         self.exported = None

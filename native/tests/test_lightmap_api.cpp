@@ -97,6 +97,30 @@ TEST_F(LightmapApi, TwoLightmapsOneBakeRoundTrip) {
 
 // A chart covering only the lower-left quarter: the padding fills 2 texels around it, and
 // the rest stays 0.
+// The texel samples are refused before they are made when they could exceed the bake's
+// budget; the default is the job's default (4096 MB).
+TEST_F(LightmapApi, TheSampleBudgetIsTheBakes) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
+  const uint32_t mesh = floor.add_to(scene.get(), 10);
+  LightmapsPtr lightmaps = new_lightmaps();
+  // 2048 x 2048 texels: up to about 4.2 M samples of 76 bytes, over 1 MB, under 4096 MB.
+  ASSERT_EQ(bakegi_lightmaps_set_memory_budget(lightmaps.get(), 1), BAKEGI_OK);
+  EXPECT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 2048, 2048,
+                                 nullptr),
+            BAKEGI_ERROR_OUT_OF_MEMORY);
+  EXPECT_NE(std::string(bakegi_last_error()).find("more than the 1 MiB budget"), std::string::npos)
+      << bakegi_last_error();
+  EXPECT_EQ(bakegi_lightmaps_count(lightmaps.get()), 0u);  // nothing half added
+  ASSERT_EQ(bakegi_lightmaps_set_memory_budget(lightmaps.get(), 4096), BAKEGI_OK);
+  EXPECT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 2048, 2048,
+                                 nullptr),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  EXPECT_EQ(bakegi_lightmaps_set_memory_budget(lightmaps.get(), 0), BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_set_memory_budget(nullptr, 64), BAKEGI_ERROR_INVALID_ARGUMENT);
+}
+
 TEST_F(LightmapApi, PaddingAroundAChart) {
   SceneHandle scene = lit_scene();
   Quad quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});

@@ -349,6 +349,12 @@ BAKEGI_API bakegi_status bakegi_job_start_relight(const bakegi_job* previous,
 typedef struct bakegi_lightmaps bakegi_lightmaps;
 
 BAKEGI_API bakegi_status bakegi_lightmaps_create(bakegi_lightmaps** out_lightmaps);
+/* What the texel samples of all the lightmaps may take, in MB (1..2^30; default 4096, the
+ * job's default memory_budget_mb): bakegi_lightmaps_add refuses, before it allocates, a mesh
+ * whose samples could exceed it (BAKEGI_ERROR_OUT_OF_MEMORY naming the budget). Pass the
+ * bake's memory_budget_mb. */
+BAKEGI_API bakegi_status bakegi_lightmaps_set_memory_budget(bakegi_lightmaps* lightmaps,
+                                                            uint64_t megabytes);
 BAKEGI_API void bakegi_lightmaps_destroy(bakegi_lightmaps* lightmaps);
 
 /* Adds a width x height lightmap (each 1..8192) for mesh `mesh` of `scene` (its index as

@@ -26,30 +26,34 @@ using bakegi::require;
 using bakegi::kMaxLightmapSide;
 using Lightmap = bakegi::LightmapLayout::Lightmap;
 
+// What the texel samples of all lightmaps may take: the core's default memory budget unless
+// bakegi_lightmaps_set_memory_budget gives the bake's.
+constexpr uint64_t kDefaultSampleBudgetBytes = uint64_t(4096) << 20;
+
 struct bakegi_lightmaps {
   bakegi::LightmapLayout layout;
+  uint64_t sample_budget_bytes = kDefaultSampleBudgetBytes;
 };
 
 namespace {
 
 constexpr uint32_t kMaxPadding = 1024;
 
-// What the texel samples of all lightmaps may take: 4 GiB, the core's default memory
-// budget. A sample costs 48 bytes here (position, normal, object id, face normal, texel,
-// weight) and 28 more as a bake point of the job.
-constexpr uint64_t kSampleBudgetBytes = uint64_t(4) << 30;
+// A sample costs 48 bytes here (position, normal, object id, face normal, texel, weight) and
+// 28 more as a bake point of the job.
 constexpr uint64_t kBytesPerSample = 48 + 28;
 
 // Refuses, before anything is allocated, a mesh whose samples could take the lightmaps
 // over the budget (an upper bound, so a refusal names the density, not a crash).
-void check_sample_budget(uint64_t existing, const std::vector<bakegi::LightmapTriangle>& triangles,
-                         uint32_t width, uint32_t height) {
+void check_sample_budget(uint64_t budget_bytes, uint64_t existing,
+                         const std::vector<bakegi::LightmapTriangle>& triangles, uint32_t width,
+                         uint32_t height) {
   const uint64_t bound = existing + bakegi::max_texel_samples(triangles, width, height);
-  if (bound > kSampleBudgetBytes / kBytesPerSample) {
+  if (bound > budget_bytes / kBytesPerSample) {
     throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
                 "the lightmaps could need up to " + std::to_string(bound) + " texel samples (" +
                     std::to_string(bound * kBytesPerSample >> 20) + " MiB), more than the " +
-                    std::to_string(kSampleBudgetBytes >> 20) +
+                    std::to_string(budget_bytes >> 20) +
                     " MiB budget; lower the texel density or the lightmap size");
   }
 }
@@ -109,6 +113,18 @@ bakegi_status bakegi_lightmaps_create(bakegi_lightmaps** out_lightmaps) {
   });
 }
 
+bakegi_status bakegi_lightmaps_set_memory_budget(bakegi_lightmaps* lightmaps,
+                                                uint64_t megabytes) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    if (megabytes < 1 || megabytes > (uint64_t(1) << 30)) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "memory budget must be in [1, 1073741824] MB, got " + std::to_string(megabytes));
+    }
+    lightmaps->sample_budget_bytes = megabytes << 20;
+  });
+}
+
 void bakegi_lightmaps_destroy(bakegi_lightmaps* lightmaps) {
   delete lightmaps;
 }
@@ -128,7 +144,8 @@ bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_sce
     }
     const std::vector<bakegi::LightmapTriangle> triangles =
         lightmap_triangles(source, lightmap_uvs);
-    check_sample_budget(lightmaps->layout.total_points(), triangles, width, height);
+    check_sample_budget(lightmaps->sample_budget_bytes, lightmaps->layout.total_points(),
+                        triangles, width, height);
     Lightmap lightmap;
     lightmap.samples = bakegi::rasterize_texels(triangles, width, height, source.object_id);
     lightmap.seams = bakegi::find_lightmap_seams(source.indices, triangles, width, height);
@@ -154,7 +171,8 @@ bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, uint32_t ligh
     const std::vector<bakegi::LightmapTriangle> triangles =
         lightmap_triangles(source, lightmap_uvs);
     const uint32_t width = target.samples.width, height = target.samples.height;
-    check_sample_budget(lightmaps->layout.total_points(), triangles, width, height);
+    check_sample_budget(lightmaps->sample_budget_bytes, lightmaps->layout.total_points(),
+                        triangles, width, height);
     bakegi::TexelSamples samples =
         bakegi::rasterize_texels(triangles, width, height, source.object_id);
     const std::vector<bakegi::LightmapSeam> seams =
