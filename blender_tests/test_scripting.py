@@ -135,6 +135,27 @@ class Scripting(common.SmallCornellCase):
         self.assertEqual(sum(t["count"] for t in result["targets"]), corners)
 
 
+class PanelAgreesWithTheCore(common.AddonCase):
+    """The panel's method settings stay inside the core's schemas (docs/settings.md): same
+    defaults, and no value the panel allows that the core would refuse."""
+
+    PANEL_TO_CORE = (("samples", "pathtrace", "samples"), ("seed", "pathtrace", "seed"),
+                     ("bins", "antiradiance", "bins"), ("iterations", "antiradiance", "iterations"),
+                     ("meshless_levels", "meshless", "levels"),
+                     ("meshless_epsilon", "meshless", "epsilon"))
+
+    def test_panel_defaults_and_ranges_lie_in_the_schema(self):
+        from bakegi import native
+        panel = bpy.context.scene.bakegi.bl_rna.properties
+        for prop_name, method, key in self.PANEL_TO_CORE:
+            with self.subTest(prop=prop_name):
+                spec = {s["key"]: s for s in native.describe_settings(method)["settings"]}[key]
+                prop = panel[prop_name]
+                self.assertAlmostEqual(prop.default, spec["default"], places=6)
+                self.assertGreaterEqual(prop.hard_min, spec["min"])
+                self.assertLessEqual(prop.hard_max, spec["max"])
+
+
 class ScriptBuiltScene(common.AddonCase):
     """A script that makes objects with bpy.data and bakes at once: the view layer's object
     list is not updated until something updates it, and the add-on must do that itself."""

@@ -66,12 +66,12 @@ class BakeGISettings(bpy.types.PropertyGroup):
         name="Bake Direct Light", default=False,
         description="Debug: bake the direct light instead of the indirect light, to compare "
         "light units with Cycles")
-    samples: IntProperty(name="Samples", default=64, min=1, soft_max=4096,
+    samples: IntProperty(name="Samples", default=64, min=1, max=1 << 30, soft_max=4096,
                          description="Paths per bake point: more is slower and less noisy")
     bins: IntProperty(name="Bins", default=300, min=12, max=3072,
                       description="Antiradiance: directional bins per element; more bins "
                       "sharpen indirect shadows and cost memory and time")
-    iterations: IntProperty(name="Iterations", default=32, min=1, soft_max=256,
+    iterations: IntProperty(name="Iterations", default=32, min=1, max=100000, soft_max=256,
                             description="Antiradiance: light bounces at most (stops early "
                             "once converged)")
     meshless_levels: IntProperty(
@@ -79,7 +79,8 @@ class BakeGISettings(bpy.types.PropertyGroup):
         description="Meshless: levels of the hierarchical basis; more resolve finer indirect "
         "detail and cost time and memory (0 = automatic, 4)")
     meshless_epsilon: FloatProperty(
-        name="Link Threshold", default=0.01, min=0.0, soft_max=0.1, precision=3, step=0.1,
+        name="Link Threshold", default=0.01, min=0.0, max=10.0, soft_max=0.1, precision=3,
+        step=0.1,
         description="Meshless: links that carry less than this are dropped; lower is more "
         "accurate and uses more memory (the paper used 0.025)")
     live_indirect: BoolProperty(
