@@ -3,7 +3,7 @@
 
 The core path-traces a few hundred probes after every full bake and compares (report
 "estimated_error", its 90% "estimated_error_interval", and "error_estimate" with the figures
-per kind of probe and per object; see bakegi.h, "error_probes"). This module turns that into
+per kind of probe and per object; docs/settings.md, "error_probes"). This module turns that into
 what the user reads: the estimate, and when it is high, the likely causes and what to do. No
 bpy here: facts about the objects come in as plain data (export.mesh_facts).
 """
