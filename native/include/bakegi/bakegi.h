@@ -300,7 +300,13 @@ BAKEGI_API bakegi_status bakegi_job_wait(bakegi_job* job);
 BAKEGI_API bakegi_status bakegi_job_get_result(const bakegi_job* job, float* out_rgb,
                                                uint64_t count);
 /* A JSON object describing the finished (or failed) job: seconds per stage, bake points,
- * method, settings, rays traced, memory, warnings. Writes at most capacity bytes including
+ * method ("method_used": the path tracer when the method handed the bake to it), settings
+ * (every value used, defaults included), rays traced, memory, warnings. With error probes
+ * (setting "error_probes"): "estimated_error" (the NRMSE at bake points, a fraction; null if
+ * no indirect light reached the probes), "estimated_error_interval" ([low, high], 90%),
+ * "error_estimate" (both kinds of probes, per object: "object" is the bake points' object
+ * id) and seconds "error_estimate"; meshless adds "meshless_cache" ("hit" | "miss" | "stale" |
+ * "off"), "meshless_cache_path", "meshless_cache_bytes". Writes at most capacity bytes including
  * the NUL and stores the full length (without NUL) in *out_length; call with capacity 0
  * to ask for the length. */
 BAKEGI_API bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buffer, size_t capacity,
