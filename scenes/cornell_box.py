@@ -88,19 +88,26 @@ def uses_nodes(block):
     return block.node_tree is not None and (bpy.app.version >= (5, 0, 0) or block.use_nodes)
 
 
-def diffuse_material(name, color):
-    """A material whose surface is a single Diffuse BSDF of the given colour."""
+def bsdf_material(name, color, node_type):
+    """A material whose surface is one BSDF node of `node_type` (returned with the material)
+    wired to the output; `color` is also the solid-mode viewport colour."""
     material = bpy.data.materials.new(name)
     use_nodes(material)
     nodes = material.node_tree.nodes
     nodes.clear()
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (*color, 1.0)
-    diffuse.inputs["Roughness"].default_value = 0.0
+    bsdf = nodes.new(node_type)
     output = nodes.new("ShaderNodeOutputMaterial")
     output.location = (300, 0)
-    material.node_tree.links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
-    material.diffuse_color = (*color, 1.0)  # solid-mode viewport colour
+    material.node_tree.links.new(bsdf.outputs["BSDF"], output.inputs["Surface"])
+    material.diffuse_color = (*color, 1.0)
+    return material, bsdf
+
+
+def diffuse_material(name, color):
+    """A material whose surface is a single Diffuse BSDF of the given colour."""
+    material, diffuse = bsdf_material(name, color, "ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (*color, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
     return material
 
 
@@ -109,11 +116,7 @@ def principled_material(name, color, roughness=0.5, metallic=0.0):
     coat of F0 = 0.04 in every version (3.x: Specular 0.5; 4.x: IOR 1.5, Specular IOR Level
     0.5), which Cycles 3.x adds on top of the diffuse base and 4.x's Principled v2 layers over
     it (the base then loses what the coat reflects)."""
-    material = bpy.data.materials.new(name)
-    use_nodes(material)
-    nodes = material.node_tree.nodes
-    nodes.clear()
-    principled = nodes.new("ShaderNodeBsdfPrincipled")
+    material, principled = bsdf_material(name, color, "ShaderNodeBsdfPrincipled")
     principled.inputs["Base Color"].default_value = (*color, 1.0)
     principled.inputs["Roughness"].default_value = roughness
     principled.inputs["Metallic"].default_value = metallic
@@ -122,10 +125,6 @@ def principled_material(name, color, roughness=0.5, metallic=0.0):
         principled.inputs["Specular IOR Level"].default_value = 0.5
     else:
         principled.inputs["Specular"].default_value = 0.5
-    output = nodes.new("ShaderNodeOutputMaterial")
-    output.location = (300, 0)
-    material.node_tree.links.new(principled.outputs["BSDF"], output.inputs["Surface"])
-    material.diffuse_color = (*color, 1.0)
     return material
 
 

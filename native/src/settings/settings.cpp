@@ -147,31 +147,24 @@ const SettingSpec& spec_of(const SettingSchema& schema, const std::string& key,
 
 }  // namespace
 
-int64_t SettingReader::get_int(const std::string& key) const {
-  const SettingSpec& spec = spec_of(schema_, key, SettingType::kInteger);
+SettingValue SettingReader::read(const std::string& key, SettingType type) const {
+  const SettingSpec& spec = spec_of(schema_, key, type);
   auto it = settings_.values_.find(key);
-  const SettingValue value =
-      it == settings_.values_.end() ? spec.fallback : checked(spec, it->second);
+  SettingValue value = it == settings_.values_.end() ? spec.fallback : checked(spec, it->second);
   settings_.remember(key, value);
-  return std::get<int64_t>(value);
+  return value;
+}
+
+int64_t SettingReader::get_int(const std::string& key) const {
+  return std::get<int64_t>(read(key, SettingType::kInteger));
 }
 
 double SettingReader::get_float(const std::string& key) const {
-  const SettingSpec& spec = spec_of(schema_, key, SettingType::kNumber);
-  auto it = settings_.values_.find(key);
-  const SettingValue value =
-      it == settings_.values_.end() ? spec.fallback : checked(spec, it->second);
-  settings_.remember(key, value);
-  return std::get<double>(value);
+  return std::get<double>(read(key, SettingType::kNumber));
 }
 
 std::string SettingReader::get_string(const std::string& key) const {
-  const SettingSpec& spec = spec_of(schema_, key, SettingType::kText);
-  auto it = settings_.values_.find(key);
-  const SettingValue value =
-      it == settings_.values_.end() ? spec.fallback : checked(spec, it->second);
-  settings_.remember(key, value);
-  return std::get<std::string>(value);
+  return std::get<std::string>(read(key, SettingType::kText));
 }
 
 std::map<std::string, SettingValue> Settings::used_values() const {

@@ -9,11 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "settings/setting_schema.h"
 #include "settings/setting_value.h"
 
 namespace bakegi {
-
-class SettingSchema;
 
 class Settings {
  public:
@@ -59,6 +58,9 @@ class SettingReader {
   std::string get_string(const std::string& key) const;
 
  private:
+  // The given value checked against its spec, else the default; remembered either way.
+  SettingValue read(const std::string& key, SettingType type) const;
+
   const Settings& settings_;
   const SettingSchema& schema_;
 };
