@@ -6,9 +6,17 @@ from bakegi.native import BakeGIError
 from bakegi.request import BakeRequest, LightmapOptions
 
 
-def test_the_defaults_are_a_valid_request():
+def test_the_defaults_are_a_valid_request(native):
     BakeRequest().validate()
-    assert BakeRequest().method == "antiradiance"  # the add-on's default method
+    # No method named: the core's default, the same one the CLI and the C API use.
+    assert BakeRequest().with_core_default().method == native.describe_settings()["default"]
+    assert BakeRequest().core_settings()["method"] == "antiradiance"
+
+
+def test_the_methods_are_the_cores(native):
+    assert native.method_names() == ("pathtrace", "direct", "antiradiance", "meshless")
+    for method in native.method_names():
+        BakeRequest(method=method).validate()
 
 
 @pytest.mark.parametrize("changes, message", [
@@ -25,7 +33,7 @@ def test_the_defaults_are_a_valid_request():
     ({"target": "LIGHTMAP"}, "needs a folder"),
     ({"method_settings": [("bins", 300)]}, "method_settings must be a dict"),
 ])
-def test_a_refused_choice_is_named(changes, message):
+def test_a_refused_choice_is_named(native, changes, message):
     with pytest.raises(BakeGIError, match=message) as caught:
         BakeRequest(**changes).validate()
     assert caught.value.status == "BAKEGI_ERROR_INVALID_ARGUMENT"

@@ -49,7 +49,7 @@ BOXES = [
     ("lights", 8.8, 5.9, 3.9, 0.9, "lights: direct light of every light type",
      ["native/src/lights/"], CORE),
     ("solvers", 8.8, 3.9, 3.9, 1.7, "solvers -> an indirect field",
-     ["native/src/solvers/solver_registry.cpp", "native/src/solvers/pathtrace/",
+     ["native/src/solvers/method_registry.cpp", "native/src/solvers/pathtrace/",
       "native/src/solvers/antiradiance/", "native/src/solvers/meshless/"], CORE),
     ("lightmap", 8.8, 2.3, 3.9, 1.3, "lightmap: texels, rejection, seams, padding, EXR",
      ["native/src/lightmap/"], CORE),

@@ -31,7 +31,7 @@ def _context(context):
     return context
 
 
-def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SELECTED",
+def bake(method=None, samples=64, seed=0, target="CORNER", objects="SELECTED",
          threads=None, hook_materials=True, context=None, method_settings=None, live=False,
          texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
          lightmap_uv_method="SMART", lightmap_padding=4, lightmap_folder="//bakegi_lightmaps",
@@ -54,7 +54,8 @@ def bake(method="antiradiance", samples=64, seed=0, target="CORNER", objects="SE
     own), bake_points, method, settings, warnings, memory, rays, objects.
     method_settings: further core settings of the method, e.g. {"bins": 300, "iterations":
     32} for method="antiradiance" (docs/settings.md lists every method's keys).
-    method: "antiradiance" (default), "pathtrace" (the Monte Carlo reference; samples
+    method: None = the core's default ("antiradiance"; bakegi.native.default_method()),
+    "pathtrace" (the Monte Carlo reference; samples
     applies to it only) or "meshless" (precomputed transfer; relights in milliseconds;
     method_settings e.g. {"levels": 0, "epsilon": 0.01, "cache_dir": "/path"}).
     live: meshless only: keep the precomputation so that live_update() (or, in the UI, any

@@ -245,7 +245,7 @@ def _check_binary_interface(lib, path):
 
 def describe_settings(method=""):
     """The settings schema of a method as a dict (bakegi_settings_describe; docs/settings.md),
-    or {"methods": [...]} for method ""."""
+    or {"methods": [...], "default": name} for method ""."""
     lib = load_library()
     key = method.encode("utf-8")
     length = c_size_t(0)
@@ -253,6 +253,17 @@ def describe_settings(method=""):
     buffer = ctypes.create_string_buffer(length.value + 1)
     _check(lib.bakegi_settings_describe(key, buffer, len(buffer), None), "describing settings")
     return json.loads(buffer.value.decode("utf-8"))
+
+
+def method_names():
+    """The methods the core registers, in listing order (each solver folder registers its
+    own: native/src/solvers/<name>/<name>_method.cpp)."""
+    return tuple(describe_settings()["methods"])
+
+
+def default_method():
+    """The method a bake uses when none is named: the core's, the same in every layer."""
+    return describe_settings()["default"]
 
 
 def library_loaded():

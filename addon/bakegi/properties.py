@@ -7,11 +7,13 @@ import bpy
 
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-from . import compat, preferences
+from . import compat, native, preferences
 from .request import BakeRequest, LightmapOptions
 
-# The first item is the default: antiradiance reaches every error level of the Cornell chart
-# 2-5x sooner than the path tracer (docs/methods/antiradiance.md).
+# The methods the panel offers, with their labels. The default is the core's (register() sets
+# it from bakegi_settings_describe; antiradiance reaches every error level of the Cornell chart
+# 2-5x sooner than the path tracer, docs/methods/antiradiance.md). A method not listed here is
+# still bakeable from scripts: bakegi.bake(method=...) takes any the core registers.
 METHOD_ITEMS = [
     ("antiradiance", "Antiradiance", "Dachsbacher et al. 2007: light exchanged between "
      "surface patches through directional bins, occlusion by antiradiance instead of "
@@ -152,7 +154,12 @@ class BakeGISettings(bpy.types.PropertyGroup):
     def resolved_method(self):
         if self.show_debug and self.debug_direct:
             return "direct"
-        return self.method or METHOD_ITEMS[0][0]  # a file saved with the old debug item reads ""
+        if self.method:
+            return self.method
+        try:  # a file saved with the old debug item reads "": the default
+            return native.default_method()
+        except (native.BakeGIError, OSError):
+            return METHOD_ITEMS[0][0]
 
     def method_settings(self):
         """Core settings that only the resolved method reads."""
@@ -211,7 +218,47 @@ def lightmap_directory(folder):
     return blend_relative_directory(folder, "bakegi_lightmaps")
 
 
+# Panel properties that are core settings: (property, method, key). Their default and range
+# come from the method's schema at register time (docs/settings.md), so the panel cannot
+# offer a value the core refuses; the values written in the class stand only when the core
+# library cannot be loaded (the preferences then say why).
+SCHEMA_PROPERTIES = (("samples", "pathtrace", "samples"), ("seed", "pathtrace", "seed"),
+                     ("bins", "antiradiance", "bins"), ("iterations", "antiradiance", "iterations"),
+                     ("meshless_levels", "meshless", "levels"),
+                     ("meshless_epsilon", "meshless", "epsilon"))
+_INT32_MAX = (1 << 31) - 1  # an IntProperty's limit
+
+
+def _take_defaults_and_ranges_from_the_core():
+    try:
+        default_method = native.default_method()
+        schemas = {method: {s["key"]: s for s in native.describe_settings(method)["settings"]}
+                   for method in {method for _, method, _ in SCHEMA_PROPERTIES}}
+    except (native.BakeGIError, OSError):
+        return
+    annotations = BakeGISettings.__annotations__
+
+    def redefine(prop, **changes):
+        deferred = annotations[prop]  # bpy.props._PropertyDeferred: the function and keywords
+        annotations[prop] = deferred.function(**{**deferred.keywords, **changes})
+
+    if default_method in {item[0] for item in METHOD_ITEMS}:
+        redefine("method", default=default_method)
+    for prop, method, key in SCHEMA_PROPERTIES:
+        spec = schemas[method][key]
+        changes = {"default": spec["default"]}
+        if "min" in spec:
+            changes["min"] = spec["min"]
+        if "max" in spec:
+            changes["max"] = min(spec["max"], _INT32_MAX) if spec["type"] == "integer" else spec["max"]
+            soft_max = annotations[prop].keywords.get("soft_max")
+            if soft_max is not None and soft_max > changes["max"]:
+                changes["soft_max"] = changes["max"]
+        redefine(prop, **changes)
+
+
 def register():
+    _take_defaults_and_ranges_from_the_core()
     bpy.utils.register_class(BakeGISettings)
     bpy.types.Scene.bakegi = bpy.props.PointerProperty(type=BakeGISettings)
     bpy.types.Object.bakegi_texels_per_meter = FloatProperty(

@@ -10,9 +10,9 @@ counts, live and lightmap choices. No bpy: tested without Blender (python_tests/
 from dataclasses import dataclass, field, replace
 from typing import Any, Dict, Optional
 
+from . import native
 from .native import BakeGIError
 
-METHODS = ("pathtrace", "direct", "antiradiance", "meshless")
 # Methods whose finished bake can be kept for live indirect (relit when lights change).
 LIVE_METHODS = ("meshless",)
 TARGET_DOMAINS = ("CORNER", "POINT", "LIGHTMAP")
@@ -39,9 +39,11 @@ class BakeRequest:
     unless method_settings names memory_budget_mb. lightmap_folder: where a LIGHTMAP bake
     writes its atlas (absolute). linked_duplicates (attribute targets): 'SHARED' bakes the
     first object of a shared mesh (the others show its light), 'SINGLE_USER' gives each its
-    own copy first. live: keep the precomputation so light changes relight (meshless)."""
+    own copy first. live: keep the precomputation so light changes relight (meshless).
+    method None: the core's default method (native.default_method(); with_core_default()
+    names it). The methods are the core's (native.method_names()): no list here."""
 
-    method: str = "antiradiance"
+    method: Optional[str] = None
     samples: int = 64
     seed: int = 0
     target: str = "CORNER"
@@ -55,6 +57,10 @@ class BakeRequest:
     lightmap_full_float: bool = False
     linked_duplicates: str = "SHARED"
 
+    def with_core_default(self):
+        """This request with its method named (the core's default where it was None)."""
+        return self if self.method else replace(self, method=native.default_method())
+
     def with_threads(self, threads):
         return replace(self, threads=threads)
 
@@ -63,14 +69,15 @@ class BakeRequest:
         def refuse(message):
             raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", message)
 
-        if self.method not in METHODS:
-            refuse(f"method must be one of {METHODS}, not {self.method!r}")
+        methods = native.method_names()
+        if self.method is not None and self.method not in methods:
+            refuse(f"method must be one of {methods}, not {self.method!r}")
         if self.target not in TARGET_DOMAINS:
             refuse(f"target must be one of {TARGET_DOMAINS}, not {self.target!r}")
         if self.live and self.target == "LIGHTMAP":
             refuse("live indirect writes the color attribute; bake it to face corners or "
                    "vertices, not to lightmaps")
-        if self.live and self.method not in LIVE_METHODS:
+        if self.live and self.with_core_default().method not in LIVE_METHODS:
             refuse(f"live indirect needs a method that relights ({', '.join(LIVE_METHODS)}), "
                    f"not {self.method!r}")
         threads = 0 if self.threads is None else self.threads
@@ -88,5 +95,5 @@ class BakeRequest:
 
     def core_settings(self):
         """The settings the core receives (method_settings may add or override)."""
-        return {"method": self.method, "samples": self.samples, "seed": self.seed,
+        return {"method": self.with_core_default().method, "samples": self.samples, "seed": self.seed,
                 "threads": 0 if self.threads is None else self.threads, **self.method_settings}

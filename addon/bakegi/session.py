@@ -47,6 +47,7 @@ class BakeSession:
         machine = preferences.current(context)
         if request.threads is None:
             request = request.with_threads(machine.threads)
+        request = request.with_core_default()
         request.validate()
         self.request = request
         self.linked_duplicates = request.linked_duplicates

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "json_value.h"
+#include "method_catalog.h"
 #include "usage_error.h"
 
 namespace bakegi::cli {
@@ -50,7 +51,7 @@ std::string BakeSettings::method() const {
       return std::get<std::string>(value);
     }
   }
-  return "pathtrace";
+  return default_method();
 }
 
 SettingsHandle BakeSettings::to_core() const {
@@ -95,7 +96,7 @@ std::vector<OptionSpec> bake_setting_options() {
 
 BakeSettings bake_settings_from(const Arguments& args, const std::vector<std::string>& except) {
   BakeSettings settings;
-  settings.set("method", args.value("method").value_or("pathtrace"));
+  if (const auto method = args.value("method")) settings.set("method", *method);
   for (const auto& o : kIntegerOptions) {
     if (std::find(except.begin(), except.end(), o.option) != except.end()) continue;
     if (const auto text = args.value(o.option)) {

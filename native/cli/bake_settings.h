@@ -20,7 +20,7 @@ class BakeSettings {
  public:
   void set(const std::string& key, SettingValue value);
   const std::vector<std::pair<std::string, SettingValue>>& entries() const { return entries_; }
-  std::string method() const;      // "pathtrace" when not set, as in the core
+  std::string method() const;      // the core's default method when not set
   SettingsHandle to_core() const;  // throws CoreError for a key or value the core refuses
   std::string to_json() const;
 

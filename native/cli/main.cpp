@@ -12,6 +12,7 @@
 #include "file_error.h"
 #include "interrupt.h"
 #include "json_value.h"
+#include "method_catalog.h"
 #include "usage_error.h"
 
 namespace {
@@ -59,7 +60,7 @@ commands:
       schemas. --markdown writes docs/settings.md.
 
 settings (passed to the core, which checks them against the method's schema):
-  --method M          pathtrace (default) | direct | antiradiance | meshless
+  --method M          one of the methods below (the core's list)
   --samples N         samples per bake point
   --seed S            random seed (results are deterministic for a seed and thread count)
   --sample-offset K   first sample index, to make a long bake in chunks
@@ -76,13 +77,25 @@ exit codes: 0 ok, 1 bake failed or scene refused, 2 bad command line, 3 file err
             130 cancelled (Ctrl-C)
 )";
 
+// The methods as the core lists them, so that the help never names one the core lacks.
+void print_method_list(FILE* out) {
+  const std::string fallback = bakegi::cli::default_method();
+  std::fputs("\nmethods:", out);
+  for (const std::string& name : bakegi::cli::method_names()) {
+    std::fprintf(out, " %s%s", name.c_str(), name == fallback ? " (default)" : "");
+  }
+  std::fputs("\n", out);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace bakegi::cli;
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
       !std::strcmp(argv[1], "help")) {
-    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    FILE* out = argc < 2 ? stderr : stdout;
+    std::fputs(kUsage, out);
+    print_method_list(out);
     return argc < 2 ? kExitUsage : kExitOk;
   }
   if (!std::strcmp(argv[1], "--version")) {

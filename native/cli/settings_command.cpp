@@ -12,19 +12,11 @@
 #include "core_handles.h"
 #include "exit_codes.h"
 #include "json_value.h"
+#include "method_catalog.h"
 #include "usage_error.h"
 
 namespace bakegi::cli {
 namespace {
-
-std::string describe(const char* method) {
-  size_t length = 0;
-  check(bakegi_settings_describe(method, nullptr, 0, &length), "describing settings");
-  std::string text(length + 1, '\0');
-  check(bakegi_settings_describe(method, text.data(), text.size(), nullptr), "describing settings");
-  text.resize(length);
-  return text;
-}
 
 std::string text_of(const JsonValue* value) {
   if (!value) return "";
@@ -89,7 +81,7 @@ void print_text(const JsonValue& schema) {
 constexpr const char* kMarkdownPreamble =
     "# Bake settings\n\n"
     "Made by `bakegi settings --markdown > docs/settings.md` from the core's schemas "
-    "(`native/src/settings/`, each solver's `*_setting_specs.cpp`); a test checks that this "
+    "(`native/src/settings/`, each solver's `*_method.cpp`); a test checks that this "
     "file is current. Pass them as `--set key=value` to the CLI, as `method_settings` to "
     "`bakegi.bake()`, or with `bakegi_settings_set_*` in C. A job refuses a key its method "
     "does not read, a wrong type, and a value out of range.\n\n"
@@ -104,17 +96,13 @@ int run_settings_command(const std::vector<std::string>& words) {
   if (args.positional().size() > 1) throw UsageError("settings expects at most one method");
   std::vector<std::string> methods;
   if (args.positional().empty()) {
-    const JsonValue all = JsonValue::parse(describe(nullptr));
-    const JsonValue* names = all.find("methods");
-    const auto* list = names ? std::get_if<JsonValue::Array>(&names->value) : nullptr;
-    if (!list) throw JsonError("no method list");
-    for (const JsonValue& name : *list) methods.push_back(text_of(&name));
+    methods = method_names();
   } else {
     methods.push_back(args.positional()[0]);
   }
   if (args.has("markdown") && args.positional().empty()) std::fputs(kMarkdownPreamble, stdout);
   for (const std::string& method : methods) {
-    const std::string json = describe(method.c_str());
+    const std::string json = describe_settings(method.c_str());
     if (args.has("json")) {
       std::printf("%s\n", json.c_str());
     } else if (args.has("markdown")) {

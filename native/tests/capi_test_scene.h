@@ -25,9 +25,12 @@ inline ScenePtr new_scene() {
   return ScenePtr(scene);
 }
 
-inline SettingsPtr new_settings() {
+// Settings naming `method` (the C API tests bake with the path tracer unless they name
+// another; nullptr leaves the core's default method).
+inline SettingsPtr new_settings(const char* method = "pathtrace") {
   bakegi_settings* settings = nullptr;
   EXPECT_EQ(bakegi_settings_create(&settings), BAKEGI_OK);
+  if (method) EXPECT_EQ(bakegi_settings_set_string(settings, "method", method), BAKEGI_OK);
   return SettingsPtr(settings);
 }
 

@@ -395,6 +395,21 @@ TEST(BakeJob, MemoryBudgetRefusesBeforeAllocating) {
   EXPECT_EQ(report.members["seconds"].members["bvh"].number, 0.0);  // never got there
 }
 
+// Settings that name no method bake with the core's default, and the report says which.
+TEST(BakeJob, SettingsWithoutAMethodBakeWithTheDefault) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(16);
+  SettingsPtr settings = new_settings(nullptr);
+  ASSERT_EQ(bakegi_settings_set_int(settings.get(), "bins", 48), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK)
+      << bakegi_last_error();
+  JobPtr owned(job);
+  ASSERT_EQ(bakegi_job_wait(job), BAKEGI_OK) << bakegi_last_error();
+  Json report = parse_report(job);
+  EXPECT_EQ(report.members["method"].text, "antiradiance");
+}
+
 TEST(BakeJob, KeepsItsOwnCopiesAndReportsWarnings) {
   ScenePtr scene = new_box_scene();
   // A second mesh with one degenerate triangle: dropped, with a warning in the report.

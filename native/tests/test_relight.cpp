@@ -126,7 +126,7 @@ TEST(Relight, SettingsOfTheSolveMayChangeThoseOfThePrecomputationMayNot) {
   const std::vector<float> one_bounce = result_of(first.get());
 
   // More iterations: the relight equals a full bake with those settings.
-  SettingsPtr more = new_settings();
+  SettingsPtr more = new_settings(nullptr);
   ASSERT_EQ(bakegi_settings_set_int(more.get(), "iterations", 8), BAKEGI_OK);
   bakegi_job* raw = nullptr;
   ASSERT_EQ(bakegi_job_start_relight(first.get(), scene.get(), nullptr, more.get(), &raw),
@@ -140,7 +140,7 @@ TEST(Relight, SettingsOfTheSolveMayChangeThoseOfThePrecomputationMayNot) {
   EXPECT_NE(eight, one_bounce);
 
   // The bin count shaped the links: refused, naming the key.
-  SettingsPtr bins = new_settings();
+  SettingsPtr bins = new_settings(nullptr);
   ASSERT_EQ(bakegi_settings_set_int(bins.get(), "bins", 192), BAKEGI_OK);
   raw = nullptr;
   EXPECT_EQ(bakegi_job_start_relight(first.get(), scene.get(), nullptr, bins.get(), &raw),

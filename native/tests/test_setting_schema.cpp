@@ -1,4 +1,4 @@
-// The settings schemas (settings/setting_schema.h, solvers/solver_registry.cpp): each is
+// The settings schemas (settings/setting_schema.h, solvers/method_registry.cpp): each is
 // consistent with itself, the C API hands them out, and the roles keep what relights and the
 // meshless cache did before the schemas existed.
 #include <algorithm>
@@ -101,13 +101,31 @@ TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {
   EXPECT_EQ(std::get<int64_t>(method_schema("meshless").find("direct_samples")->fallback), 4);
 }
 
+// Each solver folder registers its method while the library loads (no central list): all four
+// are there, in listing order, and the default method is one of them and the "method"
+// setting's default in every schema.
+TEST(SettingSchema, EverySolverFolderRegistersItsMethod) {
+  EXPECT_EQ(method_names(),
+            (std::vector<std::string>{"pathtrace", "direct", "antiradiance", "meshless"}));
+  EXPECT_NE(std::find(method_names().begin(), method_names().end(), kDefaultMethod),
+            method_names().end());
+  for (const std::string& method : method_names()) {
+    SCOPED_TRACE(method);
+    EXPECT_EQ(std::get<std::string>(method_schema(method).find("method")->fallback),
+              kDefaultMethod);
+    EXPECT_NE(make_solver(method), nullptr);
+  }
+}
+
 TEST(SettingSchema, TheCApiDescribesEachMethod) {
   size_t length = 0;
   ASSERT_EQ(bakegi_settings_describe(nullptr, nullptr, 0, &length), BAKEGI_OK);
   std::string all(length + 1, '\0');
   ASSERT_EQ(bakegi_settings_describe("", all.data(), all.size(), nullptr), BAKEGI_OK);
   all.resize(length);
-  EXPECT_EQ(all, "{\"methods\": [\"pathtrace\", \"direct\", \"antiradiance\", \"meshless\"]}");
+  EXPECT_EQ(all,
+            "{\"methods\": [\"pathtrace\", \"direct\", \"antiradiance\", \"meshless\"], "
+            "\"default\": \"antiradiance\"}");
 
   ASSERT_EQ(bakegi_settings_describe("meshless", nullptr, 0, &length), BAKEGI_OK);
   std::string meshless(length + 1, '\0');

@@ -264,10 +264,12 @@ BAKEGI_API bakegi_status bakegi_settings_set_int(bakegi_settings* settings, cons
                                                  int64_t value);
 BAKEGI_API bakegi_status bakegi_settings_set_float(bakegi_settings* settings, const char* key,
                                                    double value);
-/* The settings schema of `method` ("pathtrace", "direct", "antiradiance", "meshless"; NULL or
- * "" lists the method names) as JSON: {"method", "summary", "settings": [{"key", "type"
- * ("integer" | "number" | "text"), "default", "min", "max" or "choices", "role" ("shapes" |
- * "lighting" | "execution"), "doc"}]}; without a method: {"methods": [names]}. Writes at most
+/* The settings schema of `method` (one the core registers: "pathtrace", "direct",
+ * "antiradiance", "meshless"; NULL or "" lists them) as JSON: {"method", "summary",
+ * "settings": [{"key", "type" ("integer" | "number" | "text"), "default", "min", "max" or
+ * "choices", "role" ("shapes" | "lighting" | "execution"), "doc"}]}; without a method:
+ * {"methods": [names in listing order], "default": the method a bake without the "method"
+ * setting uses, the same for the C API, the CLI and the add-on}. Writes at most
  * capacity bytes including the NUL and stores the full length (without NUL) in *out_length;
  * call with capacity 0 to ask for the length. An unknown method is INVALID_ARGUMENT. */
 BAKEGI_API bakegi_status bakegi_settings_describe(const char* method, char* buffer,

@@ -81,7 +81,7 @@ bakegi_status bakegi_settings_describe(const char* method, char* buffer, size_t 
       for (const std::string& name : bakegi::method_names()) {
         json += (json.back() == '[' ? "" : ", ") + bakegi::json_quote(name);
       }
-      json += "]}";
+      json += "], \"default\": " + bakegi::json_quote(bakegi::kDefaultMethod) + "}";
     } else {
       json = bakegi::schema_json(bakegi::method_schema(method));
     }

@@ -111,7 +111,7 @@ void BakeJob::start() {
                                                                    ? "an integer"
                                                                    : "a float"));
   }
-  method_ = method == settings_.values().end() ? std::string("pathtrace")
+  method_ = method == settings_.values().end() ? std::string(kDefaultMethod)
                                                : std::get<std::string>(method->second);
   const SettingSchema& schema = method_schema(method_);
   settings_.validate(schema, setting_keys_of_any_method());

@@ -49,7 +49,7 @@ const std::vector<SettingSpec>& common_setting_specs() {
   using R = SettingRole;
   constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
   static const std::vector<SettingSpec> specs = {
-      text_setting("method", "pathtrace", {}, R::kShapes,
+      text_setting("method", kDefaultMethod, {}, R::kShapes,
                    "the method that bakes (`bakegi settings` lists them)"),
       integer_setting("samples", 64, 1, int64_t(1) << 30, R::kLighting,
                       "paths per bake point of a sampling method (and of the path tracer a "

@@ -41,6 +41,11 @@ SettingSpec number_setting(std::string key, double fallback, double lo, double h
 SettingSpec text_setting(std::string key, std::string fallback, std::vector<std::string> choices,
                          SettingRole role, std::string doc);
 
+// The method a bake uses when its settings name none: the "method" setting's default, the
+// same in the core, the CLI and the add-on (fast at every error level of the method charts;
+// the path tracer is the reference, asked for by name).
+constexpr const char* kDefaultMethod = "antiradiance";
+
 // Settings every method reads (through the job, the sampling loop or the error estimate).
 const std::vector<SettingSpec>& common_setting_specs();
 

@@ -1,5 +1,5 @@
-// One interface for every method (the registry, solver_registry.cpp, lists them: pathtrace,
-// direct, antiradiance, meshless); make_solver() picks one by the "method" setting.
+// One interface for every method. Each solver folder registers its method
+// (method_registry.h); make_solver() picks one by the "method" setting.
 #pragma once
 
 #include <memory>
@@ -8,6 +8,7 @@
 
 #include "field/indirect_field.h"
 #include "settings/setting_schema.h"
+#include "solvers/method_registry.h"
 
 namespace bakegi {
 
@@ -55,16 +56,5 @@ class Solver {
   virtual std::unique_ptr<IndirectField> relight(const SolveInputs& inputs,
                                                  const Precomputation& reuse, JobContext& context);
 };
-
-// Throws bakegi::Error(INVALID_ARGUMENT) for an unknown method name.
-std::unique_ptr<Solver> make_solver(const std::string& method);
-
-// The names of the methods, in the registry's order (solver_registry.cpp).
-const std::vector<std::string>& method_names();
-// A method's settings: the common ones, the path tracer's when the method can hand a bake to
-// it (setting "fallback"), then its own. Throws Error(INVALID_ARGUMENT) for an unknown method.
-const SettingSchema& method_schema(const std::string& method);
-// Every key some method reads (to tell an unknown key from one another method reads).
-const std::vector<std::string>& setting_keys_of_any_method();
 
 }  // namespace bakegi

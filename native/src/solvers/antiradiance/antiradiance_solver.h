@@ -4,7 +4,7 @@
 // interpolates the patches' indirect irradiance at the bake points (surface_interpolation.h), so
 // evaluation is cheap.
 //
-// Settings: setting_specs() (antiradiance_setting_specs.cpp; docs/settings.md), read through
+// Settings: setting_specs() (antiradiance_method.cpp; docs/settings.md), read through
 // the job's schema, so a bad value fails before any work.
 // Automatic patch size: the scene's default (extent / 16), coarsened by factors of 2 until
 // the estimate fits the budget, with a warning whenever it coarsens. A requested patch size

@@ -5,7 +5,7 @@
 // sender points, e = P† E, i = S e. The field evaluates the indirect vector irradiance i at
 // bake points through the basis (Eq. 6) and dots it with their normals.
 //
-// Settings: setting_specs() (meshless_setting_specs.cpp; docs/settings.md), read through the
+// Settings: setting_specs() (meshless_method.cpp; docs/settings.md), read through the
 // job's schema, so a bad value fails before any work. cache_dir: solve() saves the
 // precomputation there and a later solve of the same scene and settings loads it
 // (precomputation_cache.h: keyed by geometry, materials, the settings whose role is "shapes"

@@ -1,5 +1,7 @@
-// Antiradiance's settings. Lighting: what a relight may change (relighting without relinking,
-// §3.3: bins, hierarchy and links stay); the rest shapes them.
+// Antiradiance as a method: its registration and its settings. Lighting: what a relight may
+// change (relighting without relinking, §3.3: bins, hierarchy and links stay); the rest
+// shapes them.
+#include "solvers/method_registry.h"
 #include "solvers/antiradiance/antiradiance_solver.h"
 
 namespace bakegi {
@@ -40,5 +42,17 @@ const std::vector<SettingSpec>& AntiradianceSolver::setting_specs() {
   };
   return specs;
 }
+
+namespace {
+
+std::unique_ptr<Solver> make_antiradiance() { return std::make_unique<AntiradianceSolver>(); }
+
+const MethodRegistration kRegistration({
+    "antiradiance",
+    "Antiradiance (Dachsbacher et al. 2007): hierarchical transport without visibility rays, "
+    "interpolated at the bake points; relights without relinking.",
+    30, true, make_antiradiance, AntiradianceSolver::setting_specs});
+
+}  // namespace
 
 }  // namespace bakegi

@@ -1,8 +1,9 @@
-// The meshless method's settings. Lighting: used again when lighting (§3.3), so a relight may
-// change them and the precomputation cache ignores them; the rest shapes the precomputation
-// and is part of its cache key. "visibility" shapes: the gather's visibility test
-// (gather_integral.h) shapes T, so a relight or a cache hit with another value would reuse
-// links made under the other rule.
+// The meshless method: its registration and its settings. Lighting: used again when lighting
+// (§3.3), so a relight may change them and the precomputation cache ignores them; the rest
+// shapes the precomputation and is part of its cache key. "visibility" shapes: the gather's
+// visibility test (gather_integral.h) shapes T, so a relight or a cache hit with another value
+// would reuse links made under the other rule.
+#include "solvers/method_registry.h"
 #include "solvers/meshless/meshless_solver.h"
 
 namespace bakegi {
@@ -41,5 +42,17 @@ const std::vector<SettingSpec>& MeshlessSolver::setting_specs() {
   };
   return specs;
 }
+
+namespace {
+
+std::unique_ptr<Solver> make_meshless() { return std::make_unique<MeshlessSolver>(); }
+
+const MethodRegistration kRegistration({
+    "meshless",
+    "Meshless hierarchical basis with precomputed direct-to-indirect transfer (Lehtinen et al. "
+    "2008); relights in milliseconds.",
+    40, true, make_meshless, MeshlessSolver::setting_specs});
+
+}  // namespace
 
 }  // namespace bakegi

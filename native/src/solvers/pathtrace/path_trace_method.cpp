@@ -1,0 +1,28 @@
+// The path tracer as a method: its registration and its own settings (the sampling ones are
+// common: settings/setting_schema.cpp).
+#include "solvers/method_registry.h"
+#include "solvers/pathtrace/path_trace_solver.h"
+
+namespace bakegi {
+
+const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
+  static const std::vector<SettingSpec> specs = {
+      integer_setting("max_bounces", 64, 1, 1 << 16, SettingRole::kShapes,
+                      "path length cap for indirect light (Russian roulette ends most paths far "
+                      "sooner)"),
+  };
+  return specs;
+}
+
+namespace {
+
+std::unique_ptr<Solver> make_pathtrace() { return std::make_unique<PathTraceSolver>(); }
+
+const MethodRegistration kRegistration({
+    "pathtrace",
+    "Monte Carlo path tracing: the reference (DESIGN.md).",
+    10, false, make_pathtrace, PathTraceSolver::setting_specs});
+
+}  // namespace
+
+}  // namespace bakegi
