@@ -73,3 +73,28 @@ def test_direct_light_of_a_point_light_on_a_plane_is_the_inverse_square_law(nati
     d2 = xs ** 2 + (height - 1e-3) ** 2
     expected = intensity * ((height - 1e-3) / np.sqrt(d2)) / (math.pi * d2)
     np.testing.assert_allclose(got, expected, rtol=1e-4)
+
+
+def test_a_lightmap_resolves_into_memory_bottom_up(native):
+    """A floor lit by a point light above its lower-left quarter, baked into a lightmap and
+    resolved into memory: (height, width, 4) with alpha 1, row 0 at v = 0 as Blender's
+    Image.pixels holds it, so the brightest texel lies in the lower-left of the array."""
+    scene = native.Scene()
+    scene.add_material((0.5, 0.5, 0.5))
+    mesh = scene.add_mesh([(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0)], [(0, 1, 2), (0, 2, 3)])
+    # Above the centre of texel (column 4, row 2): ((4.5 / 16) * 2 m, (2.5 / 8) * 2 m).
+    scene.add_light("POINT", position=(0.5625, 0.625, 0.5), color=(10.0,) * 3)
+    uvs = np.array([(0, 0), (1, 0), (1, 1), (0, 0), (1, 1), (0, 1)], np.float32)
+    lightmaps = native.Lightmaps()
+    lightmaps.add(scene, mesh, uvs, 16, 8)
+    job = native.Job(scene, lightmaps.points(),
+                     native.Settings(method="direct", samples=1, error_probes=0))
+    job.wait()
+    pixels = lightmaps.resolve(0, job.result(), padding=2)
+    assert pixels.shape == (8, 16, 4)
+    assert np.all(pixels[..., 3] == 1.0)
+    row, column = np.unravel_index(np.argmax(pixels[..., 1]), pixels.shape[:2])
+    assert (row, column) == (2, 4)
+    assert lightmaps.resolve(0, job.result(), padding=2, channels=3).shape == (8, 16, 3)
+    with pytest.raises(native.BakeGIError, match="channels"):
+        lightmaps.resolve(0, job.result(), channels=2)

@@ -171,6 +171,8 @@ _SIGNATURES = {
     "bakegi_lightmaps_get_points": (c_int, [_P, _PP]),
     "bakegi_lightmaps_write_exr": (c_int, [_P, c_uint32, POINTER(c_float), c_uint64, c_char_p,
                                            c_uint32, c_int, c_uint32]),
+    "bakegi_lightmaps_resolve": (c_int, [_P, c_uint32, POINTER(c_float), c_uint64, c_uint32,
+                                         c_uint32, POINTER(c_float), c_uint64]),
     "bakegi_lightmaps_write_file": (c_int, [_P, c_char_p]),
     "bakegi_lightmaps_read_file": (c_int, [c_char_p, _PP]),
 }
@@ -643,6 +645,18 @@ class Lightmaps(_Handle):
             self.handle, int(lightmap), _fptr(values), values.shape[0], os.fsencode(path),
             int(padding), 1 if full_float else 0, EXR_COMPRESSION[compression]),
             "bakegi_lightmaps_write_exr")
+
+    def resolve(self, lightmap, rgb, padding=4, channels=4):
+        """Lightmap `lightmap` as the image write_exr writes (before half rounding), in
+        memory: (height, width, channels) float32, row 0 at the bottom as Blender's
+        Image.pixels holds it (channels 4: alpha 1). rgb: the whole bake result."""
+        values = _floats(rgb, 3, "rgb")
+        info = self.info(lightmap)
+        pixels = np.empty((info["height"], info["width"], int(channels)), dtype=np.float32)
+        _check(load_library().bakegi_lightmaps_resolve(
+            self.handle, int(lightmap), _fptr(values), values.shape[0], int(padding),
+            int(channels), _fptr(pixels), pixels.size), "bakegi_lightmaps_resolve")
+        return pixels
 
     def write(self, path):
         """Writes the .bgl layout file (for the CLI: bakegi bake ... --lightmaps)."""

@@ -95,6 +95,75 @@ TEST_F(LightmapApi, TwoLightmapsOneBakeRoundTrip) {
   }
 }
 
+// The image resolved into the caller's memory is the one the EXR holds (full float: equal
+// to the bit), bottom-up, with alpha 1 for RGBA; a wrong channel count or a buffer too small
+// is refused before anything is written to it.
+TEST_F(LightmapApi, ResolveIntoMemoryIsWhatTheExrHolds) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
+  const uint32_t mesh = floor.add_to(scene.get(), 10);
+  LightmapsPtr lightmaps = new_lightmaps();
+  ASSERT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 6, 5,
+                                 nullptr),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  bakegi_lightmap_info info{};
+  ASSERT_EQ(bakegi_lightmaps_get_info(lightmaps.get(), 0, &info), BAKEGI_OK);
+  bakegi_points* raw_points = nullptr;
+  ASSERT_EQ(bakegi_lightmaps_get_points(lightmaps.get(), &raw_points), BAKEGI_OK);
+  PointsHandle points(raw_points);
+  const uint64_t count = info.point_count;
+  std::vector<float> positions(3 * count);
+  ASSERT_EQ(bakegi_points_get(points.get(), positions.data(), nullptr, nullptr), BAKEGI_OK);
+  std::vector<float> rgb(3 * count);  // a field that varies over the floor: x, y, x + y
+  for (uint64_t i = 0; i < count; ++i) {
+    const float x = positions[3 * i], y = positions[3 * i + 1];
+    rgb[3 * i] = x;
+    rgb[3 * i + 1] = y;
+    rgb[3 * i + 2] = x + y;
+  }
+  ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
+                                       path("floor.exr").c_str(), 2, 1, BAKEGI_EXR_ZIP),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  const RgbImage file = read_exr(path("floor.exr"));
+  const size_t pixels = size_t(info.width) * info.height;
+  std::vector<float> rgba(4 * pixels, -1.0f);
+  ASSERT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 4, rgba.data(),
+                                     rgba.size()),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  std::vector<float> rgb_image(3 * pixels, -1.0f);
+  ASSERT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 3,
+                                     rgb_image.data(), rgb_image.size()),
+            BAKEGI_OK);
+  ASSERT_EQ(file.pixels.size(), pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(rgba[4 * i + c], file.pixels[i][c]) << "pixel " << i;
+      EXPECT_EQ(rgb_image[3 * i + c], file.pixels[i][c]) << "pixel " << i;
+    }
+    EXPECT_EQ(rgba[4 * i + 3], 1.0f);
+  }
+  // Bottom-up: the floor's y grows with v, so the top row is greener than the bottom one.
+  EXPECT_GT(rgba[4 * (pixels - 1) + 1], rgba[1]);
+
+  std::vector<float> untouched(4 * pixels, -1.0f);
+  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 2,
+                                     untouched.data(), untouched.size()),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 4,
+                                     untouched.data(), untouched.size() - 1),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(bakegi_last_error()).find("needs"), std::string::npos);
+  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count - 1, 2, 4,
+                                     untouched.data(), untouched.size()),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 4, nullptr, 0),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  for (float v : untouched) ASSERT_EQ(v, -1.0f);
+}
+
 // A chart covering only the lower-left quarter: the padding fills 2 texels around it, and
 // the rest stays 0.
 // The texel samples are refused before they are made when they could exceed the bake's

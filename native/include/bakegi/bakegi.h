@@ -345,7 +345,8 @@ BAKEGI_API bakegi_status bakegi_job_start_relight(const bakegi_job* previous,
  *      bakegi_lightmaps_reject_inside once all are added;
  *   2. bakegi_lightmaps_get_points -> bakegi_job_start -> bakegi_job_get_result (3 floats per
  *      point, all lightmaps' points concatenated in the order added);
- *   3. bakegi_lightmaps_write_exr for each lightmap, passing the whole result each time.
+ *   3. bakegi_lightmaps_write_exr for each lightmap, passing the whole result each time
+ *      (or bakegi_lightmaps_resolve to have the image in memory).
  * To bake elsewhere (the CLI), write the points with bakegi_file_write and the lightmaps
  * with bakegi_lightmaps_write_file after step 1, and bake the pair with
  * `bakegi bake scene.bgs --lightmaps layout.bgl --exr-dir DIR`.
@@ -451,6 +452,18 @@ BAKEGI_API bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* ligh
                                                     uint64_t count, const char* path,
                                                     uint32_t padding, int full_float,
                                                     uint32_t compression);
+
+/* Lightmap `lightmap` resolved into memory the caller owns: the image that
+ * bakegi_lightmaps_write_exr writes (same rgb, count and padding rules; texel means,
+ * dilation, seam stitching), before any half-float rounding. width * height pixels of
+ * `channels` floats (3: RGB; 4: RGBA with alpha 1), rows bottom-up (row 0 at v = 0) as
+ * Blender's Image.pixels holds them; width and height from bakegi_lightmaps_get_info.
+ * capacity: the floats out_pixels holds (at least width * height * channels). */
+BAKEGI_API bakegi_status bakegi_lightmaps_resolve(const bakegi_lightmaps* lightmaps,
+                                                  uint32_t lightmap, const float* rgb,
+                                                  uint64_t count, uint32_t padding,
+                                                  uint32_t channels, float* out_pixels,
+                                                  uint64_t capacity);
 
 /* A .bgl lightmap layout file (path in UTF-8): every lightmap's size, samples (positions,
  * normals, object ids, face normals, texel, weight), coverage, UV seams and counters, and

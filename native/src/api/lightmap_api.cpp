@@ -1,5 +1,6 @@
-// bakegi_lightmaps_*: lightmap texels as bake points, and baked values as padded EXR files
-// (see the lightmaps section of bakegi.h for the order of calls).
+// bakegi_lightmaps_*: the C boundary of lightmap/lightmap_set.h (texels as bake points,
+// baked values resolved into images, in memory or as EXR files); see the lightmaps section
+// of bakegi.h for the order of calls.
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -8,67 +9,19 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
-#include "lightmap/backface_rejection.h"
-#include "lightmap/lightmap_layout.h"
-#include "lightmap/lightmap_layout_file.h"
-#include "lightmap/lightmap_seams.h"
-#include "lightmap/texel_rasterizer.h"
-#include "scene/ray_tracer.h"
-#include "scene/scene_validation.h"
 #include "lightmap/exr_writer.h"
-#include "lightmap/lightmap_padding.h"
-#include "lightmap/seam_stitching.h"
+#include "lightmap/lightmap_layout_file.h"
+#include "lightmap/lightmap_set.h"
 
 using bakegi::Error;
 using bakegi::guarded;
 using bakegi::require;
 
-using bakegi::kMaxLightmapSide;
-using Lightmap = bakegi::LightmapLayout::Lightmap;
-
-// What the texel samples of all lightmaps may take: the core's default memory budget unless
-// bakegi_lightmaps_set_memory_budget gives the bake's.
-constexpr uint64_t kDefaultSampleBudgetBytes = uint64_t(4096) << 20;
-
 struct bakegi_lightmaps {
-  bakegi::LightmapLayout layout;
-  uint64_t sample_budget_bytes = kDefaultSampleBudgetBytes;
+  bakegi::LightmapSet set;
 };
 
 namespace {
-
-constexpr uint32_t kMaxPadding = 1024;
-
-// A sample costs 48 bytes here (position, normal, object id, face normal, texel, weight) and
-// 28 more as a bake point of the job.
-constexpr uint64_t kBytesPerSample = 48 + 28;
-
-// Refuses, before anything is allocated, a mesh whose samples could take the lightmaps
-// over the budget (an upper bound, so a refusal names the density, not a crash).
-void check_sample_budget(uint64_t budget_bytes, uint64_t existing,
-                         const std::vector<bakegi::LightmapTriangle>& triangles, uint32_t width,
-                         uint32_t height) {
-  const uint64_t bound = existing + bakegi::max_texel_samples(triangles, width, height);
-  if (bound > budget_bytes / kBytesPerSample) {
-    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
-                "the lightmaps could need up to " + std::to_string(bound) + " texel samples (" +
-                    std::to_string(bound * kBytesPerSample >> 20) + " MiB), more than the " +
-                    std::to_string(budget_bytes >> 20) +
-                    " MiB budget; lower the texel density or the lightmap size");
-  }
-}
-
-Lightmap& lightmap_at(bakegi::LightmapLayout& layout, uint32_t index) {
-  if (index >= layout.lightmaps.size()) {
-    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap " + std::to_string(index) +
-                                                   " does not exist (there are " +
-                                                   std::to_string(layout.lightmaps.size()) + ")");
-  }
-  return layout.lightmaps[index];
-}
-const Lightmap& lightmap_at(const bakegi::LightmapLayout& layout, uint32_t index) {
-  return lightmap_at(const_cast<bakegi::LightmapLayout&>(layout), index);
-}
 
 const bakegi::Mesh& mesh_at(const bakegi_scene* scene, uint32_t mesh) {
   const auto& meshes = scene->description.meshes;
@@ -80,26 +33,27 @@ const bakegi::Mesh& mesh_at(const bakegi_scene* scene, uint32_t mesh) {
   return meshes[mesh];
 }
 
-// The mesh's triangles with the caller's lightmap UVs, as the rasterizer takes them.
-std::vector<bakegi::LightmapTriangle> lightmap_triangles(const bakegi::Mesh& mesh,
-                                                         const float* uvs) {
-  const size_t triangle_count = mesh.indices.size() / 3;
-  std::vector<bakegi::LightmapTriangle> triangles(triangle_count);
-  for (size_t t = 0; t < triangle_count; ++t) {
-    bakegi::LightmapTriangle& tri = triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const size_t corner = 3 * t + k;
-      tri.p[k] = mesh.positions.at(mesh.indices[corner]);
-      tri.n[k] = mesh.corner_normals.empty() ? glm::vec3(0.0f) : mesh.corner_normals[corner];
-      tri.uv[k] = {uvs[2 * corner], uvs[2 * corner + 1]};
-      if (!std::isfinite(tri.uv[k].x) || !std::isfinite(tri.uv[k].y)) {
-        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap_uvs: triangle " + std::to_string(t) +
-                                                       " corner " + std::to_string(k) +
-                                                       " is not finite");
-      }
-    }
+bakegi::ExrWriteOptions exr_options(int full_float, uint32_t compression) {
+  if (full_float != 0 && full_float != 1) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "full_float must be 0 or 1");
   }
-  return triangles;
+  bakegi::ExrWriteOptions options;
+  options.pixel_type = full_float ? bakegi::ExrPixelType::kFloat : bakegi::ExrPixelType::kHalf;
+  switch (compression) {
+    case BAKEGI_EXR_ZIP:
+      options.compression = bakegi::ExrCompression::kZip;
+      break;
+    case BAKEGI_EXR_PIZ:
+      options.compression = bakegi::ExrCompression::kPiz;
+      break;
+    case BAKEGI_EXR_NONE:
+      options.compression = bakegi::ExrCompression::kNone;
+      break;
+    default:
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "compression " + std::to_string(compression) +
+                                                     " is not a bakegi_exr_compression");
+  }
+  return options;
 }
 
 }  // namespace
@@ -117,11 +71,7 @@ bakegi_status bakegi_lightmaps_set_memory_budget(bakegi_lightmaps* lightmaps,
                                                 uint64_t megabytes) {
   return guarded(__func__, [&] {
     require(lightmaps, "lightmaps");
-    if (megabytes < 1 || megabytes > (uint64_t(1) << 30)) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "memory budget must be in [1, 1073741824] MB, got " + std::to_string(megabytes));
-    }
-    lightmaps->sample_budget_bytes = megabytes << 20;
+    lightmaps->set.set_sample_budget_megabytes(megabytes);
   });
 }
 
@@ -136,21 +86,9 @@ bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_sce
     require(lightmaps, "lightmaps");
     require(scene, "scene");
     require(lightmap_uvs, "lightmap_uvs");
-    const bakegi::Mesh& source = mesh_at(scene, mesh);
-    if (width < 1 || height < 1 || width > kMaxLightmapSide || height > kMaxLightmapSide) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap size " + std::to_string(width) + " x " +
-                                                     std::to_string(height) + " is not in 1.." +
-                                                     std::to_string(kMaxLightmapSide));
-    }
-    const std::vector<bakegi::LightmapTriangle> triangles =
-        lightmap_triangles(source, lightmap_uvs);
-    check_sample_budget(lightmaps->sample_budget_bytes, lightmaps->layout.total_points(),
-                        triangles, width, height);
-    Lightmap lightmap;
-    lightmap.samples = bakegi::rasterize_texels(triangles, width, height, source.object_id);
-    lightmap.seams = bakegi::find_lightmap_seams(source.indices, triangles, width, height);
-    lightmaps->layout.lightmaps.push_back(std::move(lightmap));
-    if (out_lightmap) *out_lightmap = uint32_t(lightmaps->layout.lightmaps.size() - 1);
+    const uint32_t index =
+        lightmaps->set.add(mesh_at(scene, mesh), lightmap_uvs, width, height);
+    if (out_lightmap) *out_lightmap = index;
   });
 }
 
@@ -161,26 +99,7 @@ bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, uint32_t ligh
     require(lightmaps, "lightmaps");
     require(scene, "scene");
     require(lightmap_uvs, "lightmap_uvs");
-    if (lightmaps->layout.rejected_inside) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "bakegi_lightmaps_reject_inside has already run: samples added now would not "
-                  "be checked (add every mesh first, then reject)");
-    }
-    Lightmap& target = lightmap_at(lightmaps->layout, lightmap);
-    const bakegi::Mesh& source = mesh_at(scene, mesh);
-    const std::vector<bakegi::LightmapTriangle> triangles =
-        lightmap_triangles(source, lightmap_uvs);
-    const uint32_t width = target.samples.width, height = target.samples.height;
-    check_sample_budget(lightmaps->sample_budget_bytes, lightmaps->layout.total_points(),
-                        triangles, width, height);
-    bakegi::TexelSamples samples =
-        bakegi::rasterize_texels(triangles, width, height, source.object_id);
-    const std::vector<bakegi::LightmapSeam> seams =
-        bakegi::find_lightmap_seams(source.indices, triangles, width, height);
-    // Room first, so that nothing after the samples are appended can fail.
-    target.seams.reserve(target.seams.size() + seams.size());
-    bakegi::append_samples(target.samples, std::move(samples));
-    target.seams.insert(target.seams.end(), seams.begin(), seams.end());
+    lightmaps->set.add_to(lightmap, mesh_at(scene, mesh), lightmap_uvs);
   });
 }
 
@@ -194,34 +113,13 @@ bakegi_status bakegi_lightmaps_reject_inside(bakegi_lightmaps* lightmaps, const 
     if (rays != 0) options.rays = rays;
     if (backface_fraction != 0) options.backface_fraction = backface_fraction;
     options.max_distance = max_distance;
-    const bakegi::Scene built = bakegi::build_scene(scene->description);
-    const bakegi::RayTracer tracer(built);
-    uint64_t rejected = 0;
-    for (Lightmap& lightmap : lightmaps->layout.lightmaps) {
-      bakegi::TexelSamples& samples = lightmap.samples;
-      const std::vector<uint8_t> flags = bakegi::flag_samples_inside_geometry(
-          built, tracer, samples.points.positions, samples.face_normals, samples.points.normals,
-          options);
-      // Samples are dropped from here on: refuse later additions even if this call then
-      // fails (a call refused for its options above has changed nothing).
-      lightmaps->layout.rejected_inside = true;
-      std::vector<bool> keep(flags.size());
-      uint64_t dropped = 0;
-      for (size_t i = 0; i < flags.size(); ++i) {
-        keep[i] = !flags[i];
-        dropped += flags[i];
-      }
-      bakegi::keep_samples(samples, keep);
-      lightmap.rejected_samples += dropped;
-      rejected += dropped;
-    }
-    lightmaps->layout.rejected_inside = true;
+    const uint64_t rejected = lightmaps->set.reject_inside(scene->description, options);
     if (out_rejected) *out_rejected = rejected;
   });
 }
 
 uint32_t bakegi_lightmaps_count(const bakegi_lightmaps* lightmaps) {
-  return lightmaps ? uint32_t(lightmaps->layout.lightmaps.size()) : 0;
+  return lightmaps ? uint32_t(lightmaps->set.layout().lightmaps.size()) : 0;
 }
 
 bakegi_status bakegi_lightmaps_get_info(const bakegi_lightmaps* lightmaps, uint32_t lightmap,
@@ -229,11 +127,11 @@ bakegi_status bakegi_lightmaps_get_info(const bakegi_lightmaps* lightmaps, uint3
   return guarded(__func__, [&] {
     require(lightmaps, "lightmaps");
     require(out_info, "out_info");
-    const Lightmap& l = lightmap_at(lightmaps->layout, lightmap);
+    const bakegi::LightmapLayout::Lightmap& l = lightmaps->set.lightmap(lightmap);
     bakegi_lightmap_info info{};
     info.width = l.samples.width;
     info.height = l.samples.height;
-    info.first_point = lightmaps->layout.first_point(lightmap);
+    info.first_point = lightmaps->set.layout().first_point(lightmap);
     info.point_count = l.samples.size();
     info.covered_texels = l.samples.covered_texels();
     info.rejected_samples = l.rejected_samples;
@@ -249,23 +147,8 @@ bakegi_status bakegi_lightmaps_get_points(const bakegi_lightmaps* lightmaps,
     require(out_points, "out_points");
     *out_points = nullptr;
     require(lightmaps, "lightmaps");
-    const uint64_t total = lightmaps->layout.total_points();
-    if (total == 0) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "the lightmaps have no texel samples (no lightmap added, or no triangle "
-                  "covers a texel)");
-    }
     auto handle = std::make_unique<bakegi_points>();
-    bakegi::BakePoints& points = handle->points;
-    points.positions.reserve(total);
-    points.normals.reserve(total);
-    points.object_ids.reserve(total);
-    for (const Lightmap& l : lightmaps->layout.lightmaps) {
-      const bakegi::BakePoints& p = l.samples.points;
-      points.positions.insert(points.positions.end(), p.positions.begin(), p.positions.end());
-      points.normals.insert(points.normals.end(), p.normals.begin(), p.normals.end());
-      points.object_ids.insert(points.object_ids.end(), p.object_ids.begin(), p.object_ids.end());
-    }
+    handle->points = lightmaps->set.points();
     *out_points = handle.release();
   });
 }
@@ -278,51 +161,37 @@ bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint
     require(rgb, "rgb");
     require(path, "path");
     if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
-    const Lightmap& l = lightmap_at(lightmaps->layout, lightmap);
-    const uint64_t total = lightmaps->layout.total_points();
-    if (count != total) {
+    const bakegi::ExrWriteOptions options = exr_options(full_float, compression);
+    bakegi::write_exr(path, lightmaps->set.resolve(lightmap, rgb, count, padding), options);
+  });
+}
+
+bakegi_status bakegi_lightmaps_resolve(const bakegi_lightmaps* lightmaps, uint32_t lightmap,
+                                       const float* rgb, uint64_t count, uint32_t padding,
+                                       uint32_t channels, float* out_pixels, uint64_t capacity) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    require(rgb, "rgb");
+    require(out_pixels, "out_pixels");
+    if (channels != 3 && channels != 4) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "count " + std::to_string(count) + " differs from the lightmaps' " +
-                      std::to_string(total) + " points (pass the whole bake result)");
+                  "channels must be 3 (RGB) or 4 (RGBA), got " + std::to_string(channels));
     }
-    if (padding > kMaxPadding) {
+    const bakegi::LightmapLayout::Lightmap& l = lightmaps->set.lightmap(lightmap);
+    const uint64_t needed = uint64_t(l.samples.width) * l.samples.height * channels;
+    if (capacity < needed) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "padding " + std::to_string(padding) + " is over " + std::to_string(kMaxPadding));
+                  "out_pixels holds " + std::to_string(capacity) + " floats; lightmap " +
+                      std::to_string(lightmap) + " needs " + std::to_string(needed));
     }
-    if (full_float != 0 && full_float != 1) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "full_float must be 0 or 1");
+    const bakegi::RgbImage image = lightmaps->set.resolve(lightmap, rgb, count, padding);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+      float* out = out_pixels + channels * i;
+      out[0] = image.pixels[i].x;
+      out[1] = image.pixels[i].y;
+      out[2] = image.pixels[i].z;
+      if (channels == 4) out[3] = 1.0f;
     }
-    bakegi::ExrWriteOptions options;
-    options.pixel_type = full_float ? bakegi::ExrPixelType::kFloat : bakegi::ExrPixelType::kHalf;
-    switch (compression) {
-      case BAKEGI_EXR_ZIP:
-        options.compression = bakegi::ExrCompression::kZip;
-        break;
-      case BAKEGI_EXR_PIZ:
-        options.compression = bakegi::ExrCompression::kPiz;
-        break;
-      case BAKEGI_EXR_NONE:
-        options.compression = bakegi::ExrCompression::kNone;
-        break;
-      default:
-        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "compression " + std::to_string(compression) +
-                                                       " is not a bakegi_exr_compression");
-    }
-    const uint64_t first = lightmaps->layout.first_point(lightmap);
-    std::vector<glm::vec3> values(l.samples.size());
-    for (size_t i = 0; i < values.size(); ++i) {
-      const float* v = rgb + 3 * (first + i);
-      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
-        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                    "rgb of point " + std::to_string(first + i) + " is not finite");
-      }
-      values[i] = {v[0], v[1], v[2]};
-    }
-    std::vector<uint8_t> filled;
-    bakegi::RgbImage image = bakegi::resolve_texels(l.samples, values.data(), filled);
-    bakegi::dilate_texels(image, filled, padding);
-    bakegi::stitch_seams(image, l.samples.covered, filled, l.seams);
-    bakegi::write_exr(path, image, options);
   });
 }
 
@@ -331,7 +200,7 @@ bakegi_status bakegi_lightmaps_write_file(const bakegi_lightmaps* lightmaps, con
     require(lightmaps, "lightmaps");
     require(path, "path");
     if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
-    bakegi::write_lightmap_layout_file(path, lightmaps->layout);
+    bakegi::write_lightmap_layout_file(path, lightmaps->set.layout());
   });
 }
 
@@ -342,7 +211,7 @@ bakegi_status bakegi_lightmaps_read_file(const char* path, bakegi_lightmaps** ou
     require(path, "path");
     if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
     auto handle = std::make_unique<bakegi_lightmaps>();
-    handle->layout = bakegi::read_lightmap_layout_file(path);
+    handle->set = bakegi::LightmapSet(bakegi::read_lightmap_layout_file(path));
     *out_lightmaps = handle.release();
   });
 }
