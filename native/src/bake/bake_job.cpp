@@ -34,11 +34,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string megabytes(size_t bytes) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f MB", double(bytes) / (1 << 20));
-  return buffer;
-}
+std::string megabytes(size_t bytes) { return MemoryBudget::megabytes(bytes); }
 
 size_t description_bytes(const SceneDescription& d) {
   size_t bytes = d.materials.size() * sizeof(Material) + d.lights.size() * sizeof(Light);
@@ -268,7 +264,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   context_.set_stage("solving", 0.1, 0.6);
   stage_start = std::chrono::steady_clock::now();
   direct_ = std::make_unique<const DirectLight>(scene, *tracer_);
-  const SolveInputs inputs{scene, *tracer_, *direct_, settings_, &points_};
+  const SolveInputs inputs{scene, *tracer_, *direct_, settings_, &points_, solver_memory()};
   std::unique_ptr<IndirectField> field;
   std::string method_used = method_;
   {
@@ -291,7 +287,8 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
       method_used = "pathtrace";
       solver_ = make_solver("pathtrace");
       fallback_settings_ = std::make_unique<Settings>(std::move(fallback_settings));
-      const SolveInputs fallback_inputs{scene, *tracer_, *direct_, *fallback_settings_, &points_};
+      const SolveInputs fallback_inputs{scene,     *tracer_, *direct_, *fallback_settings_,
+                                        &points_, solver_memory()};
       field = solver_->solve(fallback_inputs, context_);
     }
   }
@@ -300,10 +297,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
 
   std::shared_ptr<const Precomputation> kept = solver_->precomputation();
   // Solvers add what they hold to memory_bytes themselves.
-  const size_t memory = tracer_->memory_bytes() + description_bytes(description_) +
-                        scene.triangles.capacity() * sizeof(Triangle) +
-                        points_.size() * (kBytesPerPoint + kBytesPerResult);
-  report.add_count("memory_bytes", memory);
+  report.add_count("memory_bytes", held_bytes());
   if (kept) {
     auto precomputed = std::make_shared<JobPrecomputation>();
     precomputed->method = method_;
@@ -344,17 +338,27 @@ std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
   tracer_ = previous_->tracer;
   const RayTracer& tracer = *tracer_;
   direct_ = std::make_unique<const DirectLight>(scene, tracer);
-  const SolveInputs inputs{scene, tracer, *direct_, settings_, &points_};
+  const SolveInputs inputs{scene, tracer, *direct_, settings_, &points_, solver_memory()};
   std::unique_ptr<IndirectField> field;
   {
     const ProgressRange relighting(context_, 0.1, 0.6);  // the solver counts from 0 to 1 in it
     field = solver_->relight(inputs, *previous_->solver, context_);
   }
   report.add_seconds("solve", seconds_since(stage_start));
-  report.add_count("memory_bytes", tracer.memory_bytes() + description_bytes(description_) +
-                                       scene.triangles.capacity() * sizeof(Triangle) +
-                                       points_.size() * (kBytesPerPoint + kBytesPerResult));
+  report.add_count("memory_bytes", held_bytes());
   return field;
+}
+
+MemoryBudget BakeJob::solver_memory() const {
+  MemoryBudget budget(memory_budget_bytes_);
+  budget.hold(held_bytes());
+  return budget;
+}
+
+size_t BakeJob::held_bytes() const {
+  return tracer_->memory_bytes() + description_bytes(description_) +
+         scene_->triangles.capacity() * sizeof(Triangle) +
+         points_.size() * (kBytesPerPoint + kBytesPerResult);
 }
 
 bool BakeJob::wants_error_estimate() const {

@@ -18,6 +18,7 @@
 #include "field/indirect_field.h"
 #include "scene/scene.h"
 #include "util/job_context.h"
+#include "util/memory_budget.h"
 #include "settings/settings.h"
 
 namespace bakegi {
@@ -92,6 +93,11 @@ class BakeJob {
   // Path-traces probes and compares the results there (settings error_probes,
   // error_probe_samples); writes error_estimate, estimated_error and its interval.
   void estimate_error(Report& report);
+  // The budget handed to the solver: memory_budget_mb with what the job holds counted.
+  MemoryBudget solver_memory() const;
+  // What the job holds while the solver runs: the description, the flattened scene's
+  // triangles, the points and results, and the ray tracer.
+  size_t held_bytes() const;
   // Full bakes of every method but "direct" check themselves; relights stay fast.
   bool wants_error_estimate() const;
   void finish(bakegi_status status, const std::string& message) noexcept;

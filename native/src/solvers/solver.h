@@ -9,6 +9,7 @@
 #include "field/indirect_field.h"
 #include "settings/setting_schema.h"
 #include "solvers/method_registry.h"
+#include "util/memory_budget.h"
 
 namespace bakegi {
 
@@ -17,6 +18,10 @@ class RayTracer;
 class Settings;
 class JobContext;
 class DirectLight;
+
+// The budget of memory_budget_mb with the ray tracer held: what a solver called outside a
+// job (tests, benchmarks) gets; a job hands down its own, which also holds its scene and points.
+MemoryBudget memory_budget_for(const Settings& settings, const RayTracer& tracer);
 
 struct SolveInputs {
   const Scene& scene;
@@ -27,6 +32,9 @@ struct SolveInputs {
   // them (meshless); null when not known. The field is still evaluated at whatever points
   // its evaluate() receives.
   const BakePoints* points = nullptr;
+  // What the solver's own structures may take: memory.remaining() (the job has counted what
+  // it holds). Solvers size patches, links and caches from it and refuse beyond it.
+  MemoryBudget memory = memory_budget_for(settings, tracer);
 };
 
 // What a method computed from geometry, materials and settings alone, so that a later bake

@@ -69,7 +69,6 @@ struct AntiradianceSettings {
   int64_t seed = 0;
   int64_t near_field_rays = 256;
   double near_field_distance = 0.5;
-  uint64_t memory_budget_bytes = uint64_t(4096) << 20;
 
   static AntiradianceSettings from(const Settings& given) {
     const SettingReader settings(given, method_schema("antiradiance"));
@@ -103,8 +102,6 @@ struct AntiradianceSettings {
     s.seed = settings.get_int("seed");
     s.near_field_rays = settings.get_int("near_field_rays");
     s.near_field_distance = settings.get_float("near_field_distance");
-    s.memory_budget_bytes =
-        uint64_t(settings.get_int("memory_budget_mb")) << 20;
     return s;
   }
 };
@@ -113,11 +110,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string megabytes(uint64_t bytes) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.1f MB", double(bytes) / double(1 << 20));
-  return text;
-}
+std::string megabytes(uint64_t bytes) { return MemoryBudget::megabytes(bytes); }
 
 std::string metres(double value) {
   char text[64];
@@ -298,10 +291,8 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   report.add_seconds("antiradiance_bins", seconds_since(stage_start));
   context.throw_if_cancelled();
 
-  // What the ray tracer and the spreading tables leave of the budget.
-  const uint64_t used = uint64_t(inputs.tracer.memory_bytes()) + system->spreading.memory_bytes();
-  const uint64_t available =
-      settings.memory_budget_bytes > used ? settings.memory_budget_bytes - used : 0;
+  // What the job's holdings (ray tracer, ...) and the spreading tables leave of the budget.
+  const uint64_t available = inputs.memory.remaining_after(system->spreading.memory_bytes());
   const bool automatic = settings.patch_size == 0.0;
   // Automatic: extent / 16 (default_max_edge, element_hierarchy.cpp), coarsened while the estimate exceeds kAutomaticElementLimit
   // elements (a detailed scene otherwise multiplies elements and links for little gain; the
@@ -318,8 +309,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "antiradiance: the scene has no extent to choose a patch size from");
   }
-  const std::string budget_text =
-      megabytes(settings.memory_budget_bytes) + " (setting memory_budget_mb)";
+  const std::string budget_text = inputs.memory.describe();
   if (estimated_bytes(count, max_edge, m) > available) {
     const std::optional<float> fitting = patch_size_within(count, max_edge, m, available);
     if (!fitting) {

@@ -58,7 +58,6 @@ struct MeshlessSettings {
   bool has_viewpoint = false;
   glm::vec3 viewpoint{0.0f};
   int64_t seed = 0;
-  uint64_t memory_budget_bytes = uint64_t(4096) << 20;
   std::string cache_dir;  // empty: no precomputation cache
 
   static MeshlessSettings from(const Settings& given) {
@@ -74,8 +73,6 @@ struct MeshlessSettings {
     s.sender_cutoff = settings.get_float("sender_cutoff");
     s.visibility = settings.get_int("visibility") != 0;
     s.seed = settings.get_int("seed");
-    s.memory_budget_bytes =
-        uint64_t(settings.get_int("memory_budget_mb")) << 20;
     s.cache_dir = settings.get_string("cache_dir");
     const std::string viewpoint = settings.get_string("viewpoint");
     if (!viewpoint.empty()) {
@@ -258,7 +255,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::load_or_precompute
     context.set_stage("meshless: loading the cached precomputation", 0.02, 0.95);
     try {
       // The file cannot hold more than the precomputation it replaces may take.
-      const std::vector<uint8_t> bytes = read_file_bytes(path, settings.memory_budget_bytes);
+      const std::vector<uint8_t> bytes = read_file_bytes(path, inputs.memory.total());
       std::shared_ptr<MeshlessPrecomputation> loaded =
           decode_precomputation(bytes, key, utf8_text(path.filename()), &context);
       report.set_text("meshless_cache", "hit");
@@ -331,7 +328,7 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   placement.levels = uint32_t(settings.levels);
   placement.seed = uint64_t(settings.seed);
   // A point costs its DAG, R-tree entry and links; 1 KiB each leaves room for all of them.
-  placement.max_points = std::max<uint64_t>(1000, settings.memory_budget_bytes / 4 / 1024);
+  placement.max_points = std::max<uint64_t>(1000, inputs.memory.total() / 4 / 1024);
   PlacementStatistics placement_stats;
   std::vector<BasisPoint> points;
   if (settings.has_viewpoint) {
@@ -376,9 +373,9 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
   refinement.gather.visibility = settings.visibility;
   const std::vector<glm::vec3> folded_glossy = glossy_as_diffuse(scene);
   refinement.gather.glossy_as_diffuse = &folded_glossy;
-  const size_t used = system->memory_bytes() + inputs.tracer.memory_bytes();
-  refinement.link_budget_bytes =
-      settings.memory_budget_bytes > used ? (settings.memory_budget_bytes - used) / 2 : 1;
+  // Half of what the job's holdings and the basis leave (the other half: S and its caches).
+  const uint64_t left = inputs.memory.remaining_after(system->memory_bytes());
+  refinement.link_budget_bytes = left > 0 ? left / 2 : 1;
   RefinementStats refinement_stats;
   auto receiver_relations =
       settings.visibility ? std::make_shared<VisibleRelations>() : nullptr;
