@@ -1,4 +1,5 @@
-// The meshless precomputation cache (issue 4, item 5; precomputation_cache.h): a bake with
+// The meshless precomputation in the job's cache (bake/precomputation_store.h, the payload in
+// meshless/precomputation_cache.h): a bake with
 // "cache_dir" saves the precomputation, a later bake of the same scene loads it and gives the
 // same result; anything that shapes the precomputation changes the key; damaged files are
 // detected and rebuilt; lights are not part of the key; an unwritable folder only warns.
@@ -21,6 +22,8 @@
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "solvers/meshless/meshless_solver.h"
+#include "bake/precomputation_store.h"
+#include "bake/solver_run.h"
 #include "solvers/meshless/precomputation_cache.h"
 #include "util/byte_stream.h"
 #include "util/error.h"
@@ -89,6 +92,11 @@ struct Bake {
   }
 };
 
+const PrecomputationCodec& codec() {
+  static const MeshlessSolver solver;
+  return *solver.codec();
+}
+
 // Solves and evaluates at the points, as a bake job does.
 Bake bake(const SceneDescription& description, const BakePoints& points, const Settings& settings) {
   const Scene scene = build_scene(description);
@@ -96,7 +104,9 @@ Bake bake(const SceneDescription& description, const BakePoints& points, const S
   const DirectLight direct(scene, tracer);
   MeshlessSolver solver;
   JobContext context;
-  const auto field = solver.solve(SolveInputs{scene, tracer, direct, settings, &points}, context);
+  const auto field =
+      run_solver(solver, "meshless", SolveInputs{scene, tracer, direct, settings, &points}, context)
+          .field;
   Bake result;
   result.values.resize(points.size());
   field->evaluate(points, result.values, context);
@@ -198,7 +208,7 @@ TEST(MeshlessCache, ChangedAlbedoOrMovedVertexMissesWithANewFile) {
 TEST(MeshlessCache, KeyCoversSettingsAndPlacementPointsButNotLightsOrRelightSettings) {
   const SceneDescription scene = room(kLight);
   const BakePoints points = room_points();
-  // What load_or_precompute leaves out of the key.
+  // What the job's cache (solver_run.cpp) leaves out of the key.
   const SettingSchema& schema = method_schema("meshless");
   std::vector<std::string> ignored = schema.keys_with_role(SettingRole::kLighting);
   for (const std::string& key : schema.keys_with_role(SettingRole::kExecution)) {
@@ -210,30 +220,30 @@ TEST(MeshlessCache, KeyCoversSettingsAndPlacementPointsButNotLightsOrRelightSett
   EXPECT_EQ(sorted, (std::vector<std::string>{"bounces", "cache_dir", "direct_samples", "samples",
                                               "sender_cutoff", "threads"}));
   std::map<std::string, SettingValue> settings = {{"levels", int64_t(3)}, {"epsilon", 0.01}};
-  const meshless::CacheKey key = meshless::precomputation_key(scene, settings, ignored, &points);
+  const CacheKey key = precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &points);
 
   SceneDescription other_light = scene;
   other_light.lights[0].position.x += 0.3f;
   other_light.world_radiance = glm::vec3(0.1f);
-  EXPECT_EQ(meshless::precomputation_key(other_light, settings, ignored, &points), key);
+  EXPECT_EQ(precomputation_key(meshless::kPrecomputationCacheVersion, other_light, settings, ignored, &points), key);
   auto relit = settings;
   relit["direct_samples"] = int64_t(64);
   relit["samples"] = int64_t(5);
   relit["threads"] = int64_t(3);
   relit["cache_dir"] = std::string("/elsewhere");
-  EXPECT_EQ(meshless::precomputation_key(scene, relit, ignored, &points), key);
+  EXPECT_EQ(precomputation_key(meshless::kPrecomputationCacheVersion, scene, relit, ignored, &points), key);
 
   auto finer = settings;
   finer["epsilon"] = 0.005;
-  EXPECT_NE(meshless::precomputation_key(scene, finer, ignored, &points), key);
+  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, finer, ignored, &points), key);
   auto invisible = settings;  // the gather's visibility test shapes the links
   invisible["visibility"] = int64_t(0);
-  EXPECT_NE(meshless::precomputation_key(scene, invisible, ignored, &points), key);
+  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, invisible, ignored, &points), key);
   BakePoints shifted = points;
   shifted.positions[7].x += 1e-4f;
-  EXPECT_NE(meshless::precomputation_key(scene, settings, ignored, &shifted), key);
+  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &shifted), key);
   // With a viewpoint the bake points did not place the basis and are left out.
-  EXPECT_NE(meshless::precomputation_key(scene, settings, ignored, nullptr), key);
+  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, nullptr), key);
 }
 
 TEST(MeshlessCache, CorruptOrTruncatedFileIsDetectedAndRebuilt) {
@@ -287,23 +297,23 @@ TEST(MeshlessCache, HugeCountsWithAValidChecksumAreRefusedBeforeAllocating) {
   for (int i = 0; i < 8; ++i) crafted[count_at + i] = uint8_t((uint64_t(1) << 40) >> (8 * i));
   const uint64_t checksum = fnv1a64(std::span(crafted).first(crafted.size() - 8));
   for (int i = 0; i < 8; ++i) crafted[crafted.size() - 8 + i] = uint8_t(checksum >> (8 * i));
-  meshless::CacheKey key;
+  CacheKey key;
   for (int i = 0; i < 8; ++i) {
     key.high |= uint64_t(good[16 + i]) << (8 * i);
     key.low |= uint64_t(good[24 + i]) << (8 * i);
   }
-  EXPECT_NO_THROW(meshless::decode_precomputation(good, key, "good"));
+  EXPECT_NO_THROW(decode_cache_file(codec(), good, key, "good"));
   try {
-    meshless::decode_precomputation(crafted, key, "crafted");
+    decode_cache_file(codec(), crafted, key, "crafted");
     ADD_FAILURE() << "a count beyond the file was accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE);
     EXPECT_NE(std::string(e.what()).find("basis points"), std::string::npos) << e.what();
   }
   // Another key: stale, whatever the content.
-  meshless::CacheKey other = key;
+  CacheKey other = key;
   other.low ^= 1;
-  EXPECT_THROW(meshless::decode_precomputation(good, other, "other"), Error);
+  EXPECT_THROW(decode_cache_file(codec(), good, other, "other"), Error);
 }
 
 // Damage that a checksum cannot catch (a forged or miscomputed trailer): any byte changed,
@@ -315,7 +325,7 @@ TEST(MeshlessCache, ForgedBytesWithAValidChecksumNeverCrash) {
   const BakePoints points = room_points();
   const Bake fresh = bake(room(kLight), points, small_settings(folder.path()));
   const std::vector<uint8_t> good = read_bytes(fresh.cache_path());
-  meshless::CacheKey key;
+  CacheKey key;
   for (int i = 0; i < 8; ++i) {
     key.high |= uint64_t(good[16 + i]) << (8 * i);
     key.low |= uint64_t(good[24 + i]) << (8 * i);
@@ -332,7 +342,7 @@ TEST(MeshlessCache, ForgedBytesWithAValidChecksumNeverCrash) {
     const uint64_t checksum = fnv1a64(std::span(forged).first(forged.size() - 8));
     for (int i = 0; i < 8; ++i) forged[forged.size() - 8 + i] = uint8_t(checksum >> (8 * i));
     try {
-      meshless::decode_precomputation(forged, key, "forged");
+      decode_cache_file(codec(), forged, key, "forged");
     } catch (const Error& e) {
       EXPECT_EQ(e.status(), BAKEGI_ERROR_BAD_FILE) << "byte " << at << ": " << e.what();
       ++refused;

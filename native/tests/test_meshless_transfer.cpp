@@ -152,20 +152,20 @@ TEST(MeshlessSolver, RelightEqualsAFullSolveWithTheMovedLight) {
   MeshlessSolver solver;
   JobContext context;
   const DirectLight direct_first(first, tracer);
-  const auto first_field =
-      solver.solve(SolveInputs{first, tracer, direct_first, settings, &points}, context);
+  const SolveInputs first_inputs{first, tracer, direct_first, settings, &points};
+  const auto precomputation = solver.precompute(first_inputs, context);
+  const auto first_field = solver.light(first_inputs, precomputation, context);
   std::vector<glm::vec3> first_values(points.size());
   first_field->evaluate(points, first_values, context);  // as a bake job does
   EXPECT_EQ(context.report().count("meshless_evaluation_weights_reused"), 0u);
-  const auto precomputation = solver.precomputation();
   ASSERT_NE(precomputation, nullptr);
   EXPECT_GT(precomputation->memory_bytes(), 0u);
 
   const DirectLight direct_moved(moved, tracer);
   MeshlessSolver relighter;
   JobContext relight_context;
-  const auto relit = relighter.relight(SolveInputs{moved, tracer, direct_moved, settings, &points},
-                                       *precomputation, relight_context);
+  const auto relit = relighter.light(SolveInputs{moved, tracer, direct_moved, settings, &points},
+                                     precomputation, relight_context);
   std::vector<glm::vec3> relit_values(points.size());
   relit->evaluate(points, relit_values, relight_context);
   // The same bake points: the relight reuses the first bake's evaluation weights (one sparse

@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "bake/error_estimate.h"
+#include "bake/solver_run.h"
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
@@ -119,7 +120,7 @@ void BakeJob::start() {
   memory_budget_bytes_ = size_t(settings.get_int("memory_budget_mb")) << 20;
   fallback_ = settings.get_int("fallback") != 0;
   solver_ = make_solver(method_);
-  if (previous_ && !solver_->can_relight()) {
+  if (previous_ && !solver_->has_precomputation()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "method '" + method_ + "' cannot relight; start a full bake");
   }
@@ -265,12 +266,12 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   stage_start = std::chrono::steady_clock::now();
   direct_ = std::make_unique<const DirectLight>(scene, *tracer_);
   const SolveInputs inputs{scene, *tracer_, *direct_, settings_, &points_, solver_memory()};
-  std::unique_ptr<IndirectField> field;
+  SolverRun run;
   std::string method_used = method_;
   {
     const ProgressRange solving(context_, 0.1, 0.6);  // the solver counts from 0 to 1 in it
     try {
-      field = solver_->solve(inputs, context_);
+      run = run_solver(*solver_, method_, inputs, context_);
     } catch (const Error& e) {
       // A scene too large for a hierarchical solver's model, or one its model cannot solve
       // (antiradiance diverging on a furnished room), still gets a bake the user can trust: the
@@ -289,13 +290,13 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
       fallback_settings_ = std::make_unique<Settings>(std::move(fallback_settings));
       const SolveInputs fallback_inputs{scene,     *tracer_, *direct_, *fallback_settings_,
                                         &points_, solver_memory()};
-      field = solver_->solve(fallback_inputs, context_);
+      run = run_solver(*solver_, method_used, fallback_inputs, context_);
     }
   }
   report.set_text("method_used", method_used);
   report.add_seconds("solve", seconds_since(stage_start));
 
-  std::shared_ptr<const Precomputation> kept = solver_->precomputation();
+  std::shared_ptr<const Precomputation> kept = std::move(run.precomputation);
   // Solvers add what they hold to memory_bytes themselves.
   report.add_count("memory_bytes", held_bytes());
   if (kept) {
@@ -308,7 +309,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
     std::lock_guard lock(mutex_);
     precomputed_ = std::move(precomputed);
   }
-  return field;
+  return std::move(run.field);
 }
 
 std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
@@ -342,7 +343,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
   std::unique_ptr<IndirectField> field;
   {
     const ProgressRange relighting(context_, 0.1, 0.6);  // the solver counts from 0 to 1 in it
-    field = solver_->relight(inputs, *previous_->solver, context_);
+    field = relight_solver(*solver_, inputs, previous_->solver, context_);
   }
   report.add_seconds("solve", seconds_since(stage_start));
   report.add_count("memory_bytes", held_bytes());

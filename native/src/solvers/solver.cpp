@@ -1,5 +1,5 @@
-// What every solver shares: the memory budget outside a job, and the refusal to relight for
-// methods that cannot.
+// What every solver shares: the memory budget outside a job, the lifecycle's default
+// (solve = light(precompute())), and the refusal to relight for methods that cannot.
 #include "solvers/solver.h"
 
 #include "scene/ray_tracer.h"
@@ -16,11 +16,19 @@ MemoryBudget memory_budget_for(const Settings& settings, const RayTracer& tracer
   return budget;
 }
 
-std::unique_ptr<IndirectField> Solver::relight(const SolveInputs&, const Precomputation&,
-                                               JobContext&) {
+std::shared_ptr<const Precomputation> Solver::precompute(const SolveInputs&, JobContext&) {
   throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-              "this method cannot relight; start a full bake (methods that can: antiradiance, "
-              "meshless)");
+              "this method keeps no precomputation and cannot relight; start a full bake");
+}
+
+std::unique_ptr<IndirectField> Solver::light(const SolveInputs&,
+                                             std::shared_ptr<const Precomputation>, JobContext&) {
+  throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+              "this method keeps no precomputation and cannot relight; start a full bake");
+}
+
+std::unique_ptr<IndirectField> Solver::solve(const SolveInputs& inputs, JobContext& context) {
+  return light(inputs, precompute(inputs, context), context);
 }
 
 }  // namespace bakegi

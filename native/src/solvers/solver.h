@@ -48,21 +48,35 @@ class Precomputation {
   virtual size_t memory_bytes() const = 0;
 };
 
+class PrecomputationCodec;
+
+// One lifecycle for every method: precompute -> light -> field. A method with a
+// precomputation (what geometry, materials and the "shapes" settings alone decide) overrides
+// precompute() and light(); the job then keeps the precomputation for relights, and caches it
+// on disk when the method also has a codec() and a "cache_dir" setting
+// (bake/precomputation_store.h). A method without one overrides solve() only.
 class Solver {
  public:
   virtual ~Solver() = default;
-  // A full solve. A method that can relight keeps its precomputation for precomputation().
-  virtual std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) = 0;
 
-  // Whether relight() works for this method.
-  virtual bool can_relight() const { return false; }
-  // The precomputation of the last successful solve(), or null.
-  virtual std::shared_ptr<const Precomputation> precomputation() const { return nullptr; }
-  // Solves again with the lights of inputs.scene, reusing `reuse` (made by a solver of the same
-  // method from a scene with the same geometry and materials and the same settings; the caller
-  // checks that). Throws Error(INVALID_ARGUMENT) for methods that cannot relight.
-  virtual std::unique_ptr<IndirectField> relight(const SolveInputs& inputs,
-                                                 const Precomputation& reuse, JobContext& context);
+  // Reads every setting of the method, so that a bad value fails before any work (and the
+  // settings a cache key names are the ones read).
+  virtual void check_settings(const Settings&) const {}
+  // Whether precompute() and light() are implemented (and so relights work).
+  virtual bool has_precomputation() const { return false; }
+  virtual std::shared_ptr<const Precomputation> precompute(const SolveInputs& inputs,
+                                                           JobContext& context);
+  // Lights `precomputation` (made by this method, for a scene with the same geometry and
+  // materials and the same "shapes" settings; the job checks that) with inputs.scene's
+  // lights. The field may keep the precomputation alive.
+  virtual std::unique_ptr<IndirectField> light(
+      const SolveInputs& inputs, std::shared_ptr<const Precomputation> precomputation,
+      JobContext& context);
+  // How the precomputation is saved and loaded, or null (no cache).
+  virtual const PrecomputationCodec* codec() const { return nullptr; }
+
+  // A full solve: light(precompute()) for methods with a precomputation.
+  virtual std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context);
 };
 
 }  // namespace bakegi

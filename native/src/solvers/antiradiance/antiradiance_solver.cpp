@@ -250,34 +250,13 @@ struct AntiradiancePrecomputation : Precomputation {
   }
 };
 
-std::unique_ptr<IndirectField> AntiradianceSolver::solve(const SolveInputs& inputs,
-                                                         JobContext& context) {
-  precomputation_.reset();
+void AntiradianceSolver::check_settings(const Settings& settings) const {
+  (void)AntiradianceSettings::from(settings);
+}
+
+std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const SolveInputs& inputs,
+                                                                     JobContext& context) {
   // Bad settings fail here, before any work.
-  (void)AntiradianceSettings::from(inputs.settings);
-  if (inputs.scene.triangles.empty()) {
-    return std::make_unique<AntiradianceField>(SurfaceInterpolation{});
-  }
-  std::shared_ptr<const AntiradiancePrecomputation> system = prepare(inputs, context);
-  std::unique_ptr<IndirectField> field = light(inputs, *system, context);
-  precomputation_ = std::move(system);
-  return field;
-}
-
-std::unique_ptr<IndirectField> AntiradianceSolver::relight(const SolveInputs& inputs,
-                                                           const Precomputation& reuse,
-                                                           JobContext& context) {
-  const auto* system = dynamic_cast<const AntiradiancePrecomputation*>(&reuse);
-  if (!system) {
-    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                "antiradiance: the precomputation to relight from was made by another method");
-  }
-  context.report().set_number("antiradiance_relit", 1.0);
-  return light(inputs, *system, context);
-}
-
-std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
-    const SolveInputs& inputs, JobContext& context) {
   const AntiradianceSettings settings = AntiradianceSettings::from(inputs.settings);
   const Scene& scene = inputs.scene;
   Report& report = context.report();
@@ -290,6 +269,7 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   const int m = system->bins.bin_count();
   report.add_seconds("antiradiance_bins", seconds_since(stage_start));
   context.throw_if_cancelled();
+  if (scene.triangles.empty()) return system;  // nothing to link; light() gives zero
 
   // What the job's holdings (ray tracer, ...) and the spreading tables leave of the budget.
   const uint64_t available = inputs.memory.remaining_after(system->spreading.memory_bytes());
@@ -392,10 +372,19 @@ std::shared_ptr<const AntiradiancePrecomputation> AntiradianceSolver::prepare(
   return system;
 }
 
-std::unique_ptr<IndirectField> AntiradianceSolver::light(const SolveInputs& inputs,
-                                                         const AntiradiancePrecomputation& system,
-                                                         JobContext& context) const {
+std::unique_ptr<IndirectField> AntiradianceSolver::light(
+    const SolveInputs& inputs, std::shared_ptr<const Precomputation> precomputation,
+    JobContext& context) {
+  const auto* made = dynamic_cast<const AntiradiancePrecomputation*>(precomputation.get());
+  if (!made) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "antiradiance: the precomputation to light was made by another method");
+  }
+  const AntiradiancePrecomputation& system = *made;
   const AntiradianceSettings settings = AntiradianceSettings::from(inputs.settings);
+  if (system.hierarchy.element_count() == 0) {
+    return std::make_unique<AntiradianceField>(SurfaceInterpolation{});
+  }
   Report& report = context.report();
   const ElementHierarchy& hierarchy = system.hierarchy;
   const DirectionalBins& bins = system.bins;

@@ -40,25 +40,20 @@ struct AntiradiancePrecomputation;
 class AntiradianceSolver : public Solver {
  public:
   static const std::vector<SettingSpec>& setting_specs();
-  std::unique_ptr<IndirectField> solve(const SolveInputs& inputs, JobContext& context) override;
 
   // Relighting without relinking (§3.3): bins, hierarchy and links stay; direct light is
   // initialized anew from inputs.scene's lights and the iteration runs again.
-  bool can_relight() const override { return true; }
-  std::shared_ptr<const Precomputation> precomputation() const override { return precomputation_; }
-  std::unique_ptr<IndirectField> relight(const SolveInputs& inputs, const Precomputation& reuse,
-                                         JobContext& context) override;
-
- private:
-  // Bins, spreading tables, hierarchy (patch size from the budget) and links.
-  std::shared_ptr<const AntiradiancePrecomputation> prepare(const SolveInputs& inputs,
-                                                            JobContext& context);
+  // Parses every antiradiance setting (a bad value fails before any work).
+  void check_settings(const Settings& settings) const override;
+  bool has_precomputation() const override { return true; }
+  // Bins, spreading tables, hierarchy (patch size from the budget) and links; an empty scene
+  // has bins only.
+  std::shared_ptr<const Precomputation> precompute(const SolveInputs& inputs,
+                                                   JobContext& context) override;
   // Bin tables, direct light, iteration and the output field.
   std::unique_ptr<IndirectField> light(const SolveInputs& inputs,
-                                       const AntiradiancePrecomputation& system,
-                                       JobContext& context) const;
-
-  std::shared_ptr<const Precomputation> precomputation_;
+                                       std::shared_ptr<const Precomputation> precomputation,
+                                       JobContext& context) override;
 };
 
 }  // namespace bakegi

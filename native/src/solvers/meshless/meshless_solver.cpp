@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -27,13 +26,14 @@
 #include "solvers/meshless/multilevel_approximation.h"
 #include "solvers/meshless/point_placement.h"
 #include "solvers/meshless/precomputation_cache.h"
+#include "solvers/precomputation_codec.h"
+#include "util/byte_stream.h"
 #include "solvers/meshless/sky_visibility.h"
 #include "util/bit_cast.h"
 #include "solvers/meshless/transfer_refinement.h"
 #include "solvers/meshless/visible_basis.h"
 #include "solvers/meshless/visible_evaluation.h"
 #include "util/error.h"
-#include "util/file_bytes.h"
 #include "util/job_context.h"
 #include "util/random.h"
 #include "util/report.h"
@@ -209,112 +209,44 @@ void MeshlessField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
   }
 }
 
-std::unique_ptr<IndirectField> MeshlessSolver::solve(const SolveInputs& inputs,
-                                                     JobContext& context) {
-  precomputation_.reset();
-  // Bad settings fail before any work.
-  const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
-  std::shared_ptr<const MeshlessPrecomputation> system;
-  if (settings.cache_dir.empty()) {
-    context.report().set_text("meshless_cache", "off");
-    system = precompute(inputs, context);
-  } else {
-    system = load_or_precompute(inputs, settings.cache_dir, context);
+// The meshless precomputation in the job's cache (bake/precomputation_store.h): files
+// "meshless-<key>.bgcache" with magic 'M', as before the store existed.
+class MeshlessCacheCodec : public PrecomputationCodec {
+ public:
+  std::string name() const override { return "meshless"; }
+  char magic() const override { return 'M'; }
+  uint32_t version() const override { return meshless::kPrecomputationCacheVersion; }
+  // A viewpoint places the basis; without one the bake points do.
+  bool keyed_by_points(const Settings& settings) const override {
+    return !MeshlessSettings::from(settings).has_viewpoint;
   }
-  std::unique_ptr<IndirectField> field = light(inputs, system, context);
-  precomputation_ = std::move(system);
-  return field;
+  void encode(const Precomputation& precomputation, ByteWriter& payload) const override {
+    meshless::encode_precomputation(dynamic_cast<const MeshlessPrecomputation&>(precomputation),
+                                    payload);
+  }
+  std::shared_ptr<const Precomputation> decode(ByteReader& payload,
+                                               const JobContext* job) const override {
+    return meshless::decode_precomputation(payload, job);
+  }
+  void report_loaded(const Precomputation& precomputation, Report& report) const override {
+    const auto& loaded = dynamic_cast<const MeshlessPrecomputation&>(precomputation);
+    report.set_number("meshless_cache_precompute_seconds", loaded.statistics.precompute_seconds);
+    report.add_count("meshless_refinement_rays", 0);
+    report_statistics(loaded, report);
+  }
+};
+
+void MeshlessSolver::check_settings(const Settings& settings) const {
+  (void)MeshlessSettings::from(settings);
 }
 
-std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::load_or_precompute(
-    const SolveInputs& inputs, const std::string& cache_dir, JobContext& context) const {
-  namespace fs = std::filesystem;
-  const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
-  Report& report = context.report();
-  auto start = std::chrono::steady_clock::now();
-  // Everything that shapes the precomputation: all settings read so far (MeshlessSettings
-  // read every meshless key, with defaults) except those whose role is lighting or execution.
-  const SettingSchema& schema = method_schema("meshless");
-  std::vector<std::string> ignored = schema.keys_with_role(SettingRole::kLighting);
-  for (const std::string& key : schema.keys_with_role(SettingRole::kExecution)) {
-    ignored.push_back(key);
-  }
-  const CacheKey key =
-      precomputation_key(inputs.scene.description, inputs.settings.used_values(), ignored,
-                         settings.has_viewpoint ? nullptr : inputs.points);
-  const fs::path folder = utf8_path(cache_dir);
-  const fs::path path = folder / key.file_name();
-  const std::string path_text = utf8_text(path);
-  report.add_seconds("meshless_cache_key", seconds_since(start));
-  report.set_text("meshless_cache_path", path_text);
-
-  std::string state = "miss";
-  std::error_code exists_error;
-  if (fs::exists(path, exists_error)) {
-    start = std::chrono::steady_clock::now();
-    context.set_stage("meshless: loading the cached precomputation", 0.02, 0.95);
-    try {
-      // The file cannot hold more than the precomputation it replaces may take.
-      const std::vector<uint8_t> bytes = read_file_bytes(path, inputs.memory.total());
-      std::shared_ptr<MeshlessPrecomputation> loaded =
-          decode_precomputation(bytes, key, utf8_text(path.filename()), &context);
-      report.set_text("meshless_cache", "hit");
-      report.add_seconds("meshless_cache_load", seconds_since(start));
-      report.add_count("meshless_cache_bytes", bytes.size());
-      report.set_number("meshless_cache_precompute_seconds", loaded->statistics.precompute_seconds);
-      report.add_count("meshless_refinement_rays", 0);
-      report_statistics(*loaded, report);
-      return loaded;
-    } catch (const Error& e) {
-      if (e.status() == BAKEGI_ERROR_CANCELLED) throw;
-      state = "stale";
-      report.warn("meshless cache " + path_text + " was stale/corrupt (" + e.what() + "): rebuilt");
-    } catch (const std::bad_alloc&) {
-      state = "stale";
-      report.warn("meshless cache " + path_text +
-                  " was stale/corrupt (too large to load): rebuilt");
-    }
-  }
-
-  std::shared_ptr<const MeshlessPrecomputation> system = precompute(inputs, context);
-  report.set_text("meshless_cache", state);
-  // Saving is a convenience: whatever goes wrong is a warning, never a failed bake.
-  start = std::chrono::steady_clock::now();
-  try {
-    std::error_code error;
-    fs::create_directories(folder, error);
-    if (error) {
-      throw Error(BAKEGI_ERROR_IO,
-                  "cannot create the folder " + utf8_text(folder) + ": " + error.message());
-    }
-    const std::vector<uint8_t> bytes = encode_precomputation(*system, key);
-    write_file_atomically(path, bytes);
-    report.add_seconds("meshless_cache_save", seconds_since(start));
-    report.add_count("meshless_cache_bytes", bytes.size());
-  } catch (const Error& e) {
-    report.warn(std::string("meshless cache: the precomputation was not saved: ") + e.what());
-  } catch (const std::exception& e) {
-    report.warn(std::string("meshless cache: the precomputation was not saved: ") + e.what());
-  }
-  return system;
+const PrecomputationCodec* MeshlessSolver::codec() const {
+  static const MeshlessCacheCodec codec;
+  return &codec;
 }
 
-std::unique_ptr<IndirectField> MeshlessSolver::relight(const SolveInputs& inputs,
-                                                       const Precomputation& reuse,
-                                                       JobContext& context) {
-  const auto* system = dynamic_cast<const MeshlessPrecomputation*>(&reuse);
-  if (!system) {
-    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                "meshless: the precomputation to relight from was made by another method");
-  }
-  context.report().set_number("meshless_relit", 1.0);
-  // The field keeps the precomputation alive for as long as it is evaluated.
-  std::shared_ptr<const MeshlessPrecomputation> shared = system->shared_from_this();
-  return light(inputs, shared, context);
-}
-
-std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
-    const SolveInputs& inputs, JobContext& context) const {
+std::shared_ptr<const Precomputation> MeshlessSolver::precompute(const SolveInputs& inputs,
+                                                                 JobContext& context) {
   const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
   Report& report = context.report();
   const Scene& scene = inputs.scene;
@@ -432,8 +364,15 @@ std::shared_ptr<const MeshlessPrecomputation> MeshlessSolver::precompute(
 }
 
 std::unique_ptr<IndirectField> MeshlessSolver::light(
-    const SolveInputs& inputs, std::shared_ptr<const MeshlessPrecomputation> system,
-    JobContext& context) const {
+    const SolveInputs& inputs, std::shared_ptr<const Precomputation> precomputation,
+    JobContext& context) {
+  // The field keeps the precomputation alive for as long as it is evaluated.
+  std::shared_ptr<const MeshlessPrecomputation> system =
+      std::dynamic_pointer_cast<const MeshlessPrecomputation>(precomputation);
+  if (!system) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "meshless: the precomputation to light was made by another method");
+  }
   const MeshlessSettings settings = MeshlessSettings::from(inputs.settings);
   Report& report = context.report();
 

@@ -7,7 +7,6 @@
 #include <cstring>
 #include <new>
 
-#include "scene/scene_file.h"
 #include "util/byte_stream.h"
 #include "util/error.h"
 #include "util/random.h"
@@ -16,9 +15,6 @@ namespace bakegi::meshless {
 
 namespace {
 
-constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'M'};
-constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
-constexpr size_t kTrailerBytes = 8;
 constexpr uint32_t kStatistics = section_tag("STAT"), kPoints = section_tag("PNTS"),
                    kTransfer = section_tag("XFER"), kSkyVisibility = section_tag("SKYV"),
                    kReceiverRelations = section_tag("RREL");
@@ -30,45 +26,6 @@ static_assert(sizeof(BasisPoint) == kPointBytes,
               "BasisPoint changed: update precomputation_cache.cpp and bump the cache version");
 static_assert(sizeof(DirectToIndirect) == sizeof(std::array<SparseOperator, 3>),
               "DirectToIndirect changed: update precomputation_cache.cpp and bump the version");
-
-// A second 64-bit hash next to FNV-1a for the 128-bit key: SplitMix64's bijective mix
-// chained over 8-byte words, so that the two hashes share no structure.
-uint64_t word_hash(std::span<const uint8_t> bytes) {
-  uint64_t hash = mix64(bytes.size());
-  size_t at = 0;
-  for (; at + 8 <= bytes.size(); at += 8) {
-    uint64_t word = 0;
-    for (int i = 0; i < 8; ++i) word |= uint64_t(bytes[at + i]) << (8 * i);
-    hash = mix64(hash ^ word);
-  }
-  uint64_t tail = 0;
-  for (int i = 0; at < bytes.size(); ++at, ++i) tail |= uint64_t(bytes[at]) << (8 * i);
-  return mix64(hash ^ tail);
-}
-
-void add_hash(ByteWriter& w, std::span<const uint8_t> bytes) {
-  w.u64(bytes.size());
-  w.u64(fnv1a64(bytes));
-  w.u64(word_hash(bytes));
-}
-
-// The textures, materials and meshes sections of the scene's .bgs encoding (scene_file.h:
-// a 24-byte header, then TEXR, MATL, MESH, LGHT, WRLD), leaving out lights and world.
-std::span<const uint8_t> geometry_and_materials(std::span<const uint8_t> encoded) {
-  constexpr size_t kSceneHeaderBytes = 24, kSectionHeaderBytes = 16;
-  size_t at = kSceneHeaderBytes;
-  for (uint32_t tag : {section_tag("TEXR"), section_tag("MATL"), section_tag("MESH")}) {
-    ByteReader r(encoded.subspan(std::min(at, encoded.size())), "scene encoding");
-    if (r.u32() != tag) {
-      throw Error(BAKEGI_ERROR_INTERNAL, "meshless cache: the scene file layout changed");
-    }
-    r.u32();
-    const uint64_t size = r.u64();
-    r.need(size, 1, "section");
-    at += kSectionHeaderBytes + size;
-  }
-  return encoded.subspan(kSceneHeaderBytes, at - kSceneHeaderBytes);
-}
 
 void write_u64s(ByteWriter& w, const std::vector<uint64_t>& values) {
   w.u64(values.size());
@@ -293,115 +250,26 @@ void close_section(ByteReader& r, size_t end, const char* name) {
 
 }  // namespace
 
-std::string CacheKey::file_name() const {
-  char name[40];
-  std::snprintf(name, sizeof name, "meshless-%016llx.bgcache",
-                static_cast<unsigned long long>(high));
-  return name;
-}
-
-CacheKey precomputation_key(const SceneDescription& scene,
-                            const std::map<std::string, SettingValue>& used_settings,
-                            const std::vector<std::string>& ignored_settings,
-                            const BakePoints* placement_points) {
-  ByteWriter w;
-  w.u32(kPrecomputationCacheVersion);
-  w.u32(BAKEGI_VERSION_MAJOR);
-  w.u32(BAKEGI_VERSION_MINOR);
-  w.u32(BAKEGI_VERSION_PATCH);
-  w.u32(kSceneFileVersion);
-  {
-    // Hashed at once so that the key material stays small for large scenes.
-    const std::vector<uint8_t> encoded = encode_scene_file(scene, nullptr);
-    add_hash(w, geometry_and_materials(encoded));
-  }
-  for (const auto& [key, value] : used_settings) {
-    if (std::find(ignored_settings.begin(), ignored_settings.end(), key) !=
-        ignored_settings.end()) {
-      continue;
-    }
-    w.string(key);
-    w.u32(uint32_t(value.index()));
-    if (const int64_t* i = std::get_if<int64_t>(&value)) w.u64(uint64_t(*i));
-    if (const double* d = std::get_if<double>(&value)) w.f64(*d);
-    if (const std::string* text = std::get_if<std::string>(&value)) w.string(*text);
-  }
-  w.u32(placement_points ? 1 : 0);
-  if (placement_points) {
-    ByteWriter points;
-    points.u64(placement_points->size());
-    for (const glm::vec3& p : placement_points->positions) points.vec3(p);
-    for (const glm::vec3& n : placement_points->normals) points.vec3(n);
-    for (uint32_t id : placement_points->object_ids) points.u32(id);
-    add_hash(w, points.bytes);
-  }
-  return CacheKey{fnv1a64(w.bytes), word_hash(w.bytes)};
-}
-
-std::vector<uint8_t> encode_precomputation(const MeshlessPrecomputation& precomputation,
-                                           const CacheKey& key) {
-  ByteWriter w;
-  w.bytes.insert(w.bytes.end(), std::begin(kMagic), std::end(kMagic));
-  w.u32(kPrecomputationCacheVersion);
-  w.u32(0);
-  w.u64(key.high);
-  w.u64(key.low);
-  const size_t payload_size_at = w.bytes.size();
-  w.u64(0);  // payload size, patched below
+void encode_precomputation(const MeshlessPrecomputation& precomputation, ByteWriter& w) {
   write_statistics(w, precomputation.statistics);
   write_points(w, precomputation.all);
   write_transfer(w, precomputation.transfer);
   write_sky_visibility(w, precomputation.sender_sky_visibility);
   write_receiver_relations(w, precomputation.receiver_relations.get());
-  w.patch_u64(payload_size_at, w.bytes.size() - kHeaderBytes);
-  w.u64(fnv1a64(w.bytes));
-  return std::move(w.bytes);
 }
 
-std::shared_ptr<MeshlessPrecomputation> decode_precomputation(std::span<const uint8_t> bytes,
-                                                              const CacheKey& expected,
-                                                              const std::string& name,
-                                                              const JobContext* job) {
-  const auto fail = [&](const std::string& what) {
-    throw Error(BAKEGI_ERROR_BAD_FILE, name + ": " + what);
-  };
-  if (bytes.size() < kHeaderBytes + kTrailerBytes ||
-      std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
-    fail("corrupt: not a meshless cache file");
-  }
-  ByteReader header(bytes.subspan(sizeof kMagic, kHeaderBytes - sizeof kMagic), name);
-  const uint32_t version = header.u32();
-  if (version != kPrecomputationCacheVersion) {
-    fail("stale: format version " + std::to_string(version) + ", this build uses " +
-         std::to_string(kPrecomputationCacheVersion));
-  }
-  header.u32();
-  CacheKey key;
-  key.high = header.u64();
-  key.low = header.u64();
-  if (!(key == expected)) fail("stale: made for another scene or other settings");
-  const uint64_t payload_bytes = header.u64();
-  if (payload_bytes != bytes.size() - kHeaderBytes - kTrailerBytes) {
-    fail("corrupt: truncated or extended (the header says " + std::to_string(payload_bytes) +
-         " payload bytes, the file holds " +
-         std::to_string(bytes.size() - kHeaderBytes - kTrailerBytes) + ")");
-  }
-  const size_t hashed = bytes.size() - kTrailerBytes;
-  ByteReader trailer(bytes.subspan(hashed), name);
-  if (trailer.u64() != fnv1a64(bytes.first(hashed))) fail("corrupt: checksum mismatch");
-
-  ByteReader r(bytes.subspan(kHeaderBytes, payload_bytes), name);
+std::shared_ptr<MeshlessPrecomputation> decode_precomputation(ByteReader& r, const JobContext* job) {
   size_t end = open_section(r, kStatistics, "statistics");
   MeshlessStatistics statistics = read_statistics(r);
   close_section(r, end, "statistics");
   end = open_section(r, kPoints, "points");
   std::vector<BasisPoint> points = read_points(r);
   close_section(r, end, "points");
-  if (points.empty()) fail("corrupt: no basis points");
+  if (points.empty()) r.fail("corrupt: no basis points");
   const uint32_t levels = points.back().level + 1;
   if (statistics.sender_levels < 1 || statistics.sender_levels > levels) {
-    fail("corrupt: " + std::to_string(statistics.sender_levels) + " sender levels of " +
-         std::to_string(levels));
+    r.fail("corrupt: " + std::to_string(statistics.sender_levels) + " sender levels of " +
+           std::to_string(levels));
   }
   std::vector<BasisPoint> sender_points;
   for (const BasisPoint& p : points) {
@@ -419,7 +287,7 @@ std::shared_ptr<MeshlessPrecomputation> decode_precomputation(std::span<const ui
   } catch (const Error& e) {
     // The points were valid when saved; the basis refusing them means the file is damaged.
     if (e.status() != BAKEGI_ERROR_INVALID_ARGUMENT) throw;
-    fail(std::string("corrupt: ") + e.what());
+    r.fail(std::string("corrupt: ") + e.what());
   }
   end = open_section(r, kTransfer, "transfer");
   for (SparseOperator& channel : precomputation->transfer.channel) {
@@ -432,7 +300,6 @@ std::shared_ptr<MeshlessPrecomputation> decode_precomputation(std::span<const ui
   end = open_section(r, kReceiverRelations, "receiver relations");
   precomputation->receiver_relations = read_receiver_relations(r, precomputation->all);
   close_section(r, end, "receiver relations");
-  if (r.left() != 0) fail("corrupt: unexpected bytes after the last section");
   precomputation->statistics = std::move(statistics);
   return precomputation;
 }

@@ -1,0 +1,242 @@
+#include "bake/precomputation_store.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <new>
+
+#include "bakegi/bakegi.h"
+#include "scene/scene_file.h"
+#include "solvers/solver.h"
+#include "util/byte_stream.h"
+#include "util/error.h"
+#include "util/file_bytes.h"
+#include "util/job_context.h"
+#include "util/random.h"
+
+namespace bakegi {
+
+namespace {
+
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
+constexpr size_t kTrailerBytes = 8;
+
+std::array<uint8_t, 8> magic_of(const PrecomputationCodec& codec) {
+  return {'B', 'A', 'K', 'E', 'G', 'I', '\0', uint8_t(codec.magic())};
+}
+
+// A second 64-bit hash next to FNV-1a for the 128-bit key: SplitMix64's bijective mix
+// chained over 8-byte words, so that the two hashes share no structure.
+uint64_t word_hash(std::span<const uint8_t> bytes) {
+  uint64_t hash = mix64(bytes.size());
+  size_t at = 0;
+  for (; at + 8 <= bytes.size(); at += 8) {
+    uint64_t word = 0;
+    for (int i = 0; i < 8; ++i) word |= uint64_t(bytes[at + i]) << (8 * i);
+    hash = mix64(hash ^ word);
+  }
+  uint64_t tail = 0;
+  for (int i = 0; at < bytes.size(); ++at, ++i) tail |= uint64_t(bytes[at]) << (8 * i);
+  return mix64(hash ^ tail);
+}
+
+void add_hash(ByteWriter& w, std::span<const uint8_t> bytes) {
+  w.u64(bytes.size());
+  w.u64(fnv1a64(bytes));
+  w.u64(word_hash(bytes));
+}
+
+// The textures, materials and meshes sections of the scene's .bgs encoding (scene_file.h:
+// a 24-byte header, then TEXR, MATL, MESH, LGHT, WRLD), leaving out lights and world.
+std::span<const uint8_t> geometry_and_materials(std::span<const uint8_t> encoded) {
+  constexpr size_t kSceneHeaderBytes = 24, kSectionHeaderBytes = 16;
+  size_t at = kSceneHeaderBytes;
+  for (uint32_t tag : {section_tag("TEXR"), section_tag("MATL"), section_tag("MESH")}) {
+    ByteReader r(encoded.subspan(std::min(at, encoded.size())), "scene encoding");
+    if (r.u32() != tag) {
+      throw Error(BAKEGI_ERROR_INTERNAL, "precomputation cache: the scene file layout changed");
+    }
+    r.u32();
+    const uint64_t size = r.u64();
+    r.need(size, 1, "section");
+    at += kSectionHeaderBytes + size;
+  }
+  return encoded.subspan(kSceneHeaderBytes, at - kSceneHeaderBytes);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::string CacheKey::file_name(const std::string& codec_name) const {
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(high));
+  return codec_name + "-" + hex + ".bgcache";
+}
+
+CacheKey precomputation_key(uint32_t codec_version, const SceneDescription& scene,
+                            const std::map<std::string, SettingValue>& used_settings,
+                            const std::vector<std::string>& ignored_settings,
+                            const BakePoints* placement_points) {
+  ByteWriter w;
+  w.u32(codec_version);
+  w.u32(BAKEGI_VERSION_MAJOR);
+  w.u32(BAKEGI_VERSION_MINOR);
+  w.u32(BAKEGI_VERSION_PATCH);
+  w.u32(kSceneFileVersion);
+  {
+    // Hashed at once so that the key material stays small for large scenes.
+    const std::vector<uint8_t> encoded = encode_scene_file(scene, nullptr);
+    add_hash(w, geometry_and_materials(encoded));
+  }
+  for (const auto& [key, value] : used_settings) {
+    if (std::find(ignored_settings.begin(), ignored_settings.end(), key) !=
+        ignored_settings.end()) {
+      continue;
+    }
+    w.string(key);
+    w.u32(uint32_t(value.index()));
+    if (const int64_t* i = std::get_if<int64_t>(&value)) w.u64(uint64_t(*i));
+    if (const double* d = std::get_if<double>(&value)) w.f64(*d);
+    if (const std::string* text = std::get_if<std::string>(&value)) w.string(*text);
+  }
+  w.u32(placement_points ? 1 : 0);
+  if (placement_points) {
+    ByteWriter points;
+    points.u64(placement_points->size());
+    for (const glm::vec3& p : placement_points->positions) points.vec3(p);
+    for (const glm::vec3& n : placement_points->normals) points.vec3(n);
+    for (uint32_t id : placement_points->object_ids) points.u32(id);
+    add_hash(w, points.bytes);
+  }
+  return CacheKey{fnv1a64(w.bytes), word_hash(w.bytes)};
+}
+
+std::vector<uint8_t> encode_cache_file(const PrecomputationCodec& codec,
+                                       const Precomputation& precomputation, const CacheKey& key) {
+  ByteWriter w;
+  const std::array<uint8_t, 8> magic = magic_of(codec);
+  w.bytes.insert(w.bytes.end(), magic.begin(), magic.end());
+  w.u32(codec.version());
+  w.u32(0);
+  w.u64(key.high);
+  w.u64(key.low);
+  const size_t payload_size_at = w.bytes.size();
+  w.u64(0);  // payload size, patched below
+  codec.encode(precomputation, w);
+  w.patch_u64(payload_size_at, w.bytes.size() - kHeaderBytes);
+  w.u64(fnv1a64(w.bytes));
+  return std::move(w.bytes);
+}
+
+std::shared_ptr<const Precomputation> decode_cache_file(const PrecomputationCodec& codec,
+                                                        std::span<const uint8_t> bytes,
+                                                        const CacheKey& expected,
+                                                        const std::string& name,
+                                                        const JobContext* job) {
+  const auto fail = [&](const std::string& what) {
+    throw Error(BAKEGI_ERROR_BAD_FILE, name + ": " + what);
+  };
+  const std::array<uint8_t, 8> magic = magic_of(codec);
+  if (bytes.size() < kHeaderBytes + kTrailerBytes ||
+      !std::equal(magic.begin(), magic.end(), bytes.begin())) {
+    fail("corrupt: not a " + codec.name() + " cache file");
+  }
+  ByteReader header(bytes.subspan(magic.size(), kHeaderBytes - magic.size()), name);
+  const uint32_t version = header.u32();
+  if (version != codec.version()) {
+    fail("stale: format version " + std::to_string(version) + ", this build uses " +
+         std::to_string(codec.version()));
+  }
+  header.u32();
+  CacheKey key;
+  key.high = header.u64();
+  key.low = header.u64();
+  if (!(key == expected)) fail("stale: made for another scene or other settings");
+  const uint64_t payload_bytes = header.u64();
+  if (payload_bytes != bytes.size() - kHeaderBytes - kTrailerBytes) {
+    fail("corrupt: truncated or extended (the header says " + std::to_string(payload_bytes) +
+         " payload bytes, the file holds " +
+         std::to_string(bytes.size() - kHeaderBytes - kTrailerBytes) + ")");
+  }
+  const size_t hashed = bytes.size() - kTrailerBytes;
+  ByteReader trailer(bytes.subspan(hashed), name);
+  if (trailer.u64() != fnv1a64(bytes.first(hashed))) fail("corrupt: checksum mismatch");
+
+  ByteReader payload(bytes.subspan(kHeaderBytes, payload_bytes), name);
+  std::shared_ptr<const Precomputation> precomputation = codec.decode(payload, job);
+  if (payload.left() != 0) fail("corrupt: unexpected bytes after the last section");
+  return precomputation;
+}
+
+std::shared_ptr<const Precomputation> load_or_precompute(
+    const CacheRequest& request, JobContext& context,
+    const std::function<std::shared_ptr<const Precomputation>()>& make) {
+  namespace fs = std::filesystem;
+  const PrecomputationCodec& codec = request.codec;
+  const std::string prefix = codec.name() + "_cache";
+  Report& report = context.report();
+  auto start = std::chrono::steady_clock::now();
+  const CacheKey key =
+      precomputation_key(codec.version(), request.scene, request.settings.used_values(),
+                         request.ignored_settings, request.points);
+  const fs::path folder = utf8_path(request.folder);
+  const fs::path path = folder / key.file_name(codec.name());
+  const std::string path_text = utf8_text(path);
+  report.add_seconds(prefix + "_key", seconds_since(start));
+  report.set_text(prefix + "_path", path_text);
+
+  std::string state = "miss";
+  std::error_code exists_error;
+  if (fs::exists(path, exists_error)) {
+    start = std::chrono::steady_clock::now();
+    context.set_stage(codec.name() + ": loading the cached precomputation", 0.02, 0.95);
+    try {
+      const std::vector<uint8_t> bytes = read_file_bytes(path, request.max_file_bytes);
+      std::shared_ptr<const Precomputation> loaded =
+          decode_cache_file(codec, bytes, key, utf8_text(path.filename()), &context);
+      report.set_text(prefix, "hit");
+      report.add_seconds(prefix + "_load", seconds_since(start));
+      report.add_count(prefix + "_bytes", bytes.size());
+      codec.report_loaded(*loaded, report);
+      return loaded;
+    } catch (const Error& e) {
+      if (e.status() == BAKEGI_ERROR_CANCELLED) throw;
+      state = "stale";
+      report.warn(codec.name() + " cache " + path_text + " was stale/corrupt (" + e.what() +
+                  "): rebuilt");
+    } catch (const std::bad_alloc&) {
+      state = "stale";
+      report.warn(codec.name() + " cache " + path_text +
+                  " was stale/corrupt (too large to load): rebuilt");
+    }
+  }
+
+  std::shared_ptr<const Precomputation> made = make();
+  report.set_text(prefix, state);
+  // Saving is a convenience: whatever goes wrong is a warning, never a failed bake.
+  start = std::chrono::steady_clock::now();
+  const std::string not_saved = codec.name() + " cache: the precomputation was not saved: ";
+  try {
+    std::error_code error;
+    fs::create_directories(folder, error);
+    if (error) {
+      throw Error(BAKEGI_ERROR_IO,
+                  "cannot create the folder " + utf8_text(folder) + ": " + error.message());
+    }
+    const std::vector<uint8_t> bytes = encode_cache_file(codec, *made, key);
+    write_file_atomically(path, bytes);
+    report.add_seconds(prefix + "_save", seconds_since(start));
+    report.add_count(prefix + "_bytes", bytes.size());
+  } catch (const Error& e) {
+    report.warn(not_saved + e.what());
+  } catch (const std::exception& e) {
+    report.warn(not_saved + e.what());
+  }
+  return made;
+}
+
+}  // namespace bakegi
