@@ -97,7 +97,7 @@ class PrincipledCornellAgainstCycles(unittest.TestCase):
 
     Tolerance 6 %: noise takes about 1.6 % (the reference's ~0.9 %, bakegi's ~1.35 %, in
     quadrature), and the core's glossy lobe (a Phong lobe of the hemispherical Fresnel
-    average, materials.py) is measured 2-4 % off Cycles' GGX with angular Fresnel (most of it
+    average, export/materials.py) is measured 2-4 % off Cycles' GGX with angular Fresnel (most of it
     on the floor, which gets 8 % less in 4.x: docs/compatibility.md). Real errors are far
     outside: reading v2 as v1 (no layering) or dropping the coat moves the mean 15-20 %.
     """

@@ -51,7 +51,7 @@ class ErrorPaths(common.SmallCornellCase):
         face without area holding custom normals; the whole export failed with "bake point
         15150: normal is the zero vector"). Such a point takes its face's normal, and where
         the face has none either, +z with a warning naming the object."""
-        from bakegi import export
+        from bakegi.export import points as export
         normals = numpy.array([(0, 0, 2), (0, 0, 0), (numpy.nan, 0, 0), (0, 0, 0)], numpy.float32)
         fallback = numpy.array([(1, 0, 0), (0, 3, 0), (0, 0, -1), (0, 0, 0)], numpy.float64)
         warnings = []
@@ -73,7 +73,7 @@ class ErrorPaths(common.SmallCornellCase):
         self.assertEqual(report["method_used"], "pathtrace")
         self.assertTrue(any("Baked with the path tracer instead" in w for w in report["warnings"]),
                         report["warnings"])
-        from bakegi import operators
+        from bakegi.ui import report_text as operators
         self.assertIn("baked by pathtrace", operators.summary(report))
         self.assertGreater(float(common.read_color_attribute(["Floor"]).mean()), 0.0)
         with self.assertRaises(self.bakegi.BakeGIError) as caught:

@@ -1,4 +1,4 @@
-"""What the add-on reads from Blender materials (addon/bakegi/materials.py), glossy lobes in
+"""What the add-on reads from Blender materials (addon/bakegi/export/materials.py), glossy lobes in
 particular: the values are fixed by the documented mapping (Phong exponent from roughness,
 reflectance from metallic and the dielectric's hemispherical-average Fresnel), so the
 expected numbers below are computed from the formulas, not copied from a run."""
@@ -42,7 +42,7 @@ class Materials(unittest.TestCase):
     def setUpClass(cls):
         common.new_empty_scene()
         cls.bakegi = common.enable_addon()
-        from bakegi import materials
+        from bakegi.export import materials
 
         cls.materials = materials
 
@@ -258,7 +258,7 @@ class Materials(unittest.TestCase):
     def test_export_shares_plain_images_and_scales_hdr_ones(self):
         # One image as both base colour and emission of a material: one core texture. A float
         # image brighter than 1 on an emission: a second texture, scaled into [0,1] (the core
-        # refuses texels above 1; the scale goes into the emission, see export.py).
+        # refuses texels above 1; the scale goes into the emission, see export/scene.py).
         import tempfile
 
         import cornell_box

@@ -74,7 +74,7 @@ class Normals(common.AddonCase):
         numpy.testing.assert_allclose(b / a, math.cos(tilt), rtol=1e-4)
 
     def test_sharp_edges_give_face_normals(self):
-        from bakegi import export
+        from bakegi.export import mesh_arrays as export
 
         vertices = [(x, y, z) for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)]
         faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]

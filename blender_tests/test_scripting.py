@@ -142,7 +142,8 @@ class PanelAgreesWithTheCore(common.AddonCase):
     epsilon the core refuses). The panel's default method is the core's."""
 
     def test_panel_defaults_and_ranges_lie_in_the_schema(self):
-        from bakegi import native, properties
+        from bakegi import native
+        from bakegi.ui import properties
         panel = bpy.context.scene.bakegi.bl_rna.properties
         self.assertEqual(panel["method"].default, native.default_method())
         self.assertEqual(bpy.context.scene.bakegi.request().method, native.default_method())

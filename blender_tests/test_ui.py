@@ -81,7 +81,7 @@ class UiTest:
 
     def bake_from_window(self, failures):
         """Bake Indirect as a click starts it (the timer-driven modal); yields until it ends."""
-        from bakegi import operators
+        from bakegi.ui import operators
 
         with self.override():
             result = bpy.ops.bakegi.bake_indirect("INVOKE_DEFAULT")
@@ -141,7 +141,7 @@ class UiTest:
     def run(self):
         started = time.perf_counter()
         bakegi = common.enable_addon()
-        from bakegi import operators
+        from bakegi.ui import operators
 
         common.new_empty_scene()
         objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)

@@ -27,14 +27,14 @@ CORE = "#e3f1de"
 SHARED = "#eeeeee"
 BOXES = [
     ("ui", 0.2, 8.6, 3.6, 1.1, "UI: Bake Indirect, panel, scripting",
-     ["addon/bakegi/operators.py", "addon/bakegi/api.py"], ADDON),
+     ["addon/bakegi/ui/", "addon/bakegi/api.py"], ADDON),
     ("export", 0.2, 6.9, 3.6, 1.4, "export: targets, scene, materials, lights",
-     ["addon/bakegi/export.py", "addon/bakegi/materials.py", "addon/bakegi/light_units.py"],
+     ["addon/bakegi/export/", "addon/bakegi/light_units.py"],
      ADDON),
     ("session", 0.2, 5.4, 3.6, 1.2, "session: one bake, progress, Esc",
      ["addon/bakegi/session.py", "addon/bakegi/native.py"], ADDON),
     ("write", 0.2, 3.6, 3.6, 1.5, "write back: attributes, lightmap image, hook",
-     ["addon/bakegi/writeback.py", "addon/bakegi/materials.py", "addon/bakegi/lightmap_uvs.py"],
+     ["addon/bakegi/write/"],
      ADDON),
     ("capi", 4.6, 6.9, 3.4, 1.4, "C API (never throws)",
      ["native/include/bakegi/bakegi.h", "native/src/api/"], BOUNDARY),

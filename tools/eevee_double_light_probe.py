@@ -1,6 +1,6 @@
 """Does EEVEE light other surfaces with an emission gated by Light Path "Is Camera Ray"?
 
-The Material Preview hook shows a bake as such an emission (materials.py): Cycles does not
+The Material Preview hook shows a bake as such an emission (write/material_hook.py): Cycles does not
 pass it on to other surfaces. This renders, with EEVEE, a white floor in front of a wall whose
 red emission is 0, gated by Is Camera Ray, or always 1, and prints the floor's mean colour:
 

@@ -45,7 +45,7 @@ def main():
 
     info = stem + "_objects.json"
     expression = (
-        "import bpy, bakegi, json; from bakegi import export; "
+        "import bpy, bakegi, json; from bakegi.export import targets as export; "
         f"r = bakegi.export_scene_file({out!r}, target={args.target!r}, objects='VISIBLE'); "
         "objs = export.resolve_targets(bpy.context, 'VISIBLE')[0]; "
         f"info = [{{'name': o.name, 'corners': len(o.data.loops), 'vertices': len(o.data.vertices)}} for o in objs]; "

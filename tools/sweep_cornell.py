@@ -104,7 +104,7 @@ def export_scene(work, build, blend):
     bgs = os.path.join(work, "cornell.bgs")
     order = os.path.join(work, "export_objects.json")
     expression = (
-        "import bpy, bakegi, json; from bakegi import export; "
+        "import bpy, bakegi, json; from bakegi.export import targets as export; "
         f"r = bakegi.export_scene_file({bgs!r}, target='CORNER', objects='VISIBLE'); "
         "names = [o.name for o in export.resolve_targets(bpy.context, 'VISIBLE')[0]]; "
         f"json.dump({{'objects': names, 'export_seconds': r.get('seconds')}}, open({order!r}, 'w'))"
@@ -265,7 +265,7 @@ def cycles_sweep(work, build, blend, samples, objects, cli, reference, positions
     if ours.shape != theirs.shape:
         raise SystemExit(f"sweep_cornell: Cycles baked {theirs.shape[0]} corners, the .bgs holds {ours.shape[0]}")
     mismatch = float(numpy.abs(ours - theirs).max())
-    # The add-on moves bake points 0.2% of the way into their face (export.INWARD_FRACTION):
+    # The add-on moves bake points 0.2% of the way into their face (export/points.py, INWARD_FRACTION):
     # under 1 mm here, while a corner out of order is off by a whole grid cell (>= 6 cm).
     if mismatch > POSITION_TOLERANCE:
         raise SystemExit(f"sweep_cornell: corner order differs from the .bgs export (max position difference {mismatch})")

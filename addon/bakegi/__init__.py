@@ -40,7 +40,7 @@ if bpy is not None:
     __all__ += ["bake", "export_scene_file", "live_stop", "live_update", "remove_bake",
                 "subdivide_copy"]
 
-_MODULES = ("preferences", "properties", "operators", "panels", "live")
+_MODULES = ("ui.preferences", "ui.properties", "ui.operators", "ui.panels", "live")
 
 
 def register():

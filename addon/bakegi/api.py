@@ -15,7 +15,10 @@ import time
 
 import bpy
 
-from . import export, live, operators, properties, session, writeback
+from . import live, session
+from .export import scene as export_scene_module, targets as export_targets
+from .ui import operators, properties
+from .write import attributes
 from .native import BakeGIError
 from .request import BakeRequest, LightmapOptions
 
@@ -118,7 +121,7 @@ def export_scene_file(path, target="CORNER", objects="SELECTED", context=None,
     lightmap = LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
                                max_side=lightmap_max_size, padding=lightmap_padding,
                                uv_method=lightmap_uv_method)
-    exported = export.export_scene(context, target, objects, lightmap=lightmap)
+    exported = export_scene_module.export_scene(context, target, objects, lightmap=lightmap)
     layout_path = None
     try:
         exported.scene.write(str(path), exported.points)
@@ -157,9 +160,9 @@ def remove_bake(objects=None, context=None):
     Returns {"objects": [names cleared], "materials": [names restored]}."""
     context = _context(context)
     if objects in ("SELECTED", "VISIBLE"):
-        objects, _ = export.resolve_targets(context, objects)
+        objects, _ = export_targets.resolve_targets(context, objects)
     elif isinstance(objects, str):
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                           f"objects must be None, 'SELECTED', 'VISIBLE' or a list, not "
                           f"{objects!r}")
-    return writeback.remove_bake(context.blend_data, objects)
+    return attributes.remove_bake(context.blend_data, objects)

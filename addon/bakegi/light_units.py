@@ -2,7 +2,7 @@
 """Blender light settings -> the core's radiometric light description.
 
 This is the ONE place where Blender's conventions (Watts, Strength, spot blend, area
-shapes) become radiometric quantities. It never imports bpy: export.py reads the values
+shapes) become radiometric quantities. It never imports bpy: export/scene.py reads the values
 from Blender into a BlenderLight and passes them here, so the conversion can be tested
 with plain Python and pinned against Cycles.
 

@@ -9,7 +9,7 @@ wall is not blurry. Tiles are packed on shelves into one atlas (the way Unity's 
 gives each renderer a scale and offset into a shared lightmap), with `gap` texels between
 tiles, so that the dilated gutters of two objects never meet inside a filter footprint.
 A material shared by several objects then needs one image: the material hook reads the
-object's tile through its scale and offset (custom properties, see writeback.py).
+object's tile through its scale and offset (custom properties, see write/lightmap_image.py).
 
 Pure Python and numpy (no bpy): tested outside Blender.
 """

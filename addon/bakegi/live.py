@@ -25,7 +25,8 @@ import time
 
 import bpy
 
-from . import export, writeback
+from .export import scene as export_scene, targets as export_targets
+from .write import attributes
 from .native import BakeGIError
 
 DEBOUNCE_SECONDS = 0.05
@@ -161,7 +162,7 @@ def classify(updates, live):
             if original.type == "LIGHT":
                 if update.is_updated_transform or update.is_updated_shading:
                     relight = live.light_changed(original) or relight
-            elif original.type in export.MESH_LIKE and update.is_updated_transform:
+            elif original.type in export_targets.MESH_LIKE and update.is_updated_transform:
                 return f"'{original.name}' moved; Bake Indirect to precompute again"
         elif isinstance(original, bpy.types.Mesh):
             # Writing the attribute updates the target meshes' geometry; other meshes
@@ -205,7 +206,7 @@ def on_load_pre(*_args):
 def _start_relight(context):
     live = _state
     t0 = time.perf_counter()
-    export.export_lights(context, live.core_scene)
+    export_scene.export_lights(context, live.core_scene)
     live.export_seconds = time.perf_counter() - t0
     live.pending = False
     live.running = live.job.relight(live.core_scene)
@@ -224,7 +225,7 @@ def _finish_relight(data):
     finally:
         job.close()
     t0 = time.perf_counter()
-    writeback.write_results(data, live.targets, rgb)
+    attributes.write_results(data, live.targets, rgb)
     write_seconds = time.perf_counter() - t0
     live.updates += 1
     live.last = {"export": live.export_seconds, "core": core_seconds, "write": write_seconds,

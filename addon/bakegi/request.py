@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""What a bake is asked to do: one typed BakeRequest from the panel (properties.py,
+"""What a bake is asked to do: one typed BakeRequest from the panel (ui/properties.py,
 BakeGISettings.request) and from scripting (api.bake) to the session (session.BakeSession).
 
 The core checks its own settings (method_settings) against the method's schema
@@ -21,7 +21,7 @@ LINKED_DUPLICATES = ("SHARED", "SINGLE_USER")
 
 @dataclass(frozen=True)
 class LightmapOptions:
-    """What a LIGHTMAP bake needs besides the scene (see lightmap_layout, lightmap_uvs)."""
+    """What a LIGHTMAP bake needs besides the scene (see lightmap_layout, write/uv_maps)."""
 
     uv_map: str = "BakeGI"
     texels_per_meter: float = 40.0

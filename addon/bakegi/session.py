@@ -16,7 +16,10 @@ import threading
 import time
 from dataclasses import dataclass, replace
 
-from . import error_check, export, live, native, preferences, writeback
+from . import error_check, live, native
+from .export import points as export_points, scene as export_scene, targets as export_targets
+from .ui import preferences
+from .write import attributes, lightmap_image, material_hook, uv_maps
 from .native import BakeGIError
 
 
@@ -100,9 +103,9 @@ class BakeSession:
         """Exports the scene. The context is used only here (and by finish() when no data
         is given): a modal operator's context does not outlive the call that passed it."""
         if self.linked_duplicates == "SINGLE_USER" and self.target != "LIGHTMAP":
-            self._single_users = export.make_single_users(self.context, self.objects)
+            self._single_users = export_targets.make_single_users(self.context, self.objects)
         try:
-            self.exported = export.export_scene(self.context, self.target, self.objects,
+            self.exported = export_scene.export_scene(self.context, self.target, self.objects,
                                                 lightmap=self.lightmap, defer_texels=True,
                                                 display_probes=self.estimates_error)
         except BaseException:
@@ -224,9 +227,9 @@ class BakeSession:
                 lightmap_report = self._write_lightmap(data, rgb)
                 image = data.images.get(lightmap_report["image"])
             else:
-                writeback.write_results(data, self.exported.targets, rgb)
+                attributes.write_results(data, self.exported.targets, rgb)
             written = True
-            hooked = (writeback.hook_materials(data, self.exported.materials,
+            hooked = (material_hook.hook_materials(data, self.exported.materials,
                                                self.exported.targets, image,
                                                self.lightmap.uv_map)
                       if self.hook_materials else [])
@@ -260,8 +263,8 @@ class BakeSession:
     def _write_lightmap(self, data, rgb):
         import bpy  # the session runs inside Blender; the rest of this module does not need it
         path = os.path.join(self.lightmap_folder,
-                            writeback.lightmap_file_name(self.scene_name))
-        image, dropped = writeback.write_lightmap(
+                            lightmap_image.lightmap_file_name(self.scene_name))
+        image, dropped = lightmap_image.write_lightmap(
             data, self.exported, rgb, path, self.scene_name, self.lightmap_full_float,
             bpy.data.filepath)
         if dropped:
@@ -287,7 +290,7 @@ class BakeSession:
         made single-user and the lightmap UV maps it made."""
         if self._single_users:
             import bpy  # (a modal operator's context may be gone by now)
-            export.undo_single_users(bpy.data, self._single_users)
+            export_targets.undo_single_users(bpy.data, self._single_users)
             self._single_users = []
         self._remove_created_uv_maps()
 
@@ -297,8 +300,7 @@ class BakeSession:
         if lightmaps is None or not lightmaps.created_uv_maps:
             return
         import bpy
-        from . import lightmap_uvs
-        lightmap_uvs.remove(bpy.data, lightmaps.created_uv_maps, lightmaps.options.uv_map)
+        uv_maps.remove(bpy.data, lightmaps.created_uv_maps, lightmaps.options.uv_map)
         lightmaps.created_uv_maps = []
 
     def run(self):
@@ -309,7 +311,7 @@ class BakeSession:
 
     def _named(self, error):
         names = self.exported.object_names if self.exported is not None else []
-        return BakeGIError(error.status, export.name_objects(error.message, names))
+        return BakeGIError(error.status, export_targets.name_objects(error.message, names))
 
     def _release_export(self):
         if self.exported is not None:
@@ -342,7 +344,7 @@ class BakeSession:
         core_warnings = core.get("warnings") if isinstance(core.get("warnings"), list) else []
         names = self.exported.object_names if self.exported is not None else []
         report["warnings"] = (list(self.exported.warnings) + list(self.exported.skipped) +
-                              [export.name_objects(w, names) for w in core_warnings])
+                              [export_targets.name_objects(w, names) for w in core_warnings])
         self._check_error(report, targets)
         return report
 
@@ -362,7 +364,7 @@ class BakeSession:
             if isinstance(index, int) and 0 <= index < len(by_id):
                 obj = bpy.data.objects.get(by_id[index])
                 if obj is not None and obj.type == "MESH":
-                    facts[obj.name] = export.mesh_facts(obj.data)
+                    facts[obj.name] = export_points.mesh_facts(obj.data)
         verdict = error_check.assess(report, by_id, facts, self.method, self.samples)
         if verdict is not None:
             report["error_check"] = verdict

@@ -19,8 +19,8 @@ import math
 
 import bpy
 
-from . import compat
-from .native import BakeGIError
+from .. import compat
+from ..native import BakeGIError
 
 UV_METHODS = ("SMART", "LIGHTMAP_PACK")
 MAX_UV_MAPS = 8  # Blender's limit per mesh

@@ -7,8 +7,9 @@ import bpy
 
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-from . import compat, native, preferences
-from .request import BakeRequest, LightmapOptions
+from .. import compat, native
+from ..request import BakeRequest, LightmapOptions
+from . import preferences
 
 # The methods the panel offers, with their labels. The default is the core's (register() sets
 # it from bakegi_settings_describe; antiradiance reaches every error level of the Cornell chart
@@ -52,7 +53,7 @@ OBJECTS_ITEMS = [
 
 def _live_toggled(self, context):
     if not self.live_indirect:
-        from . import live
+        from .. import live
         live.stop()
 
 

@@ -11,10 +11,11 @@ from dataclasses import dataclass
 import bpy
 from bpy.props import IntProperty, StringProperty
 
-from . import compat
+from .. import compat
 
-# "bakegi" as a legacy add-on, "bl_ext.<repository>.bakegi" as an extension (4.2+).
-PACKAGE = __package__
+# "bakegi" as a legacy add-on, "bl_ext.<repository>.bakegi" as an extension (4.2+): the
+# package above this ui/ folder.
+PACKAGE = __package__.rpartition(".")[0]
 
 
 class BakeGIPreferences(bpy.types.AddonPreferences):

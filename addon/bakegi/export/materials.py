@@ -1,4 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Blender materials: what the core needs to know of them, and the Material Preview hook.
 
 read_material(material) -> MaterialInfo: diffuse albedo (a constant times an optional
@@ -20,20 +21,8 @@ texture), from the node tree:
     emission textures use different UV maps samples both with the emission's (warning);
   - anything else: the node's unlinked (default) color, with a warning.
 
-hook(material, info) / unhook(material): the non-destructive Material Preview hook. The
-hook adds nodes named "BakeGI_*" that compute albedo x BakeGI_Indirect (an Attribute
-node reading the baked color attribute) and emit it through an Emission shader whose
-strength is Light Path "Is Camera Ray" (so in Cycles the baked light is not fed to other
-surfaces), added with an Add Shader to whatever was plugged into the Material Output's
-Surface. The original link is stored on the material (ID property "bakegi_hook");
-unhook removes the added nodes and restores that link exactly.
-
-A material is hooked once, whatever number of objects use it. Objects that use a hooked
-material but carry no BakeGI_Indirect attribute read black from the Attribute node, so
-they look exactly as before.
-
-This module does not import bpy: it only reads and edits the objects it is given, so the
-pure parts (colour-space conversion) can be tested without Blender.
+This module does not import bpy: it only reads the objects it is given, so the pure parts
+(colour-space conversion, Fresnel averages) can be tested without Blender.
 """
 
 import math
@@ -42,19 +31,10 @@ from typing import List, Optional, Tuple
 
 import numpy as np
 
-from . import compat, light_units
+from .. import compat, light_units
+from ..write.material_hook import NODE_PREFIX
+from .node_tree import active_output, color_value, input_socket, linked_from
 
-ATTRIBUTE_NAME = "BakeGI_Indirect"
-NODE_PREFIX = "BakeGI_"
-HOOK_PROPERTY = "bakegi_hook"
-# Version 2 of the hook reads the lightmap atlas too; version-1 hooks are rebuilt.
-HOOK_VERSION = 2
-# Object custom properties of a LIGHTMAP bake (read by the hook's Attribute nodes of type
-# OBJECT): the object's tile in the atlas (atlas UV = uv * scale + offset) and 1.0 while the
-# object has a lightmap (objects without one read 0, so their lightmap term vanishes).
-LIGHTMAP_SCALE = "bakegi_lightmap_scale"
-LIGHTMAP_OFFSET = "bakegi_lightmap_offset"
-LIGHTMAP_WEIGHT = "bakegi_lightmap_weight"
 
 # Cycles' default surface for faces without a material.
 DEFAULT_ALBEDO = (0.8, 0.8, 0.8)
@@ -134,41 +114,8 @@ def image_linear_rgb(image, warnings):
     return rgb
 
 
-# ---- reading node trees ------------------------------------------------------------------
-
-
-def _input(node, *names):
-    """The first input socket with one of `names` (names changed in Blender 4.0)."""
-    for name in names:
-        socket = node.inputs.get(name)
-        if socket is not None:
-            return socket
-    return None
-
-
-def _linked_from(socket):
-    """The output socket linked into `socket`, through reroutes, or None."""
-    seen = 0
-    while socket is not None and socket.is_linked and seen < 64:
-        link = socket.links[0]
-        if not link.is_valid or getattr(link, "is_muted", False):
-            return None
-        node = link.from_node
-        if node.type == "REROUTE":
-            socket = node.inputs[0]
-            seen += 1
-            continue
-        return link.from_socket
-    return None
-
-
-def _color_value(socket):
-    v = socket.default_value
-    return (float(v[0]), float(v[1]), float(v[2]))
-
-
 def _float_input(node, names, fallback, info, what):
-    socket = _input(node, *names)
+    socket = input_socket(node, *names)
     if socket is None:
         return fallback
     if socket.is_linked:
@@ -178,7 +125,7 @@ def _float_input(node, names, fallback, info, what):
 
 def _texture_uv_map(tex_node, info, what):
     vector = tex_node.inputs.get("Vector")
-    source = _linked_from(vector) if vector is not None else None
+    source = linked_from(vector) if vector is not None else None
     if source is None:
         return ""
     node = source.node
@@ -206,18 +153,18 @@ def _texture_sampling(tex_node, info, what):
 
 def _read_color(socket, info, what):
     """(constant rgb, TextureRef or None, socket giving the colour or None)."""
-    source = _linked_from(socket)
+    source = linked_from(socket)
     if source is None:
-        return _color_value(socket), None, None
+        return color_value(socket), None, None
     node = source.node
     if node.type == "TEX_IMAGE" and node.image is not None:
         _texture_sampling(node, info, what)
         return (1.0, 1.0, 1.0), TextureRef(node.image, _texture_uv_map(node, info, what)), source
     if node.type == "RGB":
-        return _color_value(source), None, source
+        return color_value(source), None, source
     info.warnings.append(f"{what}: the '{node.name}' node feeding '{socket.name}' of "
                          f"'{socket.node.name}' is not evaluated; its default color is used")
-    return _color_value(socket), None, None
+    return color_value(socket), None, None
 
 
 def _scaled(c, s):
@@ -294,7 +241,7 @@ def fresnel_hemispherical_average(f0):
 
 
 def _principled_f0(node, info, what):
-    level = _input(node, "Specular IOR Level")
+    level = input_socket(node, "Specular IOR Level")
     if level is not None:  # Blender 4.x
         ior = _float_input(node, ("IOR",), 1.5, info, what)
         r = (ior - 1.0) / (ior + 1.0) if ior > 0.0 else 0.0
@@ -338,7 +285,7 @@ def _warn_light_passing(node, transmission, info, what):
     core's surfaces are opaque, so a window pane or a cut-out leaf blocks light instead."""
     if transmission > 0.0:
         info.warnings.append(f"{what}: transmission {transmission:g}: {_PASSING_LIGHT_ADVICE}")
-    alpha = _input(node, "Alpha")
+    alpha = input_socket(node, "Alpha")
     if alpha is not None and (alpha.is_linked or float(alpha.default_value) < 1.0):
         info.warnings.append(f"{what}: its alpha (transparency or a cut-out mask such as "
                              f"leaves) is read as opaque; {_PASSING_LIGHT_ADVICE}")
@@ -347,7 +294,7 @@ def _warn_light_passing(node, transmission, info, what):
 def _read_principled(node, info, what):
     """A Principled BSDF: diffuse base x (1 - metallic) x (1 - transmission) (x (1 - F_avg)
     in 4.x), a glossy lobe of metal colour and dielectric F_avg, and its emission."""
-    base, texture, color_socket = _read_color(_input(node, "Base Color"), info, what)
+    base, texture, color_socket = _read_color(input_socket(node, "Base Color"), info, what)
     metallic = _float_input(node, ("Metallic",), 0.0, info, what)
     transmission = _float_input(node, ("Transmission Weight", "Transmission"), 0.0, info,
                                 what)
@@ -358,16 +305,16 @@ def _read_principled(node, info, what):
     if texture is not None and metallic > 0.0:
         info.warnings.append(f"{what}: a textured metallic color is read as the base "
                              "color's default value for the glossy lobe")
-    metal_color = _color_value(_input(node, "Base Color")) if texture is not None else base
+    metal_color = color_value(input_socket(node, "Base Color")) if texture is not None else base
     glossy = _glossy_lobe([metallic * c + dielectric * f_avg for c in metal_color],
                           roughness)
     # Cycles 4.x's Principled v2 layers the specular over the diffuse base (which loses
     # what the coat reflects); 3.x's v1 adds it on top, leaving the diffuse untouched, so
     # each version is matched as rendered (the glossy part is clamped to 1 - albedo below).
-    layered = _input(node, "Specular IOR Level") is not None
+    layered = input_socket(node, "Specular IOR Level") is not None
     factor = dielectric * (1.0 - f_avg) if layered else dielectric
     emission, emission_texture = (0.0, 0.0, 0.0), None
-    em_socket = _input(node, "Emission Color", "Emission")
+    em_socket = input_socket(node, "Emission Color", "Emission")
     if em_socket is not None:
         strength = _float_input(node, ("Emission Strength",), 1.0, info, what)
         emission, emission_texture = _read_emission(em_socket, strength, info, what)
@@ -391,7 +338,7 @@ def _read_shader(socket_out, info, what, depth=0):
         color, texture, _ = _read_color(node.inputs["Color"], info, what)
         if texture is not None:
             info.warnings.append(f"{what}: a textured glossy color is read as its default value")
-            color = _color_value(node.inputs["Color"])
+            color = color_value(node.inputs["Color"])
         roughness = _float_input(node, ("Roughness",), 0.5, info, what)
         return _Shader(glossy=_glossy_lobe(color, roughness))
     if kind == "EMISSION":
@@ -402,7 +349,7 @@ def _read_shader(socket_out, info, what, depth=0):
         shader_inputs = [s for s in node.inputs if s.type == "SHADER"]
         parts = []
         for s in shader_inputs:
-            src = _linked_from(s)
+            src = linked_from(s)
             parts.append(_read_shader(src, info, what, depth + 1) if src is not None
                          else _Shader())
         if kind == "MIX_SHADER":
@@ -434,7 +381,7 @@ def _read_shader(socket_out, info, what, depth=0):
         info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) lets light through in "
                              f"Cycles; {_PASSING_LIGHT_ADVICE}")
     # Any other shader: its colour input's default value, as diffuse.
-    color = _input(node, "Color", "Base Color")
+    color = input_socket(node, "Color", "Base Color")
     info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) is approximated as a diffuse "
                          "surface")
     if color is None or not hasattr(color.default_value, "__len__"):
@@ -478,19 +425,6 @@ def _mixed_glossy(weights, parts):
     return tuple(min(c, 1.0) for c in reflectance), exponent_sum / weight_sum
 
 
-def active_output(tree):
-    """The Material Output node Cycles would use."""
-    outputs = [n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"]
-    for preferred in ("CYCLES", "ALL"):
-        for n in outputs:
-            if n.is_active_output and n.target == preferred:
-                return n
-    for n in outputs:
-        if n.target in ("CYCLES", "ALL"):
-            return n
-    return outputs[0] if outputs else None
-
-
 def read_material(material):
     """What the core needs of a Blender material (None: Cycles' default grey)."""
     info = MaterialInfo()
@@ -506,10 +440,10 @@ def read_material(material):
         info.warnings.append(f"{what}: no Material Output node; read as black")
         info.albedo = (0.0, 0.0, 0.0)
         return info
-    surface = _linked_from(output.inputs["Surface"])
+    surface = linked_from(output.inputs["Surface"])
     if surface is not None and surface.node.name.startswith(NODE_PREFIX):
         # Hooked by an earlier bake: read the material as it was before the hook.
-        surface = _linked_from(surface.node.inputs[0])
+        surface = linked_from(surface.node.inputs[0])
     if surface is None:
         info.albedo = (0.0, 0.0, 0.0)  # Cycles renders an unconnected surface black
         return info
@@ -545,166 +479,3 @@ def read_material(material):
     if any(a > 1.0 for a in albedo):
         info.warnings.append(f"{what}: albedo above 1 is clamped to 1")
     return info
-
-
-# ---- the Material Preview hook -----------------------------------------------------------
-
-
-def is_hooked(material):
-    return material is not None and material.get(HOOK_PROPERTY) is not None
-
-
-def _hook_version(material):
-    record = material.get(HOOK_PROPERTY)
-    try:
-        return int(record.get("version", 1))
-    except (AttributeError, TypeError, ValueError):
-        return 1
-
-
-def can_hook(material, info):
-    return (material is not None and compat.uses_nodes(material)
-            and active_output(material.node_tree) is not None and
-            (info.color_source is not None or max(info.albedo) > 0.0))
-
-
-def hook(material, info, lightmap_image=None, uv_map="BakeGI"):
-    """Adds albedo x (BakeGI_Indirect + the object's lightmap texel) as camera-only emission.
-    A material hooked already only gets the lightmap image and UV map set. Returns True if
-    hooked now."""
-    if is_hooked(material) and _hook_version(material) < HOOK_VERSION:
-        unhook(material)
-    if is_hooked(material):
-        set_lightmap(material, lightmap_image, uv_map)
-        return False
-    if not can_hook(material, info):
-        return False
-    tree = material.node_tree
-    output = active_output(tree)
-    surface_input = output.inputs["Surface"]
-    # The link into Surface as it is (possibly from a reroute), to restore it exactly.
-    direct = surface_input.links[0] if surface_input.is_linked else None
-    record = {"output": output.name, "from_node": "", "from_socket": -1}
-    if direct is not None:
-        record["from_node"] = direct.from_node.name
-        record["from_socket"] = list(direct.from_node.outputs).index(direct.from_socket)
-
-    x, y = output.location.x, output.location.y
-    nodes, links = tree.nodes, tree.links
-
-    def new(kind, name, dx, dy):
-        node = nodes.new(kind)
-        node.name = NODE_PREFIX + name
-        node.label = "BakeGI " + name.replace("_", " ")
-        node.location = (x + dx, y + dy)
-        return node
-
-    attribute = new("ShaderNodeAttribute", "Indirect", -900, -300)
-    attribute.attribute_type = "GEOMETRY"
-    attribute.attribute_name = ATTRIBUTE_NAME
-    lightmap = _lightmap_nodes(new, links, lightmap_image, uv_map)
-    indirect = new("ShaderNodeVectorMath", "Indirect_Sum", -700, -480)
-    indirect.operation = "ADD"
-    links.new(attribute.outputs["Color"], indirect.inputs[0])
-    links.new(lightmap, indirect.inputs[1])
-    times_albedo = new("ShaderNodeVectorMath", "Times_Albedo", -650, -300)
-    times_albedo.operation = "MULTIPLY"
-    links.new(indirect.outputs["Vector"], times_albedo.inputs[0])
-    color_node = tree.nodes.get(info.color_source[0]) if info.color_source else None
-    if color_node is not None and info.color_source[1] < len(color_node.outputs):
-        links.new(color_node.outputs[info.color_source[1]], times_albedo.inputs[1])
-        f = float(info.albedo_factor)
-        if f != 1.0:
-            times_factor = new("ShaderNodeVectorMath", "Times_Factor", -450, -300)
-            times_factor.operation = "SCALE"
-            links.new(times_albedo.outputs["Vector"], times_factor.inputs[0])
-            times_factor.inputs["Scale"].default_value = f
-            albedo_out = times_factor.outputs["Vector"]
-        else:
-            albedo_out = times_albedo.outputs["Vector"]
-    else:
-        times_albedo.inputs[1].default_value = tuple(info.albedo)
-        albedo_out = times_albedo.outputs["Vector"]
-    light_path = new("ShaderNodeLightPath", "Light_Path", -450, -520)
-    emission = new("ShaderNodeEmission", "Emission", -250, -300)
-    links.new(albedo_out, emission.inputs["Color"])
-    links.new(light_path.outputs["Is Camera Ray"], emission.inputs["Strength"])
-    add = new("ShaderNodeAddShader", "Add", -80, -120)
-    if direct is not None:
-        links.new(direct.from_socket, add.inputs[0])
-    links.new(emission.outputs["Emission"], add.inputs[1])
-    links.new(add.outputs["Shader"], surface_input)
-    record["version"] = HOOK_VERSION
-    material[HOOK_PROPERTY] = record
-    return True
-
-
-def _lightmap_nodes(new, links, image, uv_map):
-    """The object's lightmap texel: UV map -> (uv * scale + offset) -> atlas image, times
-    the object's lightmap weight (0 for objects without a lightmap). Returns its output."""
-    uv = new("ShaderNodeUVMap", "Lightmap_UV", -1500, -650)
-    uv.uv_map = uv_map
-    scale = _object_attribute(new, "Lightmap_Scale", LIGHTMAP_SCALE, -1500, -800)
-    offset = _object_attribute(new, "Lightmap_Offset", LIGHTMAP_OFFSET, -1500, -950)
-    weight = _object_attribute(new, "Lightmap_Weight", LIGHTMAP_WEIGHT, -1100, -950)
-    place = new("ShaderNodeVectorMath", "Lightmap_Place", -1300, -700)
-    place.operation = "MULTIPLY_ADD"
-    links.new(uv.outputs["UV"], place.inputs[0])
-    links.new(scale.outputs["Vector"], place.inputs[1])
-    links.new(offset.outputs["Vector"], place.inputs[2])
-    texture = new("ShaderNodeTexImage", "Lightmap", -1100, -650)
-    texture.interpolation = "Linear"
-    texture.extension = "EXTEND"
-    texture.image = image
-    links.new(place.outputs["Vector"], texture.inputs["Vector"])
-    weighted = new("ShaderNodeVectorMath", "Lightmap_Weighted", -850, -650)
-    weighted.operation = "SCALE"
-    links.new(texture.outputs["Color"], weighted.inputs[0])
-    links.new(weight.outputs["Fac"], weighted.inputs["Scale"])
-    return weighted.outputs["Vector"]
-
-
-def _object_attribute(new, name, attribute_name, x, y):
-    node = new("ShaderNodeAttribute", name, x, y)
-    node.attribute_type = "OBJECT"
-    node.attribute_name = attribute_name
-    return node
-
-
-def set_lightmap(material, image, uv_map):
-    """Points a hooked material's lightmap nodes at `image` (None: keep the current one) and
-    the lightmap UV map."""
-    tree = material.node_tree
-    texture = tree.nodes.get(NODE_PREFIX + "Lightmap") if tree is not None else None
-    uv = tree.nodes.get(NODE_PREFIX + "Lightmap_UV") if tree is not None else None
-    if texture is not None and image is not None:
-        texture.image = image
-    if uv is not None and uv_map and image is not None:
-        uv.uv_map = uv_map
-
-
-def lightmap_image(material):
-    """The lightmap image a hooked material reads (or None)."""
-    tree = material.node_tree if material is not None else None
-    texture = tree.nodes.get(NODE_PREFIX + "Lightmap") if tree is not None else None
-    return texture.image if texture is not None else None
-
-
-def unhook(material):
-    """Removes the hook's nodes and restores the original Surface link. Returns True if the
-    material was hooked."""
-    if material is None or material.node_tree is None:
-        return False
-    record = material.get(HOOK_PROPERTY)
-    tree = material.node_tree
-    for node in [n for n in tree.nodes if n.name.startswith(NODE_PREFIX)]:
-        tree.nodes.remove(node)
-    if record is None:
-        return False
-    output = tree.nodes.get(record.get("output", ""))
-    from_node = tree.nodes.get(record.get("from_node", ""))
-    index = int(record.get("from_socket", -1))
-    if output is not None and from_node is not None and 0 <= index < len(from_node.outputs):
-        tree.links.new(from_node.outputs[index], output.inputs["Surface"])
-    del material[HOOK_PROPERTY]
-    return True

@@ -6,7 +6,9 @@ import textwrap
 
 import bpy
 
-from . import error_check, export, live, native, operators
+from .. import error_check, live, native
+from ..export import targets as export_targets
+from . import operators, report_text
 
 
 class RENDER_PT_bakegi(bpy.types.Panel):
@@ -54,7 +56,7 @@ class RENDER_PT_bakegi(bpy.types.Panel):
         col.prop(settings, "objects")
         if settings.target != "LIGHTMAP":
             col.prop(settings, "linked_duplicates")
-            shared = len(export.linked_duplicates(context, settings.objects))
+            shared = len(export_targets.linked_duplicates(context, settings.objects))
             if shared and settings.linked_duplicates == "SHARED":
                 col.label(text=f"{shared} object(s) share a mesh with another: they show its "
                           "light", icon="INFO")
@@ -72,7 +74,7 @@ class RENDER_PT_bakegi(bpy.types.Panel):
         elif settings.last_result:
             box.label(text="Last: " + settings.last_result, icon="CHECKMARK")
             report = _last_report(settings)
-            for line in operators.meshless_details(report) + operators.lightmap_details(report):
+            for line in report_text.meshless_details(report) + report_text.lightmap_details(report):
                 box.label(text=line)
             _draw_error_check(box, report.get("error_check"))
         else:

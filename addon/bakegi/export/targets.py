@@ -1,0 +1,133 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Which objects a bake reads and writes: the targets (selected, visible or named mesh
+objects; the reasons others are skipped), linked duplicates and Make Single User."""
+
+import re
+from dataclasses import dataclass
+
+from ..native import BakeGIError
+
+
+MESH_LIKE = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+# Where a bake goes: a color attribute on face corners or vertices, or lightmap textures.
+
+
+@dataclass
+class BakeTarget:
+    """One object whose mesh receives the bake, and its slice of the bake points."""
+
+    # Names, not references: the result is written after the bake, and references do not
+    # survive an undo (or a deletion) in between.
+    object_name: str
+    mesh_name: str  # name_full of the original mesh, where the attribute goes
+    domain: str
+    start: int
+    count: int
+    # LIGHTMAP only: (scale_u, scale_v, offset_u, offset_v) of its tile in the atlas, and the
+    # tile's side in texels.
+    atlas_scale_offset: tuple = ()
+    tile_side: int = 0
+
+
+def name_objects(message, object_names):
+    """Puts Blender object names into a core message: "(object 3)" -> "(object 'Cube')"."""
+    def name(match):
+        i = int(match.group(1))
+        return f"object '{object_names[i]}'" if i < len(object_names) else match.group(0)
+    return re.sub(r"\bobject (\d+)", name, message)
+
+
+# ---- which objects ----------------------------------------------------------------------
+
+
+def resolve_targets(context, objects, shared_meshes=False):
+    """objects: 'SELECTED', 'VISIBLE' or a list of objects or names. shared_meshes: objects
+    that share a mesh are all baked (lightmaps: each object has its own tile); otherwise
+    only the first of them (a color attribute lives on the mesh).
+    Returns (mesh objects to bake, [reasons for skipped objects])."""
+    view_layer = context.view_layer
+    if objects == "SELECTED":
+        candidates = list(context.selected_objects)
+    elif objects == "VISIBLE":
+        # (None entries: objects removed since the view layer was last updated)
+        candidates = [o for o in view_layer.objects
+                      if o is not None and o.visible_get(view_layer=view_layer)]
+    elif isinstance(objects, str):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"objects must be 'SELECTED', 'VISIBLE' or a list, not {objects!r}")
+    else:
+        candidates = []
+        data_objects = context.blend_data.objects
+        for item in objects:
+            obj = data_objects.get(item) if isinstance(item, str) else item
+            if obj is None:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {item!r}")
+            candidates.append(obj)
+    targets, skipped, meshes = [], [], {}
+    for obj in candidates:
+        if obj.type != "MESH":
+            if objects != "VISIBLE":
+                skipped.append(f"'{obj.name}' skipped: a {obj.type.lower()}, not a mesh")
+            continue
+        if view_layer.objects.get(obj.name) is None or not obj.visible_get(
+                view_layer=view_layer):
+            skipped.append(f"'{obj.name}' skipped: not visible in the view layer")
+            continue
+        mesh = obj.data
+        if mesh.library is not None or getattr(mesh, "override_library", None) is not None:
+            skipped.append(f"'{obj.name}' skipped: its mesh is linked from a library")
+            continue
+        if len(mesh.polygons) == 0:
+            skipped.append(f"'{obj.name}' skipped: its mesh has no faces")
+            continue
+        if mesh.name_full in meshes and not shared_meshes:
+            skipped.append(f"'{obj.name}' not baked: it shares mesh '{mesh.name}' with "
+                           f"'{meshes[mesh.name_full]}' and shows that object's light (Linked "
+                           f"Duplicates: Make Single User bakes each)")
+            continue
+        meshes[mesh.name_full] = obj.name
+        targets.append(obj)
+    return targets, skipped
+
+
+# What an attribute bake does with linked duplicates (objects sharing one mesh, which holds
+# one color attribute for all of them).
+
+
+def linked_duplicates(context, objects):
+    """Target objects that share their mesh with an earlier target: [(object, the target it
+    shares with)]. An attribute bake bakes only the first of each group."""
+    targets, _ = resolve_targets(context, objects, shared_meshes=True)
+    first, shared = {}, []
+    for obj in targets:
+        key = obj.data.name_full
+        if key in first:
+            shared.append((obj, first[key]))
+        else:
+            first[key] = obj
+    return shared
+
+
+def make_single_users(context, objects):
+    """Gives every linked duplicate among the targets its own copy of the mesh (Blender's
+    Make Single User), so that each is baked with its own light. Returns [(object, shared
+    mesh, copy)] for undo_single_users."""
+    made = []
+    for obj, _ in linked_duplicates(context, objects):
+        shared = obj.data
+        copy = shared.copy()
+        obj.data = copy
+        made.append((obj, shared, copy))
+    return made
+
+
+def undo_single_users(data, made):
+    """Puts the shared meshes back and deletes the copies (a bake that failed or was
+    cancelled leaves the scene as it was)."""
+    for obj, shared, copy in reversed(made):
+        try:
+            obj.data = shared
+            if copy.users == 0:
+                data.meshes.remove(copy)
+        except ReferenceError:  # the object or mesh was deleted meanwhile
+            pass

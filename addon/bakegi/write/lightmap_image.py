@@ -1,0 +1,65 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The lightmap image of a LIGHTMAP bake: the atlas written as an OpenEXR file by the core
+(atomically), loaded as the image "BakeGI_Lightmap_<scene>", and each target's tile placed
+on its object (custom properties material_hook.LIGHTMAP_*)."""
+
+import os
+
+from ..native import BakeGIError
+from .attributes import drop_lightmap, look_up_targets
+from .material_hook import ATTRIBUTE_NAME, LIGHTMAP_OFFSET, LIGHTMAP_SCALE, LIGHTMAP_WEIGHT
+
+
+def lightmap_image_name(scene_name):
+    return f"BakeGI_Lightmap_{scene_name}"
+
+
+def lightmap_file_name(scene_name):
+    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in scene_name) or "scene"
+    return f"BakeGI_Lightmap_{safe}.exr"
+
+
+def write_lightmap(data, exported, rgb, path, scene_name, full_float=False, blend_path=""):
+    """Writes the atlas of a LIGHTMAP bake to `path` (absolute; atomically, by the core),
+    loads it as the scene's lightmap image and places every target's tile on it. Objects
+    that had a tile in this scene's atlas from an earlier bake but are not in this one lose
+    it (the atlas was rewritten without them). Returns (image, [names of objects dropped])."""
+    import bpy
+
+    resolved = look_up_targets(data, exported.targets)
+    lightmaps = exported.lightmaps
+    folder = os.path.dirname(path)
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as error:
+        raise BakeGIError("BAKEGI_ERROR_IO", f"cannot create the lightmap folder {folder}: "
+                          f"{error.strerror}")
+    lightmaps.lightmaps.write_exr(0, rgb, path, padding=lightmaps.options.padding,
+                                  full_float=full_float)
+    name = lightmap_image_name(scene_name)
+    image = data.images.get(name)
+    stored_path = bpy.path.relpath(path) if blend_path else path
+    if image is None or image.source != "FILE":
+        image = data.images.load(path, check_existing=False)
+        image.name = name
+    image.filepath = stored_path
+    image.reload()
+    baked = {t.object_name for t, _, _ in resolved}
+    dropped = []
+    for obj in data.objects:
+        if obj.name not in baked and obj.get(LIGHTMAP_WEIGHT) is not None and \
+                obj.get("bakegi_lightmap_image") == name:
+            drop_lightmap(obj)
+            dropped.append(obj.name)
+    for t, obj, mesh in resolved:
+        su, sv, ou, ov = t.atlas_scale_offset
+        obj[LIGHTMAP_SCALE] = [float(su), float(sv), 1.0]
+        obj[LIGHTMAP_OFFSET] = [float(ou), float(ov), 0.0]
+        obj[LIGHTMAP_WEIGHT] = 1.0
+        obj["bakegi_lightmap_image"] = name
+        attribute = mesh.color_attributes.get(ATTRIBUTE_NAME)
+        if attribute is not None:
+            mesh.color_attributes.remove(attribute)
+            mesh.update()
+        obj.update_tag()
+    return image, dropped
