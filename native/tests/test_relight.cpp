@@ -85,8 +85,32 @@ TEST(Relight, MovedLightGivesExactlyTheFullBakeOfTheMovedScene) {
   std::string report(length + 1, '\0');
   ASSERT_EQ(bakegi_job_get_report(relit.get(), report.data(), report.size(), &length), BAKEGI_OK);
   EXPECT_NE(report.find("\"relight\": 1"), std::string::npos) << report;
+  // The same scene handle with new lights: the relight shares the bake's mesh storage.
+  EXPECT_NE(report.find("\"relight_shared_geometry\": 1"), std::string::npos) << report;
   // Relighting does not link again, so the report has no linking time.
   EXPECT_EQ(report.find("antiradiance_linking"), std::string::npos) << report;
+}
+
+// A scene built again with the same geometry (another handle: no shared storage) is compared
+// by value and relit all the same, to the same numbers.
+TEST(Relight, AnEqualSceneFromAnotherHandleIsComparedByValue) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(kPoints);
+  SettingsPtr settings = small_antiradiance_settings();
+  JobPtr first = bake(scene.get(), points.get(), settings.get());
+  result_of(first.get());
+  ScenePtr again = new_box_scene();
+  set_light(scene.get(), 0.3f, 0.6f, 0.8f, 1.0f);
+  set_light(again.get(), 0.3f, 0.6f, 0.8f, 1.0f);
+  JobPtr same_handle = relight(first.get(), scene.get());
+  JobPtr other_handle = relight(first.get(), again.get());
+  EXPECT_EQ(result_of(other_handle.get()), result_of(same_handle.get()));
+  size_t length = 0;
+  ASSERT_EQ(bakegi_job_get_report(other_handle.get(), nullptr, 0, &length), BAKEGI_OK);
+  std::string report(length + 1, '\0');
+  ASSERT_EQ(bakegi_job_get_report(other_handle.get(), report.data(), report.size(), &length),
+            BAKEGI_OK);
+  EXPECT_NE(report.find("\"relight_shared_geometry\": 0"), std::string::npos) << report;
 }
 
 TEST(Relight, DoublingTheLightDoublesTheIndirectLight) {

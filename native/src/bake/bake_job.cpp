@@ -317,6 +317,10 @@ std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
   auto stage_start = std::chrono::steady_clock::now();
   const Scene& previous_scene = *previous_->scene;
   const SceneDescription& before = previous_scene.description;
+  // A relight of the scene the previous bake copied (only its lights changed since) shares
+  // its mesh storage: the check below then compares pointers, not every vertex.
+  const bool shared_geometry = description_.meshes.shares_storage_with(before.meshes);
+  report.set_number("relight_shared_geometry", shared_geometry ? 1.0 : 0.0);
   if (description_.meshes != before.meshes || description_.materials != before.materials ||
       description_.textures != before.textures) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,

@@ -13,6 +13,7 @@
 #include "bakegi/bakegi.h"
 #include "scene/emission_cells.h"
 #include "scene/mesh_topology.h"
+#include "scene/shared_vector.h"
 
 namespace bakegi {
 
@@ -86,7 +87,7 @@ struct Light {
 struct SceneDescription {
   std::vector<Texture> textures;
   std::vector<Material> materials;
-  std::vector<Mesh> meshes;
+  SharedVector<Mesh> meshes;  // shared by copies of the description (copy on write)
   std::vector<Light> lights;
   glm::vec3 world_radiance{0.0f};
 };
