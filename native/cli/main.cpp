@@ -66,8 +66,8 @@ settings (passed to the core, which checks them against the method's schema):
   --sample-offset K   first sample index, to make a long bake in chunks
   --threads T         0 = all cores
   --max-bounces B     path length cap
-  --cache-dir D       meshless: save the precomputation in folder D and reuse it when the
-                      scene and settings are the same (setting cache_dir)
+  --cache-dir D       antiradiance, meshless: save the precomputation in folder D and reuse
+                      it when the scene and settings are the same (setting cache_dir)
   --set key=value     any other setting of the method ('bakegi settings METHOD' lists them)
 
 error = relative RMSE over bake points, luminance-weighted (Rec. 709):

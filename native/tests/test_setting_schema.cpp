@@ -75,7 +75,7 @@ TEST(SettingSchema, ReadsRememberDefaultsForTheReport) {
 
 // What a relight may change, per method: the lists the solvers stated before the schemas,
 // plus "samples" (only the path tracer a method hands a bake to reads it) and the execution
-// keys ("threads", and meshless' "cache_dir").
+// keys ("threads", and "cache_dir" of the methods with a precomputation cache).
 TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
   auto changeable = [](const std::string& method) {
     const SettingSchema& schema = method_schema(method);
@@ -85,7 +85,7 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
   };
   EXPECT_EQ(changeable("antiradiance"),
             sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
-                    "threads"}));
+                    "threads", "cache_dir"}));
   EXPECT_EQ(changeable("meshless"), sorted({"direct_samples", "sender_cutoff", "bounces",
                                             "cache_dir", "samples", "threads"}));
 }

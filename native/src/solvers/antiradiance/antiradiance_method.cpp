@@ -1,6 +1,6 @@
 // Antiradiance as a method: its registration and its settings. Lighting: what a relight may
 // change (relighting without relinking, §3.3: bins, hierarchy and links stay); the rest
-// shapes them.
+// shapes them and is part of the precomputation cache's key.
 #include "solvers/method_registry.h"
 #include "solvers/antiradiance/antiradiance_solver.h"
 
@@ -39,6 +39,11 @@ const std::vector<SettingSpec>& AntiradianceSolver::setting_specs() {
       number_setting("near_field_distance", 0.5, 0.0, 100.0, R::kShapes,
                      "\"near\" in units of the interpolation's support radius (about two patch "
                      "edges); blended over its last half"),
+      text_setting("cache_dir", "", {}, R::kExecution,
+                   "a folder (UTF-8, created if missing): the hierarchy and links are saved "
+                   "there and a later bake of the same geometry, materials and settings loads "
+                   "them; report \"antiradiance_cache\" says hit, miss, stale or off; empty: no "
+                   "cache"),
   };
   return specs;
 }

@@ -15,6 +15,7 @@
 
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
+#include "solvers/antiradiance/antiradiance_precomputation.h"
 #include "solvers/antiradiance/back_sides.h"
 #include "solvers/antiradiance/bin_spreading.h"
 #include "solvers/antiradiance/direct_initialization.h"
@@ -23,7 +24,10 @@
 #include "solvers/antiradiance/global_pass.h"
 #include "solvers/antiradiance/iteration.h"
 #include "solvers/antiradiance/link_refinement.h"
+#include "solvers/antiradiance/precomputation_cache.h"
 #include "solvers/antiradiance/radiance_tables.h"
+#include "solvers/precomputation_codec.h"
+#include "util/byte_stream.h"
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/report.h"
@@ -206,6 +210,29 @@ float typical_patch_edge(const std::vector<SurfaceSample>& samples) {
   return samples.empty() ? 0.0f : float(std::sqrt(2.0 * area / double(samples.size())));
 }
 
+// A cached precomputation matched this scene's key, so only a forged file fails this; it keeps
+// light() from indexing past the triangles (the locator, direct light) and from casting rays
+// from outside the scene (the file's loader checked that everything lies within the root's
+// bounds).
+void check_made_for(const ElementHierarchy& hierarchy, const Scene& scene) {
+  const size_t triangles = scene.triangles.size();
+  bool fits = true;
+  for (const Patch& patch : hierarchy.patches()) fits = fits && patch.triangle < triangles;
+  for (const MemberTriangle& member : hierarchy.members_all()) {
+    fits = fits && member.triangle < triangles;
+  }
+  // Room for the rounding of points interpolated on the triangles.
+  const glm::vec3 far = glm::max(glm::abs(scene.bounds_min), glm::abs(scene.bounds_max));
+  const glm::vec3 room(1e-3f * scene.extent() + 1e-5f * std::max({far.x, far.y, far.z}) + 1e-6f);
+  const Element& root = hierarchy.root();
+  fits = fits && glm::all(glm::greaterThanEqual(root.bounds_min, scene.bounds_min - room)) &&
+         glm::all(glm::lessThanEqual(root.bounds_max, scene.bounds_max + room));
+  if (!fits) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "antiradiance: the precomputation was made for another scene");
+  }
+}
+
 }  // namespace
 
 void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
@@ -234,24 +261,40 @@ void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> 
   if (rays.load() > 0) context.report().add_count("rays", rays.load());
 }
 
-// What relighting reuses: everything that depends on geometry, materials and settings only.
-struct AntiradiancePrecomputation : Precomputation {
-  AntiradiancePrecomputation(DirectionalBins bins_in, BinSpreading spreading_in)
-      : bins(std::move(bins_in)), spreading(std::move(spreading_in)) {}
-
-  DirectionalBins bins;
-  BinSpreading spreading;
-  ElementHierarchy hierarchy;
-  GlobalPass transport;
-  LinkingStatistics link_statistics;
-
-  size_t memory_bytes() const override {
-    return spreading.memory_bytes() + hierarchy.memory_bytes() + transport.memory_bytes();
+// The antiradiance precomputation in the job's cache (bake/precomputation_store.h): files
+// "antiradiance-<key>.bgcache" with magic 'A', the payload in precomputation_cache.h.
+class AntiradianceCacheCodec : public PrecomputationCodec {
+ public:
+  std::string name() const override { return "antiradiance"; }
+  char magic() const override { return 'A'; }
+  uint32_t version() const override { return antiradiance::kPrecomputationCacheVersion; }
+  // Patches and links follow the geometry and the patch size only; bake points are used
+  // nowhere before light() (the field is evaluated at whatever points it gets).
+  bool keyed_by_points(const Settings&) const override { return false; }
+  void encode(const Precomputation& precomputation, ByteWriter& payload) const override {
+    antiradiance::encode_precomputation(
+        dynamic_cast<const AntiradiancePrecomputation&>(precomputation), payload);
+  }
+  std::shared_ptr<const Precomputation> decode(ByteReader& payload,
+                                               const JobContext* job) const override {
+    return antiradiance::decode_precomputation(payload, job);
+  }
+  // light() reports the counts (elements, patches, links) from the precomputation, loaded or
+  // not; what precompute() alone reports is its warnings and its seconds.
+  void report_loaded(const Precomputation& precomputation, Report& report) const override {
+    const auto& loaded = dynamic_cast<const AntiradiancePrecomputation&>(precomputation);
+    for (const std::string& warning : loaded.warnings) report.warn(warning);
+    report.set_number("antiradiance_cache_precompute_seconds", loaded.seconds);
   }
 };
 
 void AntiradianceSolver::check_settings(const Settings& settings) const {
   (void)AntiradianceSettings::from(settings);
+}
+
+const PrecomputationCodec* AntiradianceSolver::codec() const {
+  static const AntiradianceCacheCodec codec;
+  return &codec;
 }
 
 std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const SolveInputs& inputs,
@@ -262,7 +305,8 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
   Report& report = context.report();
 
   context.set_stage("antiradiance: bins", 0.0, 0.02);
-  auto stage_start = std::chrono::steady_clock::now();
+  const auto precompute_start = std::chrono::steady_clock::now();
+  auto stage_start = precompute_start;
   DirectionalBins bins = DirectionalBins::from_bin_count(settings.bins);
   BinSpreading spreading(bins);
   auto system = std::make_shared<AntiradiancePrecomputation>(std::move(bins), std::move(spreading));
@@ -270,6 +314,11 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
   report.add_seconds("antiradiance_bins", seconds_since(stage_start));
   context.throw_if_cancelled();
   if (scene.triangles.empty()) return system;  // nothing to link; light() gives zero
+  // Kept with the precomputation too, so that a cache hit repeats them.
+  const auto warn = [&](const std::string& message) {
+    report.warn(message);
+    system->warnings.push_back(message);
+  };
 
   // What the job's holdings (ray tracer, ...) and the spreading tables leave of the budget.
   const uint64_t available = inputs.memory.remaining_after(system->spreading.memory_bytes());
@@ -309,8 +358,8 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
                       ", more than the budget of " + budget_text + " leaves; patch_size " +
                       metres(*fitting) + " (or 0 for automatic) would fit");
     }
-    report.warn("antiradiance: patches coarsened from " + metres(max_edge) + " to " +
-                metres(*fitting) + " to fit the memory budget of " + budget_text);
+    warn("antiradiance: patches coarsened from " + metres(max_edge) + " to " +
+         metres(*fitting) + " to fit the memory budget of " + budget_text);
     max_edge = *fitting;
   }
 
@@ -351,13 +400,13 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
                     what + (automatic ? "; raise the budget or lower \"bins\""
                                       : "; choose a larger patch_size (or 0 for automatic)"));
       }
-      report.warn(what + "; coarsened to " + metres(max_edge * 2.0f));
+      warn(what + "; coarsened to " + metres(max_edge * 2.0f));
       max_edge *= 2.0f;
     }
   }
   system->link_statistics = link_set.statistics;
   for (const std::string& warning : open_mesh_warnings(scene, hierarchy.back_side_count() > 0)) {
-    report.warn("antiradiance: " + warning);
+    warn("antiradiance: " + warning);
   }
   context.throw_if_cancelled();
 
@@ -369,6 +418,7 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
   report.add_seconds("antiradiance_linking", linking_seconds);
   // Grouping the links by receiver.
   report.add_seconds("antiradiance_tables", seconds_since(stage_start));
+  system->seconds = seconds_since(precompute_start);
   return system;
 }
 
@@ -385,6 +435,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(
   if (system.hierarchy.element_count() == 0) {
     return std::make_unique<AntiradianceField>(SurfaceInterpolation{});
   }
+  check_made_for(system.hierarchy, inputs.scene);
   Report& report = context.report();
   const ElementHierarchy& hierarchy = system.hierarchy;
   const DirectionalBins& bins = system.bins;

@@ -1,8 +1,11 @@
 // The Antiradiance solver ("antiradiance", Dachsbacher et al. 2007): indirect light without
-// visibility rays. solve() builds the whole solution (bins, element hierarchy, links, direct
-// light at the patches, iteration); relight() reuses the first three; the returned field only
+// visibility rays. precompute() builds bins, element hierarchy and links
+// (AntiradiancePrecomputation, antiradiance_precomputation.h); light() adds direct light at the
+// patches and the iteration, so a relight reuses the first three; the returned field only
 // interpolates the patches' indirect irradiance at the bake points (surface_interpolation.h), so
-// evaluation is cheap.
+// evaluation is cheap. With "cache_dir" set the job keeps the precomputation on disk
+// (codec(), precomputation_cache.h: hierarchy, links and their statistics; the bins are rebuilt)
+// and a later bake of the same geometry, materials and "shapes" settings loads it instead.
 //
 // Settings: setting_specs() (antiradiance_method.cpp; docs/settings.md), read through
 // the job's schema, so a bad value fails before any work.
@@ -54,6 +57,8 @@ class AntiradianceSolver : public Solver {
   std::unique_ptr<IndirectField> light(const SolveInputs& inputs,
                                        std::shared_ptr<const Precomputation> precomputation,
                                        JobContext& context) override;
+  // Hierarchy and links to and from a "cache_dir" (precomputation_cache.h).
+  const PrecomputationCodec* codec() const override;
 };
 
 }  // namespace bakegi

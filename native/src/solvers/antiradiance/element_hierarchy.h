@@ -188,6 +188,9 @@ class ElementHierarchy {
   size_t memory_bytes() const;
 
  private:
+  // The precomputation cache (precomputation_cache.cpp) writes and reads every member.
+  friend struct PrecomputationCacheAccess;
+
   std::vector<Element> elements_;
   std::vector<Patch> patches_;
   std::vector<MemberTriangle> members_;

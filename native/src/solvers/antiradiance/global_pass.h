@@ -46,6 +46,9 @@ class GlobalPass {
   size_t memory_bytes() const;
 
  private:
+  // The precomputation cache (precomputation_cache.cpp) writes and reads every member.
+  friend struct PrecomputationCacheAccess;
+
   std::vector<Link> links_;
   std::vector<uint32_t> receiver_offsets_;  // element_count_ + 1 entries into links_
   size_t element_count_ = 0;
