@@ -96,8 +96,8 @@ class CommandLine(common.SmallCornellCase):
         self.assertIn("lighting", listing)
 
     def test_relight_refuses_a_method_without_precomputation(self):
-        completed = self.run_cli("relight", self.scene, "--samples", "1", "--out",
-                                 os.path.join(self.work, "x.npy"), expect=2)
+        completed = self.run_cli("relight", self.scene, "--method", "pathtrace", "--samples", "1",
+                                 "--out", os.path.join(self.work, "x.npy"), expect=2)
         self.assertIn("cannot relight", completed.stderr)
 
     def test_converge_reaches_its_reference(self):
