@@ -16,6 +16,7 @@
 
 #include "bake/precomputation_store.h"
 #include "bake/solver_run.h"
+#include "cache_test_support.h"
 #include "capi_test_scene.h"
 #include "light_transport_fixtures.h"
 #include "lights/direct_light.h"
@@ -32,6 +33,11 @@ namespace bakegi {
 namespace {
 
 namespace fs = std::filesystem;
+using test::CacheFolder;
+using test::key_of;
+using test::read_bytes;
+using test::recompute_checksum;
+using test::write_bytes;
 
 // A closed room with a block and a point light (meshless_test_scenes.h).
 SceneDescription room(glm::vec3 light, glm::vec3 block_albedo = glm::vec3(0.3f, 0.6f, 0.3f)) {
@@ -40,18 +46,7 @@ SceneDescription room(glm::vec3 light, glm::vec3 block_albedo = glm::vec3(0.3f, 
 
 const glm::vec3 kLight(0.5f, 0.2f, 1.8f);
 
-BakePoints room_points() {
-  std::vector<glm::vec3> positions, normals;
-  for (int i = 0; i < 10; ++i) {
-    for (int j = 0; j < 10; ++j) {
-      positions.push_back(glm::vec3(-0.9f + 0.2f * i, -0.9f + 0.2f * j, 0.0f));
-      normals.push_back(glm::vec3(0, 0, 1));
-      positions.push_back(glm::vec3(-1.0f, -0.9f + 0.2f * i, 0.1f + 0.2f * j));
-      normals.push_back(glm::vec3(1, 0, 0));
-    }
-  }
-  return test::make_points(positions, normals);
-}
+using test::room_points;
 
 // Coarse and cheap (a cached bake runs several solves): what is tested is that a loaded
 // precomputation is the saved one, not its quality. About 250 patches, 48 bins.
@@ -65,32 +60,10 @@ Settings small_settings(const std::string& cache_dir) {
   return settings;
 }
 
-struct Bake {
-  std::vector<glm::vec3> values;
-  std::string report;  // JSON
-  std::vector<std::string> warnings;
+struct Bake : test::CachedBake {
   uint64_t links = 0;
   uint64_t patches = 0;
-
-  bool says(const std::string& key, const std::string& value) const {
-    return report.find("\"" + key + "\": \"" + value + "\"") != std::string::npos;
-  }
-  bool has(const std::string& key) const {
-    return report.find("\"" + key + "\"") != std::string::npos;
-  }
-  std::string cache_path() const {
-    const std::string key = "\"antiradiance_cache_path\": \"";
-    const size_t at = report.find(key);
-    if (at == std::string::npos) return "";
-    const size_t begin = at + key.size();
-    return report.substr(begin, report.find('"', begin) - begin);
-  }
-  bool warned(const std::string& part) const {
-    for (const std::string& w : warnings) {
-      if (w.find(part) != std::string::npos) return true;
-    }
-    return false;
-  }
+  std::string cache_path() const { return text_of("antiradiance_cache_path"); }
 };
 
 const PrecomputationCodec& codec() {
@@ -116,62 +89,6 @@ Bake bake(const SceneDescription& description, const BakePoints& points,
   result.links = context.report().count("antiradiance_links");
   result.patches = context.report().count("antiradiance_patches");
   return result;
-}
-
-// A fresh folder under the test temp directory, removed with everything in it at the end.
-class CacheFolder {
- public:
-  CacheFolder() {
-    static std::atomic<int> counter{0};
-    path_ = fs::path(::testing::TempDir()) /
-            ("bakegi_antiradiance_cache_" +
-             std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
-             std::to_string(counter++));
-    fs::remove_all(path_);
-  }
-  ~CacheFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string path() const { return path_.string(); }
-  size_t file_count() const {
-    size_t n = 0;
-    if (!fs::exists(path_)) return 0;
-    for (const auto& entry : fs::directory_iterator(path_)) n += entry.is_regular_file() ? 1 : 0;
-    return n;
-  }
-
- private:
-  fs::path path_;
-};
-
-std::vector<uint8_t> read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
-}
-
-void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-}
-
-CacheKey key_of(const std::vector<uint8_t>& file) {
-  CacheKey key;
-  for (int i = 0; i < 8; ++i) {
-    key.high |= uint64_t(file[16 + i]) << (8 * i);
-    key.low |= uint64_t(file[24 + i]) << (8 * i);
-  }
-  return key;
-}
-
-void recompute_checksum(std::vector<uint8_t>& file) {
-  const uint64_t checksum = fnv1a64(std::span(file).first(file.size() - 8));
-  for (int i = 0; i < 8; ++i) file[file.size() - 8 + i] = uint8_t(checksum >> (8 * i));
-}
-
-void expect_same_values(const Bake& a, const Bake& b) {
-  ASSERT_EQ(a.values.size(), b.values.size());
-  for (size_t i = 0; i < a.values.size(); ++i) EXPECT_EQ(a.values[i], b.values[i]) << "point " << i;
 }
 
 TEST(AntiradianceCache, SecondBakeLoadsTheFileAndGivesTheSameResult) {

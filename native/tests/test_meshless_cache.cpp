@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cache_test_support.h"
 #include "capi_test_scene.h"
 #include "lights/direct_light.h"
 #include "light_transport_fixtures.h"
@@ -34,6 +35,9 @@ namespace bakegi {
 namespace {
 
 namespace fs = std::filesystem;
+using test::CacheFolder;
+using test::read_bytes;
+using test::write_bytes;
 
 // A closed room with a block and a point light; bake points on the floor and one wall.
 SceneDescription room(glm::vec3 light, glm::vec3 block_albedo = glm::vec3(0.3f, 0.6f, 0.3f)) {
@@ -42,18 +46,7 @@ SceneDescription room(glm::vec3 light, glm::vec3 block_albedo = glm::vec3(0.3f, 
 
 const glm::vec3 kLight(0.5f, 0.2f, 1.8f);
 
-BakePoints room_points() {
-  std::vector<glm::vec3> positions, normals;
-  for (int i = 0; i < 10; ++i) {
-    for (int j = 0; j < 10; ++j) {
-      positions.push_back(glm::vec3(-0.9f + 0.2f * i, -0.9f + 0.2f * j, 0.0f));
-      normals.push_back(glm::vec3(0, 0, 1));
-      positions.push_back(glm::vec3(-1.0f, -0.9f + 0.2f * i, 0.1f + 0.2f * j));
-      normals.push_back(glm::vec3(1, 0, 0));
-    }
-  }
-  return test::make_points(positions, normals);
-}
+using test::room_points;
 
 // Coarse and cheap (a cached bake runs several solves): what is tested is that a loaded
 // precomputation is the saved one, not its quality.
@@ -67,29 +60,10 @@ Settings small_settings(const std::string& cache_dir) {
   return settings;
 }
 
-struct Bake {
-  std::vector<glm::vec3> values;
-  std::string report;  // JSON
-  std::vector<std::string> warnings;
+struct Bake : test::CachedBake {
   uint64_t refinement_rays = 0;
   uint64_t links = 0;
-
-  bool says(const std::string& key, const std::string& value) const {
-    return report.find("\"" + key + "\": \"" + value + "\"") != std::string::npos;
-  }
-  std::string cache_path() const {
-    const std::string key = "\"meshless_cache_path\": \"";
-    const size_t at = report.find(key);
-    if (at == std::string::npos) return "";
-    const size_t begin = at + key.size();
-    return report.substr(begin, report.find('"', begin) - begin);
-  }
-  bool warned(const std::string& part) const {
-    for (const std::string& w : warnings) {
-      if (w.find(part) != std::string::npos) return true;
-    }
-    return false;
-  }
+  std::string cache_path() const { return text_of("meshless_cache_path"); }
 };
 
 const PrecomputationCodec& codec() {
@@ -115,48 +89,6 @@ Bake bake(const SceneDescription& description, const BakePoints& points, const S
   result.refinement_rays = context.report().count("meshless_refinement_rays");
   result.links = context.report().count("meshless_links");
   return result;
-}
-
-// A fresh folder under the test temp directory, removed with everything in it at the end.
-class CacheFolder {
- public:
-  CacheFolder() {
-    static std::atomic<int> counter{0};
-    path_ = fs::path(::testing::TempDir()) /
-            ("bakegi_meshless_cache_" +
-             std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
-             std::to_string(counter++));
-    fs::remove_all(path_);
-  }
-  ~CacheFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string path() const { return path_.string(); }
-  size_t file_count() const {
-    size_t n = 0;
-    if (!fs::exists(path_)) return 0;
-    for (const auto& entry : fs::directory_iterator(path_)) n += entry.is_regular_file() ? 1 : 0;
-    return n;
-  }
-
- private:
-  fs::path path_;
-};
-
-std::vector<uint8_t> read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
-}
-
-void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-}
-
-void expect_same_values(const Bake& a, const Bake& b) {
-  ASSERT_EQ(a.values.size(), b.values.size());
-  for (size_t i = 0; i < a.values.size(); ++i) EXPECT_EQ(a.values[i], b.values[i]) << "point " << i;
 }
 
 TEST(MeshlessCache, SecondBakeLoadsTheFileAndGivesTheSameResult) {
@@ -295,13 +227,8 @@ TEST(MeshlessCache, HugeCountsWithAValidChecksumAreRefusedBeforeAllocating) {
   // size checks stand between the count (2^40 points, 32 TiB) and an allocation.
   std::vector<uint8_t> crafted = good;
   for (int i = 0; i < 8; ++i) crafted[count_at + i] = uint8_t((uint64_t(1) << 40) >> (8 * i));
-  const uint64_t checksum = fnv1a64(std::span(crafted).first(crafted.size() - 8));
-  for (int i = 0; i < 8; ++i) crafted[crafted.size() - 8 + i] = uint8_t(checksum >> (8 * i));
-  CacheKey key;
-  for (int i = 0; i < 8; ++i) {
-    key.high |= uint64_t(good[16 + i]) << (8 * i);
-    key.low |= uint64_t(good[24 + i]) << (8 * i);
-  }
+  test::recompute_checksum(crafted);
+  const CacheKey key = test::key_of(good);
   EXPECT_NO_THROW(decode_cache_file(codec(), good, key, "good"));
   try {
     decode_cache_file(codec(), crafted, key, "crafted");
@@ -325,11 +252,7 @@ TEST(MeshlessCache, ForgedBytesWithAValidChecksumNeverCrash) {
   const BakePoints points = room_points();
   const Bake fresh = bake(room(kLight), points, small_settings(folder.path()));
   const std::vector<uint8_t> good = read_bytes(fresh.cache_path());
-  CacheKey key;
-  for (int i = 0; i < 8; ++i) {
-    key.high |= uint64_t(good[16 + i]) << (8 * i);
-    key.low |= uint64_t(good[24 + i]) << (8 * i);
-  }
+  const CacheKey key = test::key_of(good);
   std::mt19937_64 random(7);
   int refused = 0;
   constexpr int kTrials = 100;
@@ -339,8 +262,7 @@ TEST(MeshlessCache, ForgedBytesWithAValidChecksumNeverCrash) {
     const size_t span = trial % 2 == 0 ? std::min<size_t>(2048, good.size() - 8) : good.size() - 8;
     const size_t at = random() % span;
     forged[at] ^= uint8_t(1 + random() % 255);
-    const uint64_t checksum = fnv1a64(std::span(forged).first(forged.size() - 8));
-    for (int i = 0; i < 8; ++i) forged[forged.size() - 8 + i] = uint8_t(checksum >> (8 * i));
+    test::recompute_checksum(forged);
     try {
       decode_cache_file(codec(), forged, key, "forged");
     } catch (const Error& e) {

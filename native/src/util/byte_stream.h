@@ -73,6 +73,20 @@ class ByteReader {
   [[noreturn]] void fail(const std::string& what) const {
     throw Error(BAKEGI_ERROR_BAD_FILE, name_ + ": " + what);
   }
+  // Opens a section that ByteWriter::begin_section wrote, refusing another tag or a size past
+  // the bytes left; returns where it ends, for close_section.
+  size_t open_section(uint32_t expected_tag, const char* name) {
+    const uint32_t tag = u32();
+    u32();
+    const uint64_t size = u64();
+    if (tag != expected_tag) fail(std::string("corrupt: expected the ") + name + " section");
+    need(size, 1, name);
+    return position() + size;
+  }
+  // Refuses a section whose contents did not end where its size said.
+  void close_section(size_t end, const char* name) const {
+    if (position() != end) fail(std::string("corrupt: the ") + name + " section's size");
+  }
   size_t left() const { return bytes_.size() - at_; }
   size_t position() const { return at_; }
   void need(uint64_t count, uint64_t element_bytes, const char* what) const {

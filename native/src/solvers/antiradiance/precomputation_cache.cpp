@@ -122,20 +122,6 @@ Statistics read_statistics(ByteReader& r) {
   return s;
 }
 
-// Opens a section of the expected tag; returns where it ends.
-size_t open_section(ByteReader& r, uint32_t expected, const char* name) {
-  const uint32_t tag = r.u32();
-  r.u32();
-  const uint64_t size = r.u64();
-  if (tag != expected) r.fail(std::string("corrupt: expected the ") + name + " section");
-  r.need(size, 1, name);
-  return r.position() + size;
-}
-
-void close_section(ByteReader& r, size_t end, const char* name) {
-  if (r.position() != end) r.fail(std::string("corrupt: the ") + name + " section's size");
-}
-
 }  // namespace
 
 // Friend of ElementHierarchy and GlobalPass: reads and writes their members.
@@ -215,13 +201,13 @@ struct PrecomputationCacheAccess {
   }
 
   static void read_hierarchy(ByteReader& r, ElementHierarchy& h) {
-    size_t end = open_section(r, kHierarchy, "hierarchy");
+    size_t end = r.open_section(kHierarchy, "hierarchy");
     h.max_edge_ = r.f32();
     h.surface_count_ = r.u32();
     const uint64_t merged = r.u64(), back_sides = r.u64();
-    close_section(r, end, "hierarchy");
+    r.close_section(end, "hierarchy");
 
-    end = open_section(r, kElements, "elements");
+    end = r.open_section(kElements, "elements");
     r.array(h.elements_, r.u64(), kElementBytes, "elements", [&] {
       Element e;
       e.center = r.vec3();
@@ -240,9 +226,9 @@ struct PrecomputationCacheAccess {
       e.is_patch = (packed >> 16) != 0;
       return e;
     });
-    close_section(r, end, "elements");
+    r.close_section(end, "elements");
 
-    end = open_section(r, kPatches, "patches");
+    end = r.open_section(kPatches, "patches");
     r.array(h.patches_, r.u64(), kPatchBytes, "patches", [&] {
       Patch p;
       for (glm::vec3& corner : p.corners) corner = r.vec3();
@@ -263,9 +249,9 @@ struct PrecomputationCacheAccess {
       p.member_count = r.u32();
       return p;
     });
-    close_section(r, end, "patches");
+    r.close_section(end, "patches");
 
-    end = open_section(r, kMembers, "members");
+    end = r.open_section(kMembers, "members");
     r.array(h.members_, r.u64(), kMemberBytes, "member triangles", [&] {
       MemberTriangle m;
       for (glm::vec3& corner : m.corners) corner = r.vec3();
@@ -274,7 +260,7 @@ struct PrecomputationCacheAccess {
       m.area = r.f32();
       return m;
     });
-    close_section(r, end, "members");
+    r.close_section(end, "members");
 
     check_hierarchy(r, h, merged, back_sides);
     h.merged_patch_count_ = size_t(merged);
@@ -416,13 +402,13 @@ struct PrecomputationCacheAccess {
   // follow from that), every index in range.
   static void read_transport(ByteReader& r, size_t element_count, const BinSpreading& spreading,
                              GlobalPass& pass) {
-    const size_t end = open_section(r, kLinks, "links");
+    const size_t end = r.open_section(kLinks, "links");
     const uint64_t elements = r.u64(), count = r.u64();
     if (elements != element_count) r.fail("corrupt: links for another hierarchy");
     if (count > UINT32_MAX) r.fail("corrupt: more than 2^32 links");
     if (element_count == 0) {
       if (count != 0) r.fail("corrupt: links without elements");
-      close_section(r, end, "links");
+      r.close_section(end, "links");
       return;  // as precompute() leaves an empty scene's
     }
     std::vector<uint32_t> offsets;
@@ -442,7 +428,7 @@ struct PrecomputationCacheAccess {
       link.form_factor = r.f32();
       return link;
     });
-    close_section(r, end, "links");
+    r.close_section(end, "links");
     for (uint32_t receiver = 0; receiver < element_count; ++receiver) {
       for (uint32_t l = offsets[receiver]; l < offsets[receiver + 1]; ++l) {
         Link& link = links[l];
@@ -471,9 +457,9 @@ void encode_precomputation(const AntiradiancePrecomputation& precomputation, Byt
 
 std::shared_ptr<AntiradiancePrecomputation> decode_precomputation(ByteReader& r,
                                                                   const JobContext* job) {
-  const size_t end = open_section(r, kStatistics, "statistics");
+  const size_t end = r.open_section(kStatistics, "statistics");
   Statistics statistics = read_statistics(r);
-  close_section(r, end, "statistics");
+  r.close_section(end, "statistics");
 
   // As precompute() makes them from the "bins" setting (from_bin_count picks this Nside).
   DirectionalBins bins(int(statistics.nside));

@@ -234,20 +234,6 @@ void read_operator(ByteReader& r, uint32_t expected_rows, uint32_t expected_colu
   }
 }
 
-// Opens a section of the expected tag; returns where it ends.
-size_t open_section(ByteReader& r, uint32_t expected, const char* name) {
-  const uint32_t tag = r.u32();
-  r.u32();
-  const uint64_t size = r.u64();
-  if (tag != expected) r.fail(std::string("corrupt: expected the ") + name + " section");
-  r.need(size, 1, name);
-  return r.position() + size;
-}
-
-void close_section(ByteReader& r, size_t end, const char* name) {
-  if (r.position() != end) r.fail(std::string("corrupt: the ") + name + " section's size");
-}
-
 }  // namespace
 
 void encode_precomputation(const MeshlessPrecomputation& precomputation, ByteWriter& w) {
@@ -259,12 +245,12 @@ void encode_precomputation(const MeshlessPrecomputation& precomputation, ByteWri
 }
 
 std::shared_ptr<MeshlessPrecomputation> decode_precomputation(ByteReader& r, const JobContext* job) {
-  size_t end = open_section(r, kStatistics, "statistics");
+  size_t end = r.open_section(kStatistics, "statistics");
   MeshlessStatistics statistics = read_statistics(r);
-  close_section(r, end, "statistics");
-  end = open_section(r, kPoints, "points");
+  r.close_section(end, "statistics");
+  end = r.open_section(kPoints, "points");
   std::vector<BasisPoint> points = read_points(r);
-  close_section(r, end, "points");
+  r.close_section(end, "points");
   if (points.empty()) r.fail("corrupt: no basis points");
   const uint32_t levels = points.back().level + 1;
   if (statistics.sender_levels < 1 || statistics.sender_levels > levels) {
@@ -289,17 +275,17 @@ std::shared_ptr<MeshlessPrecomputation> decode_precomputation(ByteReader& r, con
     if (e.status() != BAKEGI_ERROR_INVALID_ARGUMENT) throw;
     r.fail(std::string("corrupt: ") + e.what());
   }
-  end = open_section(r, kTransfer, "transfer");
+  end = r.open_section(kTransfer, "transfer");
   for (SparseOperator& channel : precomputation->transfer.channel) {
     read_operator(r, 3 * receiver_count, sender_count, channel);
   }
-  close_section(r, end, "transfer");
-  end = open_section(r, kSkyVisibility, "sky visibility");
+  r.close_section(end, "transfer");
+  end = r.open_section(kSkyVisibility, "sky visibility");
   precomputation->sender_sky_visibility = read_sky_visibility(r, sender_count);
-  close_section(r, end, "sky visibility");
-  end = open_section(r, kReceiverRelations, "receiver relations");
+  r.close_section(end, "sky visibility");
+  end = r.open_section(kReceiverRelations, "receiver relations");
   precomputation->receiver_relations = read_receiver_relations(r, precomputation->all);
-  close_section(r, end, "receiver relations");
+  r.close_section(end, "receiver relations");
   precomputation->statistics = std::move(statistics);
   return precomputation;
 }
