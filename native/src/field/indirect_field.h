@@ -1,5 +1,11 @@
 // What a solver returns: indirect light that can be evaluated at any (position, normal),
 // in the output convention (E_indirect / pi). Output never depends on which solver made it.
+//
+// One ownership rule for every field: it refers (by reference, or by pointer where optional)
+// to what the job keeps alive until the field has been evaluated (the Scene, the ray tracer,
+// the DirectLight; BakeJob::finish releases them after); it shares the precomputation
+// (shared_ptr to const, so a relight or a later job may keep it); and it owns what it
+// computed for this bake (irradiance per basis point or patch, interpolation tables).
 #pragma once
 
 #include <span>
