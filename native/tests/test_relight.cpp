@@ -31,6 +31,14 @@ std::vector<float> result_of(bakegi_job* job) {
   return rgb;
 }
 
+std::string report_of(const bakegi_job* job) {
+  size_t length = 0;
+  EXPECT_EQ(bakegi_job_get_report(job, nullptr, 0, &length), BAKEGI_OK);
+  std::string report(length + 1, '\0');
+  EXPECT_EQ(bakegi_job_get_report(job, report.data(), report.size(), &length), BAKEGI_OK);
+  return report;
+}
+
 JobPtr bake(const bakegi_scene* scene, const bakegi_points* points,
             const bakegi_settings* settings) {
   bakegi_job* job = nullptr;
@@ -80,10 +88,7 @@ TEST(Relight, MovedLightGivesExactlyTheFullBakeOfTheMovedScene) {
   // And the light did move: the floor below the old position is lit differently.
   EXPECT_GT(largest_relative_difference(after, before), 0.05);
 
-  size_t length = 0;
-  ASSERT_EQ(bakegi_job_get_report(relit.get(), nullptr, 0, &length), BAKEGI_OK);
-  std::string report(length + 1, '\0');
-  ASSERT_EQ(bakegi_job_get_report(relit.get(), report.data(), report.size(), &length), BAKEGI_OK);
+  const std::string report = report_of(relit.get());
   EXPECT_NE(report.find("\"relight\": 1"), std::string::npos) << report;
   // The same scene handle with new lights: the relight shares the bake's mesh storage.
   EXPECT_NE(report.find("\"relight_shared_geometry\": 1"), std::string::npos) << report;
@@ -105,11 +110,7 @@ TEST(Relight, AnEqualSceneFromAnotherHandleIsComparedByValue) {
   JobPtr same_handle = relight(first.get(), scene.get());
   JobPtr other_handle = relight(first.get(), again.get());
   EXPECT_EQ(result_of(other_handle.get()), result_of(same_handle.get()));
-  size_t length = 0;
-  ASSERT_EQ(bakegi_job_get_report(other_handle.get(), nullptr, 0, &length), BAKEGI_OK);
-  std::string report(length + 1, '\0');
-  ASSERT_EQ(bakegi_job_get_report(other_handle.get(), report.data(), report.size(), &length),
-            BAKEGI_OK);
+  const std::string report = report_of(other_handle.get());
   EXPECT_NE(report.find("\"relight_shared_geometry\": 0"), std::string::npos) << report;
 }
 
