@@ -32,6 +32,29 @@ class Scripting(common.SmallCornellCase):
         self.assertGreater(report["seconds"]["total"], 0.0)
         print("report:", {k: report[k] for k in ["seconds", "bake_points", "warnings"] + memory})
 
+    def test_corners_that_share_a_vertex_are_baked_once(self):
+        """Corners of one vertex with one normal are offered to the core as one point
+        (export/point_sharing.py), which bakes them once where no surface meets the mesh
+        there (a ray between them is free): far fewer points are evaluated than corners are
+        written, and on the back wall, which nothing inside the box touches, the corners of
+        every vertex carry one value."""
+        report = self.bakegi.bake(method="pathtrace", samples=4, seed=1, target="CORNER",
+                                  objects="VISIBLE")
+        corners = sum(len(self.objects[n].data.loops) for n in NAMES)
+        self.assertEqual(report["bake_points"], corners)
+        self.assertLess(report["evaluated_points"], corners / 2)
+        mesh = self.objects["BackWall"].data
+        colors = numpy.empty(len(mesh.loops) * 4, numpy.float32)
+        mesh.color_attributes[common.ATTRIBUTE].data.foreach_get("color", colors)
+        colors = colors.reshape(-1, 4)
+        loop_vertex = numpy.empty(len(mesh.loops), numpy.int32)
+        mesh.loops.foreach_get("vertex_index", loop_vertex)
+        first = {}
+        for corner, vertex in enumerate(loop_vertex):
+            first.setdefault(int(vertex), corner)
+        same = [numpy.array_equal(colors[c], colors[first[int(v)]]) for c, v in enumerate(loop_vertex)]
+        self.assertTrue(all(same), f"{same.count(False)} back wall corners differ from their vertex's first")
+
     def test_add_on_preferences_reach_the_bake(self):
         """Threads and the memory budget come from the add-on preferences, unless the call
         names them."""

@@ -135,6 +135,7 @@ _SIGNATURES = {
     "bakegi_points_destroy": (None, [_P]),
     "bakegi_points_count": (c_uint64, [_P]),
     "bakegi_points_get": (c_int, [_P, POINTER(c_float), POINTER(c_float), POINTER(c_uint32)]),
+    "bakegi_points_set_share_candidates": (c_int, [_P, POINTER(c_uint32), c_uint64]),
     "bakegi_points_set_display_probes": (c_int, [_P, POINTER(c_float), POINTER(c_float),
                                                  POINTER(c_uint32), POINTER(c_uint32),
                                                  POINTER(c_float), c_uint64]),
@@ -536,6 +537,15 @@ class Points(_Handle):
         _check(load_library().bakegi_points_get(self.handle, _fptr(p), _fptr(nn), _uptr(ids)),
                "bakegi_points_get")
         return p, nn, ids
+
+    def set_share_candidates(self, candidates):
+        """Per point, an earlier point (or itself) at the same place with the same normal
+        whose value it may share; the core checks each pair before it shares
+        (export/point_sharing.py)."""
+        c = _uints(candidates, "candidates")
+        _check(load_library().bakegi_points_set_share_candidates(self.handle, _uptr(c),
+                                                                 c.shape[0]),
+               "bakegi_points_set_share_candidates")
 
     def set_display_probes(self, positions, normals, object_ids, indices, weights):
         """Points inside faces where the job also estimates the error of what a viewer shows:

@@ -422,6 +422,49 @@ TEST(SceneFile, Version3LightsHaveNoFlags) {
             uint32_t(BAKEGI_LIGHT_SPOT_WITHOUT_COSINE));
 }
 
+TEST(SceneFile, ShareCandidatesRoundTripAndVersion4HasNone) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(4);
+  const std::vector<uint32_t> candidates = {0, 0, 2, 2};
+  ASSERT_EQ(bakegi_points_set_share_candidates(points.get(), candidates.data(), 4), BAKEGI_OK);
+  const SceneFile v5 = decode_scene_file(encode_scene_file(scene->description, &points->points),
+                                         "v5");
+  ASSERT_TRUE(v5.points);
+  EXPECT_EQ(v5.points->share_candidates, candidates);
+
+  // A version 4 file: the points section ends after the object ids (no candidate count).
+  points->points.share_candidates.clear();
+  const std::vector<uint8_t> current = encode_scene_file(scene->description, &points->points);
+  auto get_u64 = [&](size_t at) {
+    uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);
+    return value;
+  };
+  size_t at = 24;  // textures, materials, meshes, lights, world, then the points
+  for (int section = 0; section < 5; ++section) at += 16 + size_t(get_u64(at + 8));
+  const uint64_t points_bytes = get_u64(at + 8);
+  ASSERT_EQ(at + 16 + points_bytes + 8, current.size());
+  ASSERT_EQ(get_u64(current.size() - 16), 0u) << "the candidate count ends the section";
+  std::vector<uint8_t> v4(current.begin(), current.end() - 16);
+  v4.resize(v4.size() + 8);  // the hash
+  auto put_u64 = [&](size_t where, uint64_t value) {
+    for (int i = 0; i < 8; ++i) v4[where + i] = uint8_t(value >> (8 * i));
+  };
+  v4[8] = 4;
+  put_u64(at + 8, points_bytes - 8);
+  put_u64(16, v4.size() - 24 - 8);
+  reseal(v4);
+  const SceneFile read = decode_scene_file(v4, "v4");
+  ASSERT_TRUE(read.points);
+  EXPECT_EQ(read.points->positions, points->points.positions);
+  EXPECT_TRUE(read.points->share_candidates.empty());
+
+  // Candidates that break the rules are refused when read, like any invalid content.
+  points->points.share_candidates = {0, 3, 2, 2};
+  EXPECT_THROW(decode_scene_file(encode_scene_file(scene->description, &points->points), "bad"),
+               Error);
+}
+
 TEST(SceneFile, MissingFilesAndForeignFiles) {
   bakegi_scene* read_scene = nullptr;
   const std::string missing = temp_path("does_not_exist.bgs");

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import point_sharing
 from .mesh_arrays import (check_finite, corner_normals, get_array, matrix_array,
                           normals_to_world, positions_to_world)
 
@@ -132,10 +133,11 @@ def repair_normals(normals, fallback, name, warnings):
     return repaired
 
 
-def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0):
-    """World-space (positions, normals, display probes or None) of one target's bake points
-    on its original mesh's domain, and `probe_count` display probes inside its faces
-    (positions and normals in world space, bake point indices within the target)."""
+def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0, first_index=0):
+    """World-space (positions, normals, display probes or None, share candidates) of one
+    target's bake points on its original mesh's domain, and `probe_count` display probes
+    inside its faces (positions and normals in world space, bake point indices within the
+    target). The target's points are numbered from first_index (point_sharing.py)."""
     original = obj.data
     obj_eval = obj.evaluated_get(depsgraph)
     matrix = matrix_array(obj_eval.matrix_world)
@@ -167,6 +169,7 @@ def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0):
             fallback = np.zeros((len(vertices), 3), np.float64)
             np.add.at(fallback, loop_vertex, face_normals[loop_face])
         normals = repair_normals(normals, fallback, obj.name, warnings)
+        candidates = point_sharing.share_candidates(positions, normals, first_index)
         positions = nudge_into_faces(positions, inward)
         probes = _display_probes(source, domain, normals, probe_count,
                                  np.random.default_rng(seed)) if probe_count else None
@@ -176,7 +179,8 @@ def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0):
     if probes is not None:
         probes.positions = positions_to_world(matrix, probes.positions)
         probes.normals = normals_to_world(matrix, probes.normals)
-    return positions_to_world(matrix, positions), normals_to_world(matrix, normals), probes
+    return (positions_to_world(matrix, positions), normals_to_world(matrix, normals), probes,
+            candidates)
 
 
 def mesh_facts(mesh):

@@ -418,12 +418,14 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             return _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
                              exported_lightmaps)
 
-        positions, normals, ids, bake_targets, probes = [], [], [], [], []
+        positions, normals, ids, bake_targets, probes, candidates = [], [], [], [], [], []
         offset = 0
         per_object = display_probes_per_object(len(targets)) if display_probes else 0
         for index, obj in enumerate(targets):
-            p, n, object_probes = target_points(obj, depsgraph, target, warnings, per_object,
-                                                seed=index)
+            p, n, object_probes, shares = target_points(obj, depsgraph, target, warnings,
+                                                        per_object, seed=index,
+                                                        first_index=offset)
+            candidates.append(shares)
             positions.append(p)
             normals.append(n)
             ids.append(np.full(len(p), index, np.uint32))
@@ -433,6 +435,7 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             offset += len(p)
         points = native.Points(np.concatenate(positions), np.concatenate(normals),
                                np.concatenate(ids))
+        points.set_share_candidates(np.concatenate(candidates))
         if probes:
             _set_display_probes(points, probes)
     except BaseException:

@@ -12,7 +12,12 @@ def summary(report):
     used = report.get("method_used")
     if used and used != method:  # the core handed the bake on (setting "fallback")
         method = f"{method} (baked by {used}: see the warnings)"
-    return (f"{method}: {report.get('bake_points', 0):,} points in "
+    points = report.get("bake_points", 0)
+    evaluated = report.get("evaluated_points")
+    # Corners of one vertex in one light are baked once (export/point_sharing.py).
+    shared = (f" ({evaluated:,} distinct)" if isinstance(evaluated, int) and
+              isinstance(points, int) and evaluated < points else "")
+    return (f"{method}: {points:,} points{shared} in "
             f"{seconds:.2f} s{rays_text}{_meshless_summary(report)}")
 
 

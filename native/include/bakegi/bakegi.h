@@ -219,6 +219,15 @@ BAKEGI_API uint64_t bakegi_points_count(const bakegi_points* points);
 /* Copies the points out (any output pointer may be NULL). */
 BAKEGI_API bakegi_status bakegi_points_get(const bakegi_points* points, float* positions,
                                            float* normals, uint32_t* object_ids);
+/* Optional: points that may share one value. candidates[i] is an earlier point (or i
+ * itself) at the same place with the same normal, e.g. another corner of the same vertex; a
+ * job bakes such a group once if a ray between the two points (each offset along its
+ * normal) is unblocked and the normals agree, so a surface meeting the mesh at that place
+ * keeps the points apart. count must equal the number of points; each candidate must be
+ * <= its index and name a point that is its own candidate. Stored in scene files. */
+BAKEGI_API bakegi_status bakegi_points_set_share_candidates(bakegi_points* points,
+                                                           const uint32_t* candidates,
+                                                           uint64_t count);
 /* Optional "display probes": points inside the targets' faces where a job also estimates the
  * error of what a viewer shows between bake points (see "error_probes" below). The value
  * shown at probe k is sum_j weights[4k+j] * result[indices[4k+j]], j < 4 (the barycentric

@@ -1,6 +1,8 @@
 // bakegi_points_*: bake points enter the core here, checked and with unit normals.
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "api/api_guard.h"
 #include "api/handles.h"
@@ -93,6 +95,22 @@ bakegi_status bakegi_points_set_display_probes(bakegi_points* points, const floa
     }
     bakegi::check_error_probes(probes, points->points.size());
     points->display_probes = std::move(probes);
+  });
+}
+
+bakegi_status bakegi_points_set_share_candidates(bakegi_points* points,
+                                                 const uint32_t* candidates, uint64_t count) {
+  return guarded(__func__, [&] {
+    require(points, "points");
+    if (count > 0) require(candidates, "candidates");
+    if (count != points->points.size()) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "count " + std::to_string(count) + " differs from the " +
+                      std::to_string(points->points.size()) + " bake points");
+    }
+    std::vector<uint32_t> given(candidates, candidates + count);
+    bakegi::check_share_candidates(given, given.size());
+    points->points.share_candidates = std::move(given);
   });
 }
 

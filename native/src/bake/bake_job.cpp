@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "bake/error_estimate.h"
+#include "bake/point_sharing.h"
 #include "bake/solver_run.h"
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
@@ -205,8 +206,18 @@ void BakeJob::execute() {
     const bool estimate = wants_error_estimate();
     context_.set_stage("evaluating", context_.progress(), estimate ? 0.95 : 1.0);
     const auto stage_start = std::chrono::steady_clock::now();
-    results_.assign(points_.size(), glm::vec3(0.0f));
-    field->evaluate(points_, results_, context_);
+    const SharedPoints shared = share_points(points_, *tracer_, direct_->ray_epsilon());
+    if (shared.distinct_index.empty()) {
+      results_.assign(points_.size(), glm::vec3(0.0f));
+      field->evaluate(points_, results_, context_);
+    } else {
+      // Corners of one vertex in one light are evaluated once (bake/point_sharing.h).
+      std::vector<glm::vec3> distinct(shared.distinct.size(), glm::vec3(0.0f));
+      field->evaluate(shared.distinct, distinct, context_);
+      spread_shared_values(shared, distinct, results_);
+    }
+    report.add_count("evaluated_points",
+                     shared.distinct_index.empty() ? points_.size() : shared.distinct.size());
     context_.throw_if_cancelled();
     for (size_t i = 0; i < results_.size(); ++i) {
       const glm::vec3& v = results_[i];

@@ -13,6 +13,9 @@ struct BakePoints {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // unit length (normalized on input)
   std::vector<uint32_t> object_ids;
+  // Empty, or per point an earlier point (or itself) that the exporter says lies at the same
+  // place with the same normal, whose value it may share (bake/point_sharing.h checks).
+  std::vector<uint32_t> share_candidates;
   size_t size() const { return positions.size(); }
 };
 

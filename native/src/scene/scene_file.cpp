@@ -96,6 +96,8 @@ void write_points(Writer& w, const BakePoints& points) {
   for (const glm::vec3& p : points.positions) w.vec3(p);
   for (const glm::vec3& n : points.normals) w.vec3(n);
   for (uint32_t id : points.object_ids) w.u32(id);
+  w.u64(points.share_candidates.size());
+  for (uint32_t c : points.share_candidates) w.u32(c);
   w.end_section(at);
 }
 
@@ -190,13 +192,19 @@ void read_lights(Reader& r, SceneDescription& scene, uint32_t version) {
   });
 }
 
-BakePoints read_points(Reader& r) {
+BakePoints read_points(Reader& r, uint32_t version) {
   BakePoints points;
   const uint64_t count = r.u64();
   r.need(count, 28, "bake points");
   r.array(points.positions, count, 12, "point positions", [&] { return r.vec3(); });
   r.array(points.normals, count, 12, "point normals", [&] { return r.vec3(); });
   r.array(points.object_ids, count, 4, "point object ids", [&] { return r.u32(); });
+  if (version >= 5) {
+    const uint64_t candidates = r.u64();
+    r.need(candidates, 4, "share candidates");
+    r.array(points.share_candidates, candidates, 4, "share candidates",
+            [&] { return r.u32(); });
+  }
   return points;
 }
 
@@ -247,7 +255,7 @@ SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& n
     if (expected == kMeshes) read_meshes(r, file.scene);
     if (expected == kLights) read_lights(r, file.scene, version);
     if (expected == kWorld) file.scene.world_radiance = r.vec3();
-    if (expected == kPoints) file.points = read_points(r);
+    if (expected == kPoints) file.points = read_points(r, version);
     if (r.position() != end) fail("section size does not match its contents");
   }
   if (r.left() != 0) fail("unexpected bytes after the last section");

@@ -531,6 +531,27 @@ void check_bake_points(const BakePoints& points) {
                   name + ": normal " + vec(points.normals[i]) + " is not unit length");
     }
   }
+  check_share_candidates(points.share_candidates, count);
+}
+
+void check_share_candidates(std::span<const uint32_t> candidates, size_t count) {
+  if (candidates.empty()) return;
+  if (candidates.size() != count) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "share candidates: " + std::to_string(candidates.size()) + " for " +
+                    std::to_string(count) + " bake points");
+  }
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t c = candidates[i];
+    // Earlier points only, and each group's first point names itself: one pass then finds
+    // every group, and no chain or cycle can form.
+    if (c > i || candidates[c] != c) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "share candidates: bake point " + std::to_string(i) + " names " +
+                      std::to_string(c) +
+                      (c > i ? ", a later point" : ", which names another point itself"));
+    }
+  }
 }
 
 }  // namespace bakegi

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <string>
 
 #include "scene/scene.h"
@@ -65,5 +67,8 @@ struct BakePoints;
 // normals (points are normalized when they enter the core, see api/). Throws
 // Error(INVALID_ARGUMENT) naming the point.
 void check_bake_points(const BakePoints& points);
+// Share candidates (BakePoints::share_candidates): empty, or one per point, each naming
+// itself or an earlier point that names itself.
+void check_share_candidates(std::span<const uint32_t> candidates, size_t count);
 
 }  // namespace bakegi
