@@ -450,7 +450,7 @@ TEST(AntiradianceGlossyDirect, IrradianceTermsSumToTheIrradianceSampleBitForBit)
   for (int i = 0; i < 5; ++i) {
     const SurfacePoint x{glm::vec3(-0.8f + 0.4f * i, 0.1f * i, 0.0f), {0, 0, 1}, {0, 0, 1}};
     for (uint64_t s = 0; s < 64; ++s) {
-      Pcg32 a = sample_stream(3, uint64_t(i), s), b = a;
+      RandomStream a = sample_stream(3, uint64_t(i), s), b = a;
       uint64_t rays_a = 0, rays_b = 0;
       const glm::vec3 e = direct.irradiance_sample(x, a, rays_a);
       glm::vec3 sum(0.0f);

@@ -121,7 +121,7 @@ std::vector<ProbeRecord> trace_probes(const DirectLight& direct, const ErrorProb
             context.throw_if_cancelled();
             const int64_t last = std::min(samples, first + kSamplesPerCheck);
             for (int64_t s = first; s < last; ++s) {
-              Pcg32 rng = sample_stream(seed, first_index + i, uint64_t(s));
+              RandomStream rng = sample_stream(seed, first_index + i, uint64_t(s));
               const glm::vec3 value =
                   sample_indirect(direct, x, rng, settings.max_bounces, local_rays);
               if (!(std::isfinite(value.x) && std::isfinite(value.y) && std::isfinite(value.z))) {

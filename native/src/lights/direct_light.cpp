@@ -45,7 +45,8 @@ DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
 }
 
 template <typename Visit>
-void DirectLight::for_each_light_sample(const SurfacePoint& x, Pcg32& rng, Visit&& visit) const {
+void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng,
+                                        Visit&& visit) const {
   LightSample s;
   for (const PointLight& light : point_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
@@ -81,8 +82,8 @@ bool DirectLight::unoccluded(const SurfacePoint& x, const LightSample& s, uint64
 }
 
 template <typename Visit>
-glm::vec3 DirectLight::light_sample_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
-                                               Visit&& visit) const {
+glm::vec3 DirectLight::light_sample_irradiance(const SurfacePoint& x, RandomStream& rng,
+                                               uint64_t& rays, Visit&& visit) const {
   glm::vec3 irradiance(0.0f);
   for_each_light_sample(x, rng, [&](const LightSample& s) {
     const float cos_receiver = glm::dot(x.shading_normal, s.direction);
@@ -96,12 +97,13 @@ glm::vec3 DirectLight::light_sample_irradiance(const SurfacePoint& x, Pcg32& rng
   return irradiance;
 }
 
-glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const {
+glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, RandomStream& rng,
+                                     uint64_t& rays) const {
   return light_sample_irradiance(x, rng, rays, [](const glm::vec3&, const glm::vec3&) {});
 }
 
-glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf, Pcg32& rng,
-                                     uint64_t& rays) const {
+glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf,
+                                     RandomStream& rng, uint64_t& rays) const {
   glm::vec3 radiance(0.0f);
   for_each_light_sample(x, rng, [&](const LightSample& s) {
     if (glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
@@ -157,8 +159,9 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
   return world == World::kIncluded ? radiance + world_radiance_ : radiance;
 }
 
-glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
-                                             glm::vec3& direction, World world) const {
+glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, RandomStream& rng,
+                                             uint64_t& rays, glm::vec3& direction,
+                                             World world) const {
   const float u1 = rng.next_float(), u2 = rng.next_float();
   const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
   direction = Frame(x.shading_normal).to_world(local);
@@ -173,14 +176,15 @@ glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, 
   return kPi * emission_along(x.position, direction, hit, bsdf_pdf, world);
 }
 
-glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
-                                         World world) const {
+glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, RandomStream& rng,
+                                         uint64_t& rays, World world) const {
   const glm::vec3 irradiance = sample_lights(x, rng, rays);
   glm::vec3 direction;
   return irradiance + cosine_ray_irradiance(x, rng, rays, direction, world);
 }
 
-glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, RandomStream& rng,
+                                               uint64_t& rays,
                                                const IrradianceTermVisitor& visit) const {
   // irradiance_sample term by term, in the same order.
   const glm::vec3 irradiance = light_sample_irradiance(x, rng, rays, visit);

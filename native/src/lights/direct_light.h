@@ -28,7 +28,7 @@
 
 namespace bakegi {
 
-class Pcg32;
+class RandomStream;
 
 class DirectLight {
  public:
@@ -43,12 +43,12 @@ class DirectLight {
   // Light-sampling estimate of the direct irradiance E (W/m^2) at x, each lamp's sample
   // weighted against cosine-weighted BSDF sampling (delta lights get weight 1). Counts the
   // shadow rays into `rays`.
-  glm::vec3 sample_lights(const SurfacePoint& x, Pcg32& rng, uint64_t& rays) const;
+  glm::vec3 sample_lights(const SurfacePoint& x, RandomStream& rng, uint64_t& rays) const;
 
   // The same light samples for a general BSDF (glossy materials): the light-sampling
   // estimate of the radiance `bsdf` reflects (Σ contribution · f cos), each sample weighted
   // against the BSDF's own sampling density. Consumes the same random numbers as above.
-  glm::vec3 sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf, Pcg32& rng,
+  glm::vec3 sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf, RandomStream& rng,
                           uint64_t& rays) const;
 
   // BSDF-sampling counterpart: the MIS-weighted radiance arriving at the surface point
@@ -64,7 +64,7 @@ class DirectLight {
   enum class World { kIncluded, kExcluded };
 
   // One sample of the direct irradiance E at x: sample_lights plus one cosine-weighted ray.
-  glm::vec3 irradiance_sample(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+  glm::vec3 irradiance_sample(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
                               World world = World::kIncluded) const;
 
   // Receives one term of an irradiance sample: the unit direction from x towards where the
@@ -76,7 +76,7 @@ class DirectLight {
   // returned sum is bit-identical to irradiance_sample's; every non-zero term (each unoccluded
   // lamp / emissive-triangle sample, then the cosine-weighted ray's pick-up of emission and
   // the world) is also handed to `visit`.
-  glm::vec3 irradiance_sample_terms(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+  glm::vec3 irradiance_sample_terms(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
                                     const IrradianceTermVisitor& visit) const;
 
   const Scene& scene() const { return scene_; }
@@ -87,10 +87,10 @@ class DirectLight {
  private:
   // Calls visit(sample) for one sample of every lamp and one of the emissive triangles.
   template <typename Visit>
-  void for_each_light_sample(const SurfacePoint& x, Pcg32& rng, Visit&& visit) const;
+  void for_each_light_sample(const SurfacePoint& x, RandomStream& rng, Visit&& visit) const;
   // The BSDF-sampling half of irradiance_sample: one cosine-weighted ray (its direction into
   // `direction`) and π times the MIS-weighted emission it picks up; 0 below the surface.
-  glm::vec3 cosine_ray_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+  glm::vec3 cosine_ray_irradiance(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
                                   glm::vec3& direction, World world = World::kIncluded) const;
   // emission_along, with or without the world on a miss.
   glm::vec3 emission_along(const glm::vec3& position, const glm::vec3& direction, const Hit& hit,
@@ -98,7 +98,7 @@ class DirectLight {
   // The light-sampling half of the irradiance: Σ MIS-weighted unoccluded samples, each
   // term also handed to visit(direction, term).
   template <typename Visit>
-  glm::vec3 light_sample_irradiance(const SurfacePoint& x, Pcg32& rng, uint64_t& rays,
+  glm::vec3 light_sample_irradiance(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
                                     Visit&& visit) const;
   // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
   bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;

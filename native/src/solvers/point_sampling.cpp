@@ -68,8 +68,8 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
             context.throw_if_cancelled();
             const int64_t last = std::min(sampling.samples, first + kSamplesPerCheck);
             for (int64_t s = first; s < last; ++s) {
-              Pcg32 rng =
-                  sample_stream(uint64_t(sampling.seed), i, uint64_t(sampling.sample_offset + s));
+              RandomStream rng = sobol_sample_stream(uint64_t(sampling.seed), i,
+                                                     uint64_t(sampling.sample_offset + s));
               const glm::vec3 value = estimator(x, rng, rays);
               // A non-finite sample would poison the point; drop it and say so in the
               // report.

@@ -1,8 +1,10 @@
 // The Monte Carlo loop shared by the sampling solvers: for every bake point, average a
 // one-sample estimator over samples [offset, offset + count), each sample with its own
 // random stream (util/random.h), so results are bit-identical for any thread count and
-// chunks of samples average to one run. Parallel over blocks of points with TBB; checks
-// cancel and reports progress every few samples; counts rays into the report.
+// chunks of samples average to one run. The streams begin with Owen-scrambled Sobol' points
+// (sobol_sample_stream): the first dimensions of a point's samples are stratified together.
+// Parallel over blocks of points with TBB; checks cancel and reports progress every few
+// samples; counts rays into the report.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +19,7 @@
 namespace bakegi {
 
 class JobContext;
-class Pcg32;
+class RandomStream;
 class Settings;
 
 struct SampleSettings {
@@ -31,7 +33,7 @@ struct SampleSettings {
 
 // One sample of a quantity at a surface point; adds the rays it traced to `rays`.
 using PointSampleEstimator =
-    std::function<glm::vec3(const SurfacePoint& point, Pcg32& rng, uint64_t& rays)>;
+    std::function<glm::vec3(const SurfacePoint& point, RandomStream& rng, uint64_t& rays)>;
 
 void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
                         const SampleSettings& sampling, const PointSampleEstimator& estimator,

@@ -113,7 +113,7 @@ bool is_finite(const glm::vec3& v) {
 // not dark for it.
 SurfacePoint sample_point(const Scene& scene, const ElementHierarchy& hierarchy,
                           const Patch& patch, const SurfacePoint& center, int64_t s,
-                          int64_t samples, float area, Pcg32& rng) {
+                          int64_t samples, float area, RandomStream& rng) {
   if (patch.member_count == 0) return center;
   const std::span<const MemberTriangle> members = hierarchy.members(patch);
   const float target = (float(s) + rng.next_float()) / float(samples) * area;
@@ -204,7 +204,7 @@ DirectLightAtPatches direct_light_at_patches(const ElementHierarchy& hierarchy,
             if (glossy[p] == nullptr) {
               // The same loop as direct_irradiance_at_patches.
               for (int64_t s = 0; s < samples; ++s) {
-                Pcg32 rng = sample_stream(seed, p, uint64_t(s));
+                RandomStream rng = sample_stream(seed, p, uint64_t(s));
                 const SurfacePoint xs = sample_point(direct.scene(), hierarchy, patch, x, s,
                                                      samples, elements[patch.element].area, rng);
                 const glm::vec3 value = direct.irradiance_sample(xs, rng, rays);
@@ -217,7 +217,7 @@ DirectLightAtPatches direct_light_at_patches(const ElementHierarchy& hierarchy,
             per_bin.assign(size_t(m), glm::dvec3(0.0));
             glm::dvec3 reflectable(0.0);
             for (int64_t s = 0; s < samples; ++s) {
-              Pcg32 rng = sample_stream(seed, p, uint64_t(s));
+              RandomStream rng = sample_stream(seed, p, uint64_t(s));
               terms.clear();
               const SurfacePoint xs = sample_point(direct.scene(), hierarchy, patch, x, s,
                                                    samples, elements[patch.element].area, rng);
@@ -279,7 +279,7 @@ std::vector<glm::vec3> direct_irradiance_at_patches(const ElementHierarchy& hier
           const SurfacePoint x{elements[patch.element].center, patch.shading_normal, patch.normal};
           glm::dvec3 sum(0.0);
           for (int64_t s = 0; s < samples; ++s) {
-            Pcg32 rng = sample_stream(seed, p, uint64_t(s));
+            RandomStream rng = sample_stream(seed, p, uint64_t(s));
             const SurfacePoint xs = sample_point(direct.scene(), hierarchy, patch, x, s, samples,
                                                  elements[patch.element].area, rng);
             const glm::vec3 value = direct.irradiance_sample(xs, rng, rays);

@@ -46,7 +46,7 @@ glm::vec3 NearFieldGather::evaluate(const glm::vec3& position, const glm::vec3& 
     }
     if (!(nearest < settings_.far)) return splat;
   }
-  Pcg32 rng = sample_stream(settings_.seed, point, 0);
+  RandomStream rng = sample_stream(settings_.seed, point, 0);
   glm::dvec3 sum(0.0);
   float nearest = std::numeric_limits<float>::infinity();
   uint32_t unseen = 0;  // rays that hit a face from behind where it has no patch

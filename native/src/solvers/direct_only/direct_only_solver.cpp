@@ -13,7 +13,7 @@ void DirectLightField::evaluate(const BakePoints& points, std::span<glm::vec3> o
                                 JobContext& context) const {
   estimate_at_points(
       points, out, settings_,
-      [&](const SurfacePoint& x, Pcg32& rng, uint64_t& rays) {
+      [&](const SurfacePoint& x, RandomStream& rng, uint64_t& rays) {
         return direct_.irradiance_sample(x, rng, rays) * kInvPi;
       },
       context);

@@ -46,7 +46,7 @@ uint64_t gather_links(const Scene& scene, const RayTracer& tracer, const BasisHi
   const uint32_t stratified = side * side;
   const float ray_weight = 2.0f * kPi / static_cast<float>(rays);
   const Frame frame(normal);
-  Pcg32 rng = sample_stream(settings.seed, receiver, 0);
+  RandomStream rng = sample_stream(settings.seed, receiver, 0);
   const glm::vec3 origin = position + normal * settings.ray_epsilon;
   const RayTracer* visibility = settings.visibility ? &tracer : nullptr;
   std::vector<BasisValue> candidates;

@@ -64,7 +64,7 @@ ImportanceParticles::ImportanceParticles(const Scene& scene, const RayTracer& tr
   }
 }
 
-ImportanceParticles::Start ImportanceParticles::start(Pcg32& random) const {
+ImportanceParticles::Start ImportanceParticles::start(RandomStream& random) const {
   if (from_viewpoint_) {
     const float u1 = random.next_float(), u2 = random.next_float();
     return {viewpoint_, uniform_sphere(u1, u2)};
@@ -79,7 +79,7 @@ ImportanceParticles::Start ImportanceParticles::start(Pcg32& random) const {
 
 void ImportanceParticles::trace(uint64_t particle, std::vector<Candidate>& out,
                                 uint64_t& rays) const {
-  Pcg32 random = sample_stream(settings_.seed, particle, 0);
+  RandomStream random = sample_stream(settings_.seed, particle, 0);
   Start ray = start(random);
   uint32_t escapes = 0;
   for (uint32_t bounce = 0; bounce < settings_.bounces;) {

@@ -70,7 +70,7 @@ class ImportanceParticles {
     glm::vec3 origin;
     glm::vec3 direction;
   };
-  Start start(Pcg32& random) const;
+  Start start(RandomStream& random) const;
   void trace(uint64_t particle, std::vector<Candidate>& out, uint64_t& rays) const;
 
   const Scene& scene_;

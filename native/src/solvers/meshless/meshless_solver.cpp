@@ -397,7 +397,7 @@ std::unique_ptr<IndirectField> MeshlessSolver::light(
                         const SurfacePoint x{p.position, p.normal, p.normal};
                         glm::dvec3 sum(0.0);
                         for (int64_t s = 0; s < settings.direct_samples; ++s) {
-                          Pcg32 rng = sample_stream(uint64_t(settings.seed), j, uint64_t(s));
+                          RandomStream rng = sample_stream(uint64_t(settings.seed), j, uint64_t(s));
                           sum += glm::dvec3(inputs.direct.irradiance_sample(
                               x, rng, local_rays, DirectLight::World::kExcluded));
                         }

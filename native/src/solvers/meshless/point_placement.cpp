@@ -86,8 +86,8 @@ class HashGrid {
 // solid angle (as Ward's irradiance-cache radius), jittered on a side x side grid over
 // (cos theta, phi): stratification keeps the estimate stable with few rays.
 float harmonic_mean_distance(const RayTracer& tracer, const Candidate& candidate,
-                             float max_distance, uint32_t side, float epsilon, Pcg32& random,
-                             uint64_t& rays) {
+                             float max_distance, uint32_t side, float epsilon,
+                             RandomStream& random, uint64_t& rays) {
   const Frame frame(candidate.geometric_normal);
   const glm::vec3 origin = candidate.position + candidate.geometric_normal * epsilon;
   double inverse_sum = 0.0;
@@ -247,7 +247,8 @@ std::vector<BasisPoint> place(const Scene& scene, const RayTracer& tracer,
         continue;
       }
       if (settings.harmonic_mean_rejection) {
-        Pcg32 random = sample_stream(settings.seed ^ kHarmonicSalt, level, harmonic_serial++);
+        RandomStream random =
+            sample_stream(settings.seed ^ kHarmonicSalt, level, harmonic_serial++);
         const float mean =
             harmonic_mean_distance(tracer, candidate, kHarmonicRayLength * spacing, side, epsilon,
                                    random, statistics.harmonic_mean_rays);

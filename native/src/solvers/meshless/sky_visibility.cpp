@@ -30,7 +30,7 @@ std::vector<float> sky_visibility(const BasisHierarchy& points, const RayTracer&
           const BasisPoint& p = points.point(static_cast<uint32_t>(i));
           const Frame frame(p.normal);
           const glm::vec3 origin = p.position + p.normal * settings.ray_epsilon;
-          Pcg32 rng = sample_stream(settings.seed, i, 0);
+          RandomStream rng = sample_stream(settings.seed, i, 0);
           uint32_t open = 0;
           for (uint32_t k = 0; k < rays; ++k) {
             const float u1 = (static_cast<float>(k % side) + rng.next_float()) / side;

@@ -36,7 +36,7 @@ float openness(const RayTracer& tracer, const glm::vec3& x, const glm::vec3& n, 
   constexpr uint32_t kSide = 4;
   const Frame frame(n);
   const glm::vec3 origin = x + n * (1e-4f * distance);
-  Pcg32 rng = sample_stream(0x6f70656eull, point, 0);
+  RandomStream rng = sample_stream(0x6f70656eull, point, 0);
   uint32_t open = 0;
   for (uint32_t k = 0; k < kSide * kSide; ++k) {
     const float u1 = (float(k % kSide) + rng.next_float()) / float(kSide);

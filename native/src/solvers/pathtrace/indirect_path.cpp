@@ -27,7 +27,7 @@ struct DirectionSample {
   float pdf;
 };
 
-DirectionSample sample_cosine(const SurfacePoint& x, Pcg32& rng) {
+DirectionSample sample_cosine(const SurfacePoint& x, RandomStream& rng) {
   const float u1 = rng.next_float(), u2 = rng.next_float();
   const glm::vec3 local = sample_cosine_hemisphere(u1, u2);
   return {Frame(x.shading_normal).to_world(local), local.z * kInvPi};
@@ -35,7 +35,7 @@ DirectionSample sample_cosine(const SurfacePoint& x, Pcg32& rng) {
 
 }  // namespace
 
-glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, Pcg32& rng,
+glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
                           int max_bounces, uint64_t& rays) {
   const Scene& scene = direct.scene();
   const RayTracer& tracer = direct.tracer();

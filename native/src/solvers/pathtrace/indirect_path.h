@@ -25,9 +25,9 @@
 namespace bakegi {
 
 class DirectLight;
-class Pcg32;
+class RandomStream;
 
-glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, Pcg32& rng,
+glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
                           int max_bounces, uint64_t& rays);
 
 }  // namespace bakegi

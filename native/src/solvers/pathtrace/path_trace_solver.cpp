@@ -22,7 +22,7 @@ void PathTracedField::evaluate(const BakePoints& points, std::span<glm::vec3> ou
   const int max_bounces = settings_.max_bounces;
   estimate_at_points(
       points, out, settings_.sampling,
-      [&](const SurfacePoint& x, Pcg32& rng, uint64_t& rays) {
+      [&](const SurfacePoint& x, RandomStream& rng, uint64_t& rays) {
         return sample_indirect(direct_, x, rng, max_bounces, rays);
       },
       context);

@@ -1,0 +1,130 @@
+// The round planner of adaptive sampling (solvers/adaptive_sampling.h): its prediction is the
+// NRMSE of independent samples, it doubles the points whose variance calls for more samples,
+// and it stops at the target or the cap. The last test runs it on simulated points whose
+// truth is known and checks that the predicted error is the error the means really have.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "solvers/adaptive_sampling.h"
+
+namespace bakegi {
+namespace {
+
+PointTally tally_of(const std::vector<double>& samples) {
+  PointTally t;
+  for (double y : samples) {
+    ++t.samples;
+    t.luminance_sum += y;
+    t.luminance_squares += y * y;
+  }
+  return t;
+}
+
+TEST(AdaptiveSampling, PredictionIsTheNrmseOfIndependentMeans) {
+  // Two points, mean 1 each, sample variance 2 (values 0 and 2 alternating) at 8 samples:
+  // with all points alike the shrinkage changes nothing, and E = sqrt(2 / 8) / 1 = 0.5.
+  const std::vector<double> samples = {0, 2, 0, 2, 0, 2, 0, 2};
+  const std::vector<PointTally> tallies = {tally_of(samples), tally_of(samples)};
+  const double v = 8.0 / 7.0 * 1.0;  // unbiased variance of the 8 values: 8/7 * 1
+  const SamplingRound round = plan_sampling_round(tallies, 0.01, 1 << 20);
+  EXPECT_NEAR(round.predicted_error, std::sqrt(v / 8.0), 1e-12);
+  EXPECT_EQ(round.added, (std::vector<int64_t>{8, 8}));
+  EXPECT_EQ(round.added_samples, 16);
+}
+
+TEST(AdaptiveSampling, StopsAtTheTargetAndAtTheCap) {
+  const std::vector<double> samples = {0, 2, 0, 2, 0, 2, 0, 2};
+  const std::vector<PointTally> tallies = {tally_of(samples)};
+  EXPECT_TRUE(plan_sampling_round(tallies, 0.6, 1024).done());  // E = 0.378 < 0.6
+  EXPECT_TRUE(plan_sampling_round(tallies, 0.01, 8).done());    // capped
+  const SamplingRound capped = plan_sampling_round(tallies, 0.01, 12);
+  EXPECT_EQ(capped.added, (std::vector<int64_t>{4}));  // up to the cap, not past it
+}
+
+TEST(AdaptiveSampling, NoisyPointsGetTheSamples) {
+  // 31 constant points (value 1) and one noisy point (0 and 4 alternating): run the rounds
+  // to a 2% target; the noisy point ends with far more samples than the quiet ones, which
+  // get some only through the shrinkage towards the mean variance.
+  std::vector<std::vector<double>> patterns(32, std::vector<double>{1.0});
+  patterns[1] = {0.0, 4.0};
+  std::vector<PointTally> tallies(32);
+  auto add = [&](size_t i, int64_t samples) {
+    for (int64_t s = 0; s < samples; ++s) {
+      const double y = patterns[i][size_t(tallies[i].samples) % patterns[i].size()];
+      ++tallies[i].samples;
+      tallies[i].luminance_sum += y;
+      tallies[i].luminance_squares += y * y;
+    }
+  };
+  for (size_t i = 0; i < 32; ++i) add(i, 16);
+  for (SamplingRound round = plan_sampling_round(tallies, 0.02, 1 << 20); !round.done();
+       round = plan_sampling_round(tallies, 0.02, 1 << 20)) {
+    EXPECT_GE(round.added[1], round.added[0]);
+    for (size_t i = 0; i < 32; ++i) add(i, round.added[i]);
+  }
+  EXPECT_GT(tallies[1].samples, 4 * tallies[0].samples);
+}
+
+TEST(AdaptiveSampling, DarkScenesAreDoneAtOnce) {
+  const std::vector<PointTally> tallies = {tally_of({0, 0, 0, 0}), tally_of({0, 0, 0, 0})};
+  const SamplingRound round = plan_sampling_round(tallies, 0.05, 1024);
+  EXPECT_TRUE(round.done());
+  EXPECT_EQ(round.predicted_error, 0.0);
+}
+
+// Simulated bake: 400 points with exponential samples (a heavy-ish tail like path tracing's)
+// of means spread over 0.2..2. Running the rounds to a 3% target, the true NRMSE of the
+// means against the known truth must come out near the prediction (within 25%: the true
+// error of 400 points scatters by about 1/sqrt(2 * 400) = 3.5%, plus the variance
+// estimates' own noise) and at or under the target plus that scatter.
+TEST(AdaptiveSampling, ReachesTheTargetOnSimulatedPoints) {
+  std::mt19937_64 random(7);
+  const size_t count = 400;
+  std::vector<double> truth(count);
+  for (size_t i = 0; i < count; ++i) truth[i] = 0.2 + 1.8 * double(i) / double(count - 1);
+  std::vector<PointTally> tallies(count);
+  auto add = [&](size_t i, int64_t samples) {
+    std::exponential_distribution<double> draw(1.0 / truth[i]);
+    for (int64_t s = 0; s < samples; ++s) {
+      const double y = draw(random);
+      ++tallies[i].samples;
+      tallies[i].luminance_sum += y;
+      tallies[i].luminance_squares += y * y;
+    }
+  };
+  for (size_t i = 0; i < count; ++i) add(i, 16);
+  SamplingRound round = plan_sampling_round(tallies, 0.03, 1 << 16);
+  int rounds = 0;
+  while (!round.done() && rounds < 20) {
+    for (size_t i = 0; i < count; ++i) add(i, round.added[i]);
+    round = plan_sampling_round(tallies, 0.03, 1 << 16);
+    ++rounds;
+  }
+  ASSERT_TRUE(round.done());
+  double squared = 0.0, mean_truth = 0.0;
+  int64_t total = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const double mean = tallies[i].luminance_sum / double(tallies[i].samples);
+    squared += (mean - truth[i]) * (mean - truth[i]);
+    mean_truth += truth[i];
+    total += tallies[i].samples;
+  }
+  const double nrmse = std::sqrt(squared / double(count)) / (mean_truth / double(count));
+  EXPECT_LE(round.predicted_error, 0.03);
+  EXPECT_NEAR(nrmse, round.predicted_error, 0.25 * round.predicted_error);
+  // Brighter points (larger variance, exponential: v = mean^2) get more samples.
+  EXPECT_GT(tallies[count - 1].samples, tallies[0].samples);
+  // And fewer samples in all than uniform sampling to the same prediction would take: with
+  // n_i = n for all, E = sqrt(mean(v_i) / n) / mean(r).
+  double mean_variance = 0.0;
+  for (double r : truth) mean_variance += r * r;
+  mean_variance /= double(count);
+  const double uniform_n = mean_variance / std::pow(0.03 * mean_truth / double(count), 2);
+  EXPECT_LT(double(total), 0.9 * uniform_n * double(count));  // ideal: 0.82
+}
+
+}  // namespace
+}  // namespace bakegi
