@@ -85,9 +85,9 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
   };
   EXPECT_EQ(changeable("antiradiance"),
             sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
-                    "threads", "cache_dir"}));
+                    "target_error", "threads", "cache_dir"}));
   EXPECT_EQ(changeable("meshless"), sorted({"direct_samples", "sender_cutoff", "bounces",
-                                            "cache_dir", "samples", "threads"}));
+                                            "cache_dir", "samples", "target_error", "threads"}));
 }
 
 TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {

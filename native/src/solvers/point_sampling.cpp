@@ -10,11 +10,12 @@
 #include <tbb/partitioner.h>
 
 #include "settings/settings.h"
+#include "solvers/adaptive_sampling.h"
 #include "solvers/solver.h"
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/random.h"
-#include "settings/settings.h"
+#include "util/report.h"
 
 namespace bakegi {
 
@@ -40,8 +41,77 @@ SampleSettings SampleSettings::from(const Settings& given) {
   s.samples = settings.get_int("samples");
   s.seed = settings.get_int("seed");
   s.sample_offset = settings.get_int("sample_offset");
+  s.target_error = settings.get_float("target_error");
   return s;
 }
+
+namespace {
+
+// One point's running sums: the value (the result) and its luminance (the noise estimate).
+struct PointSums {
+  glm::dvec3 value{0.0};
+  PointTally tally;
+};
+
+// The first round of an adaptive bake: enough samples for a first variance estimate.
+constexpr int64_t kFirstRoundSamples = 16;
+
+double luminance(const glm::vec3& v) {
+  return 0.2126 * double(v.x) + 0.7152 * double(v.y) + 0.0722 * double(v.z);
+}
+
+// Adds samples [from, from + count) of every point with count > 0 (count_of(i)) to its sums,
+// in parallel; progress runs from `progress_from` to `progress_to` over the round.
+template <typename CountOf>
+void sample_round(const BakePoints& points, std::vector<PointSums>& sums,
+                  const SampleSettings& sampling, const PointSampleEstimator& estimator,
+                  CountOf count_of, uint64_t round_samples, double progress_from,
+                  double progress_to, std::atomic<uint64_t>& dropped, JobContext& context) {
+  std::atomic<uint64_t> done_samples{0};
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, points.size(), kPointsPerBlock),
+      [&](const tbb::blocked_range<size_t>& block) {
+        uint64_t rays = 0;
+        uint64_t block_dropped = 0;
+        for (size_t i = block.begin(); i != block.end(); ++i) {
+          const int64_t count = count_of(i);
+          if (count <= 0) continue;
+          const SurfacePoint x{points.positions[i], points.normals[i], points.normals[i]};
+          PointSums& point = sums[i];
+          const int64_t from = point.tally.samples, to = from + count;
+          for (int64_t first = from; first < to; first += kSamplesPerCheck) {
+            context.throw_if_cancelled();
+            const int64_t last = std::min(to, first + kSamplesPerCheck);
+            for (int64_t s = first; s < last; ++s) {
+              RandomStream rng = sobol_sample_stream(uint64_t(sampling.seed), i,
+                                                     uint64_t(sampling.sample_offset + s));
+              const glm::vec3 value = estimator(x, rng, rays);
+              // A non-finite sample would poison the point; drop it (it counts as 0) and
+              // say so in the report.
+              if (is_finite(value)) {
+                point.value += glm::dvec3(value);
+                const double y = luminance(value);
+                point.tally.luminance_sum += y;
+                point.tally.luminance_squares += y * y;
+              } else {
+                ++block_dropped;
+              }
+            }
+            point.tally.samples += last - first;
+            const uint64_t done =
+                done_samples.fetch_add(uint64_t(last - first), std::memory_order_relaxed) +
+                uint64_t(last - first);
+            context.set_stage_progress(progress_from + (progress_to - progress_from) *
+                                                           double(done) / double(round_samples));
+          }
+        }
+        context.report().add_count("rays", rays);
+        if (block_dropped) dropped.fetch_add(block_dropped, std::memory_order_relaxed);
+      },
+      tbb::simple_partitioner());
+}
+
+}  // namespace
 
 void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
                         const SampleSettings& sampling, const PointSampleEstimator& estimator,
@@ -50,51 +120,55 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
     throw Error(BAKEGI_ERROR_INTERNAL, "output size does not match the number of bake points");
   }
   const size_t count = points.size();
-  const double total_samples = double(count) * double(sampling.samples);
-  std::atomic<uint64_t> done_samples{0};
+  std::vector<PointSums> sums(count);
   std::atomic<uint64_t> dropped{0};
-  context.set_stage_text("tracing " + std::to_string(sampling.samples) + " samples at " +
-                         std::to_string(count) + " points");
   context.set_stage_progress(0.0);
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, count, kPointsPerBlock),
-      [&](const tbb::blocked_range<size_t>& block) {
-        uint64_t rays = 0;
-        uint64_t block_dropped = 0;
-        for (size_t i = block.begin(); i != block.end(); ++i) {
-          const SurfacePoint x{points.positions[i], points.normals[i], points.normals[i]};
-          glm::dvec3 sum(0.0);
-          for (int64_t first = 0; first < sampling.samples; first += kSamplesPerCheck) {
-            context.throw_if_cancelled();
-            const int64_t last = std::min(sampling.samples, first + kSamplesPerCheck);
-            for (int64_t s = first; s < last; ++s) {
-              RandomStream rng = sobol_sample_stream(uint64_t(sampling.seed), i,
-                                                     uint64_t(sampling.sample_offset + s));
-              const glm::vec3 value = estimator(x, rng, rays);
-              // A non-finite sample would poison the point; drop it and say so in the
-              // report.
-              if (is_finite(value)) {
-                sum += glm::dvec3(value);
-              } else {
-                ++block_dropped;
-              }
-            }
-            const uint64_t done =
-                done_samples.fetch_add(uint64_t(last - first), std::memory_order_relaxed) +
-                uint64_t(last - first);
-            context.set_stage_progress(double(done) / total_samples);
-          }
-          out[i] = glm::vec3(sum / double(sampling.samples));
-        }
-        context.report().add_count("rays", rays);
-        if (block_dropped) dropped.fetch_add(block_dropped, std::memory_order_relaxed);
-      },
-      tbb::simple_partitioner());
-  if (dropped.load() > 0) {
-    context.report().warn(std::to_string(dropped.load()) +
-                          " non-finite Monte Carlo samples were dropped");
+  Report& report = context.report();
+  if (!(sampling.target_error > 0.0)) {
+    context.set_stage_text("tracing " + std::to_string(sampling.samples) + " samples at " +
+                           std::to_string(count) + " points");
+    sample_round(
+        points, sums, sampling, estimator, [&](size_t) { return sampling.samples; },
+        uint64_t(sampling.samples) * count, 0.0, 1.0, dropped, context);
+  } else {
+    // Rounds until the predicted error meets the target (solvers/adaptive_sampling.h). The
+    // k-th round's progress fills [1 - 2^-k, 1 - 2^-(k+1)): the number of rounds is not known.
+    const int64_t first = std::min(kFirstRoundSamples, sampling.samples);
+    context.set_stage_text("tracing towards " + std::to_string(sampling.target_error * 100.0) +
+                           "% error at " + std::to_string(count) + " points");
+    sample_round(
+        points, sums, sampling, estimator, [&](size_t) { return first; },
+        uint64_t(first) * count, 0.0, 0.5, dropped, context);
+    std::vector<PointTally> tallies(count);
+    double slice = 0.5;
+    int64_t rounds = 1;
+    for (;;) {
+      for (size_t i = 0; i < count; ++i) tallies[i] = sums[i].tally;
+      const SamplingRound next =
+          plan_sampling_round(tallies, sampling.target_error, sampling.samples);
+      report.set_number("sampling_predicted_error", next.predicted_error);
+      if (next.done()) break;
+      sample_round(
+          points, sums, sampling, estimator, [&](size_t i) { return next.added[i]; },
+          uint64_t(next.added_samples), 1.0 - slice, 1.0 - slice / 2.0, dropped, context);
+      slice /= 2.0;
+      ++rounds;
+    }
+    report.add_count("sampling_rounds", uint64_t(rounds));
+    report.set_number("target_error", sampling.target_error);
   }
-  context.report().add_count("samples", uint64_t(sampling.samples) * count);
+  uint64_t total = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const PointSums& point = sums[i];
+    total += uint64_t(point.tally.samples);
+    out[i] = point.tally.samples > 0
+                 ? glm::vec3(point.value / double(point.tally.samples))
+                 : glm::vec3(0.0f);
+  }
+  if (dropped.load() > 0) {
+    report.warn(std::to_string(dropped.load()) + " non-finite Monte Carlo samples were dropped");
+  }
+  report.add_count("samples", total);
 }
 
 }  // namespace bakegi

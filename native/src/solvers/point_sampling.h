@@ -26,8 +26,11 @@ struct SampleSettings {
   int64_t samples = 64;
   int64_t seed = 0;
   int64_t sample_offset = 0;
+  // > 0: sample adaptively until the predicted NRMSE reaches it, `samples` per point at
+  // most (solvers/adaptive_sampling.h); 0: exactly `samples` per point.
+  double target_error = 0.0;
 
-  // Reads "samples", "seed" and "sample_offset" with their ranges.
+  // Reads "samples", "seed", "sample_offset" and "target_error" with their ranges.
   static SampleSettings from(const Settings& settings);
 };
 

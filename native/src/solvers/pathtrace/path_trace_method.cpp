@@ -10,6 +10,10 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
       integer_setting("max_bounces", 64, 1, 1 << 16, SettingRole::kShapes,
                       "path length cap for indirect light (Russian roulette ends most paths far "
                       "sooner)"),
+      number_setting("target_error", 0.0, 0.0, 1.0, SettingRole::kLighting,
+                     "error to reach: NRMSE over the bake points as the samples' spread "
+                     "predicts it (an upper bound with quasi-random samples); samples go where "
+                     "the noise is, `samples` caps each point; 0 = exactly `samples` per point"),
   };
   return specs;
 }
