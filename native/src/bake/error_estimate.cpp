@@ -15,6 +15,7 @@
 #include "util/job_context.h"
 #include "util/random.h"
 #include "util/report.h"
+#include "util/luminance.h"
 
 namespace bakegi {
 
@@ -30,7 +31,6 @@ constexpr size_t kMinProbesPerObject = 8;
 // own paths (which would hide the path tracer's noise from its estimate).
 constexpr uint64_t kProbeStreamSalt = 0xE1A5E57Au;
 
-double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // What one probe contributes to the estimate.
 struct ProbeRecord {

@@ -8,6 +8,7 @@
 #include "scene/scene_validation.h"
 #include "util/error.h"
 #include "util/random.h"
+#include "util/luminance.h"
 
 namespace bakegi {
 
@@ -60,7 +61,7 @@ ErrorProbes probes_weighted_by_light(const BakePoints& points, const std::vector
   // Cumulative q_i = 0.5 / n + 0.5 Y_i / Σ Y (Y clamped at 0; non-finite values count 0).
   auto light_at = [&](size_t i) {
     const glm::vec3& c = baked[i];
-    const double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    const double y = luminance(c);
     return std::isfinite(y) && y > 0.0 ? y : 0.0;
   };
   double light = 0.0;

@@ -16,6 +16,7 @@
 #include "util/job_context.h"
 #include "util/random.h"
 #include "util/report.h"
+#include "util/luminance.h"
 
 namespace bakegi {
 
@@ -55,10 +56,6 @@ struct PointSums {
 
 // The first round of an adaptive bake: enough samples for a first variance estimate.
 constexpr int64_t kFirstRoundSamples = 16;
-
-double luminance(const glm::vec3& v) {
-  return 0.2126 * double(v.x) + 0.7152 * double(v.y) + 0.0722 * double(v.z);
-}
 
 // Adds samples [from, from + count) of every point with count > 0 (count_of(i)) to its sums,
 // in parallel; progress runs from `progress_from` to `progress_to` over the round.

@@ -32,6 +32,7 @@
 #include "util/job_context.h"
 #include "util/report.h"
 #include "settings/settings.h"
+#include "util/luminance.h"
 
 namespace bakegi {
 namespace {
@@ -188,7 +189,7 @@ double flux_bound(const ElementHierarchy& hierarchy, std::span<const glm::vec3> 
     rho = std::max({rho, double(reflectance.x), double(reflectance.y), double(reflectance.z)});
     const glm::vec3 e = direct[p];
     direct_flux += double(hierarchy.elements()[patch.element].area) *
-                   (0.2126 * double(e.x) + 0.7152 * double(e.y) + 0.0722 * double(e.z));
+                   luminance(e);
   }
   if (rho >= 1.0 || !std::isfinite(direct_flux)) return std::numeric_limits<double>::infinity();
   return 2.0 * std::max(direct_flux, 0.0) * rho / (1.0 - rho);

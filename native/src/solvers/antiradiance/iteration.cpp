@@ -15,6 +15,7 @@
 #include "solvers/antiradiance/push_pull.h"
 #include "util/error.h"
 #include "util/job_context.h"
+#include "util/luminance.h"
 
 // The asymmetric scheme in the progressive form. The system is L = E + K U (L − A),
 // A = J U (L − A): A is linear in L. Write the solution as a sum of bounces L = Σ_k d_k with
@@ -51,10 +52,6 @@ constexpr double kSurgeFactor = 10.0;
 
 // Patch rows per task when snapshotting the tables.
 constexpr size_t kSnapshotRowsPerTask = 256;
-
-double luminance(glm::vec3 v) {
-  return 0.2126 * double(v.x) + 0.7152 * double(v.y) + 0.0722 * double(v.z);
-}
 
 bool finite(glm::vec3 v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
