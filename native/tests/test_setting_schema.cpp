@@ -85,7 +85,7 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
   };
   EXPECT_EQ(changeable("antiradiance"),
             sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
-                    "target_error", "threads", "cache_dir"}));
+                    "target_error", "threads", "cache_dir", "residual", "residual_fraction"}));
   EXPECT_EQ(changeable("meshless"), sorted({"direct_samples", "sender_cutoff", "bounces",
                                             "cache_dir", "samples", "target_error", "threads"}));
 }

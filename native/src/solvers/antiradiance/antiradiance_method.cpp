@@ -39,6 +39,13 @@ const std::vector<SettingSpec>& AntiradianceSolver::setting_specs() {
       number_setting("near_field_distance", 0.5, 0.0, 100.0, R::kShapes,
                      "\"near\" in units of the interpolation's support radius (about two patch "
                      "edges); blended over its last half"),
+      text_setting("residual", "off", {"off", "path_traced"}, R::kLighting,
+                   "off: interpolate the solution (fast, biased where it is wrong); path_traced: "
+                   "path-trace with the solution as control variate (unbiased: the path "
+                   "tracer's sampling settings apply, the solution only saves samples)"),
+      number_setting("residual_fraction", 0.0, 0.0, 1.0, R::kLighting,
+                     "with residual = path_traced: the fraction of paths that go on beyond "
+                     "the first hit's light sample; 0 = chosen by a pilot"),
       text_setting("cache_dir", "", {}, R::kExecution,
                    "a folder (UTF-8, created if missing): the hierarchy and links are saved "
                    "there and a later bake of the same geometry, materials and settings loads "

@@ -24,8 +24,10 @@
 #include "solvers/antiradiance/global_pass.h"
 #include "solvers/antiradiance/iteration.h"
 #include "solvers/antiradiance/link_refinement.h"
+#include "solvers/antiradiance/patch_radiance_cache.h"
 #include "solvers/antiradiance/precomputation_cache.h"
 #include "solvers/antiradiance/radiance_tables.h"
+#include "solvers/pathtrace/controlled_path_field.h"
 #include "solvers/precomputation_codec.h"
 #include "util/byte_stream.h"
 #include "util/error.h"
@@ -74,6 +76,8 @@ struct AntiradianceSettings {
   int64_t seed = 0;
   int64_t near_field_rays = 256;
   double near_field_distance = 0.5;
+  bool residual_path_traced = false;
+  double residual_fraction = 0.0;
 
   static AntiradianceSettings from(const Settings& given) {
     const SettingReader settings(given, method_schema("antiradiance"));
@@ -92,6 +96,8 @@ struct AntiradianceSettings {
           "setting \"scheme\" must be \"symmetric\" or \"asymmetric\", not \"" + scheme + "\"");
     }
     s.patch_size = settings.get_float("patch_size");
+    s.residual_path_traced = settings.get_string("residual") == "path_traced";
+    s.residual_fraction = settings.get_float("residual_fraction");
     s.direct_samples = settings.get_int("direct_samples");
     const std::string oracle = settings.get_string("oracle");
     if (oracle == "sphere") {
@@ -496,11 +502,32 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(
     }
     s.value = glm::max(value, glm::vec3(0.0f));
   }
-  // The near-field gather reads E_indirect / π of the patch each ray hits.
+  // The near-field gather and the path-traced residual read the patch each ray hits.
+  std::shared_ptr<const PatchRadianceCache> cache;
+  if (settings.near_field_rays > 0 || settings.residual_path_traced) {
+    std::vector<glm::vec3> direct_over_pi(samples.size()), indirect_over_pi(samples.size());
+    for (size_t p = 0; p < samples.size(); ++p) {
+      direct_over_pi[p] = direct.irradiance[p] / std::numbers::pi_v<float>;
+      indirect_over_pi[p] = samples[p].value;
+    }
+    cache = std::make_shared<PatchRadianceCache>(
+        inputs.scene, PatchLocator(inputs.scene, hierarchy), std::move(direct_over_pi),
+        std::move(indirect_over_pi));
+  }
+  if (settings.residual_path_traced) {
+    report.add_count("memory_bytes", system.memory_bytes() + tables.memory_bytes() +
+                                         cache->memory_bytes());
+    report.add_seconds("antiradiance_direct", direct_seconds);
+    report.add_seconds("antiradiance_iterate", iterate_seconds);
+    report.add_seconds("antiradiance_output", seconds_since(stage_start));
+    report.add_count("antiradiance_patches", hierarchy.patch_count());
+    report.add_count("antiradiance_iterations", result.history.size());
+    return std::make_unique<ControlledPathField>(inputs.direct, std::move(cache),
+                                                 PathTraceSettings::from(inputs.settings),
+                                                 settings.residual_fraction);
+  }
   NearFieldGather near_field;
   if (settings.near_field_rays > 0) {
-    std::vector<glm::vec3> indirect_over_pi(samples.size());
-    for (size_t p = 0; p < samples.size(); ++p) indirect_over_pi[p] = samples[p].value;
     NearFieldSettings near_settings;
     near_settings.rays = uint32_t(settings.near_field_rays);
     near_settings.far = float(settings.near_field_distance) *
@@ -508,8 +535,7 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(
     near_settings.near = 0.5f * near_settings.far;
     near_settings.ray_epsilon = inputs.direct.ray_epsilon();
     near_settings.seed = uint64_t(settings.seed) ^ 0x6e656172ull;
-    near_field = NearFieldGather(inputs.direct, PatchLocator(inputs.scene, hierarchy),
-                                 std::move(indirect_over_pi), near_settings);
+    near_field = NearFieldGather(inputs.direct, cache, near_settings);
   }
   SurfaceInterpolation interpolation(std::move(samples), &inputs.tracer);
   const double output_seconds = seconds_since(stage_start);
@@ -528,7 +554,8 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(
   // The job's memory: what relighting keeps, the bin tables (the peak is during the
   // iteration), and the output field.
   report.add_count("memory_bytes", system.memory_bytes() + tables.memory_bytes() +
-                                       interpolation.memory_bytes() + near_field.memory_bytes());
+                                       interpolation.memory_bytes() +
+                                       (cache ? cache->memory_bytes() : 0));
   report.set_number("antiradiance_patch_size", double(hierarchy.max_edge()));
   report.set_number("antiradiance_support_radius", double(interpolation.support_radius()));
   report.set_text("antiradiance_scheme",

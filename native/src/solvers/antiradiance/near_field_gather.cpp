@@ -13,18 +13,15 @@
 
 namespace bakegi::antiradiance {
 
-NearFieldGather::NearFieldGather(const DirectLight& direct, PatchLocator locator,
-                                 std::vector<glm::vec3> indirect_over_pi,
+NearFieldGather::NearFieldGather(const DirectLight& direct,
+                                 std::shared_ptr<const PatchRadianceCache> cache,
                                  const NearFieldSettings& settings)
-    : direct_(&direct),
-      locator_(std::move(locator)),
-      indirect_over_pi_(std::move(indirect_over_pi)),
-      settings_(settings) {}
+    : direct_(&direct), cache_(std::move(cache)), settings_(settings) {}
 
 glm::vec3 NearFieldGather::evaluate(const glm::vec3& position, const glm::vec3& normal,
                                     uint64_t point, const glm::vec3& splat,
                                     uint64_t& rays_cast) const {
-  if (!enabled()) return splat;
+  if (!enabled() || !cache_) return splat;
   const Scene& scene = direct_->scene();
   const RayTracer& tracer = direct_->tracer();
   const uint32_t rays = settings_.rays;
@@ -62,18 +59,17 @@ glm::vec3 NearFieldGather::evaluate(const glm::vec3& position, const glm::vec3& 
     ++rays_cast;
     if (!hit.hit) continue;
     nearest = std::min(nearest, hit.t);
-    const Triangle& triangle = scene.triangles[hit.triangle];
-    const bool back = glm::dot(triangle.face_normal, direction) > 0.0f;
-    const uint32_t patch = locator_.find(hit.triangle, hit.b1, hit.b2, back);
-    if (patch == PatchLocator::kNone) {
+    CachedIrradiance cached;
+    if (!cache_->irradiance_at(hit, direction, cached)) {
       ++unseen;
       continue;
     }
+    const Triangle& triangle = scene.triangles[hit.triangle];
     const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
     if (albedo.x <= 0.0f && albedo.y <= 0.0f && albedo.z <= 0.0f) continue;
     const SurfacePoint y = surface_at_hit(scene, hit, direction);
     const glm::vec3 direct = direct_->irradiance_sample(y, rng, rays_cast);
-    sum += glm::dvec3(albedo * (direct * kInvPi + indirect_over_pi_[patch]));
+    sum += glm::dvec3(albedo * (direct * kInvPi + cached.indirect_over_pi));
   }
   // Mostly the backs of faces: the point lies inside or behind geometry (e.g. a bake point
   // a little off a tessellated curved surface); the gather has nothing to say there.

@@ -25,11 +25,11 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 #include <glm/glm.hpp>
 
-#include "solvers/antiradiance/patch_locator.h"
+#include "solvers/antiradiance/patch_radiance_cache.h"
 
 namespace bakegi {
 struct Scene;
@@ -52,10 +52,11 @@ class NearFieldGather {
   static constexpr uint32_t kProbeSide = 4;
 
   NearFieldGather() = default;
-  // `direct` (and its scene and tracer) must outlive every evaluate(). `indirect_over_pi`
-  // holds E_indirect / π per patch (ElementHierarchy::patches() order).
-  NearFieldGather(const DirectLight& direct, PatchLocator locator,
-                  std::vector<glm::vec3> indirect_over_pi, const NearFieldSettings& settings);
+  // `direct` (and its scene and tracer) must outlive every evaluate(). The gather reads
+  // E_indirect / π of the patch each ray lands on from `cache` (its direct part is not used:
+  // the gather samples direct light at the hit with exact shadows).
+  NearFieldGather(const DirectLight& direct, std::shared_ptr<const PatchRadianceCache> cache,
+                  const NearFieldSettings& settings);
 
   bool enabled() const { return direct_ != nullptr && settings_.rays > 0; }
   // Blends the gathered value into `splat` (the splat's value at this point) by the distance
@@ -64,14 +65,11 @@ class NearFieldGather {
   glm::vec3 evaluate(const glm::vec3& position, const glm::vec3& normal, uint64_t point,
                      const glm::vec3& splat, uint64_t& rays) const;
   const NearFieldSettings& settings() const { return settings_; }
-  size_t memory_bytes() const {
-    return locator_.memory_bytes() + indirect_over_pi_.capacity() * sizeof(glm::vec3);
-  }
+  // The cache is shared with the field's other users and counted by its owner.
 
  private:
   const DirectLight* direct_ = nullptr;
-  PatchLocator locator_;
-  std::vector<glm::vec3> indirect_over_pi_;
+  std::shared_ptr<const PatchRadianceCache> cache_;
   NearFieldSettings settings_;
 };
 

@@ -35,18 +35,23 @@ DirectionSample sample_cosine(const SurfacePoint& x, RandomStream& rng) {
 
 }  // namespace
 
-glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
-                          int max_bounces, uint64_t& rays) {
+FirstRay sample_first_ray(const DirectLight& direct, const SurfacePoint& point,
+                          RandomStream& rng) {
+  const DirectionSample first = sample_cosine(point, rng);
+  return {direct.ray_origin(point), first.direction, first.pdf};
+}
+
+PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hit,
+                                  const glm::vec3& first_direction, RandomStream& rng,
+                                  int max_bounces, uint64_t& rays,
+                                  const PathContinuation* continuation) {
   const Scene& scene = direct.scene();
   const RayTracer& tracer = direct.tracer();
-
-  DirectionSample first = sample_cosine(point, rng);
-  if (!(first.pdf > 0.0f)) return glm::vec3(0.0f);
-  glm::vec3 origin = direct.ray_origin(point);
-  glm::vec3 direction = first.direction;
-  ++rays;
-  Hit hit = tracer.intersect(Ray{origin, direction, 0.0f, 1e30f});
-
+  PathRadiance result;
+  Hit hit = first_hit;
+  glm::vec3 direction = first_direction;
+  // The first vertex's light sample goes to result.first_light, the rest here, scaled by
+  // the continuation's weight.
   glm::vec3 radiance(0.0f);
   glm::vec3 throughput(1.0f);
   for (int bounce = 1; hit.hit; ++bounce) {
@@ -60,6 +65,13 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
       // Diffuse fast path. Next-event estimation: rho / pi * E_light.
       if (!(max_component(albedo) > 0.0f)) break;
       radiance += throughput * albedo * (kInvPi * direct.sample_lights(x, rng, rays));
+      if (bounce == 1) {
+        result.first_light = radiance;
+        radiance = glm::vec3(0.0f);
+        result.rest_weight = continuation ? continuation->weight_of_rest(rng) : 1.0f;
+        if (!(result.rest_weight > 0.0f)) return result;
+        throughput *= result.rest_weight;
+      }
       // BSDF sampling: rho / pi * (pi L) per cosine-weighted sample.
       next = sample_cosine(x, rng);
       if (!(next.pdf > 0.0f) || glm::dot(next.direction, x.geometric_normal) <= 0.0f) break;
@@ -69,6 +81,13 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
       const SurfaceBsdf bsdf(x.shading_normal, -direction, albedo, material.glossy,
                              material.glossy_exponent);
       radiance += throughput * direct.sample_lights(x, bsdf, rng, rays);
+      if (bounce == 1) {
+        result.first_light = radiance;
+        radiance = glm::vec3(0.0f);
+        result.rest_weight = continuation ? continuation->weight_of_rest(rng) : 1.0f;
+        if (!(result.rest_weight > 0.0f)) return result;
+        throughput *= result.rest_weight;
+      }
       const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
       const BsdfSample sampled = bsdf.sample(u0, u1, u2);
       if (!(sampled.pdf > 0.0f) || glm::dot(sampled.direction, x.geometric_normal) <= 0.0f) {
@@ -78,7 +97,7 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
       throughput *= sampled.weight;
       if (!(max_component(throughput) > 0.0f)) break;
     }
-    origin = direct.ray_origin(x);
+    const glm::vec3 origin = direct.ray_origin(x);
     direction = next.direction;
     ++rays;
     hit = tracer.intersect(Ray{origin, direction, 0.0f, 1e30f});
@@ -91,7 +110,19 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
       throughput /= survival;
     }
   }
-  return radiance;
+  result.rest = radiance;
+  return result;
+}
+
+glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
+                          int max_bounces, uint64_t& rays) {
+  const FirstRay first = sample_first_ray(direct, point, rng);
+  if (!(first.pdf > 0.0f)) return glm::vec3(0.0f);
+  ++rays;
+  const Hit hit = direct.tracer().intersect(Ray{first.origin, first.direction, 0.0f, 1e30f});
+  const PathRadiance path = trace_from_first_hit(direct, hit, first.direction, rng, max_bounces,
+                                                 rays);
+  return path.first_light + path.rest;
 }
 
 }  // namespace bakegi

@@ -30,4 +30,42 @@ class RandomStream;
 glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
                           int max_bounces, uint64_t& rays);
 
+// The radiance a path reflects back along -direction from `hit` (the first hit of a ray
+// from the bake point along `direction`), in two parts: the first vertex's light sample
+// (next-event estimate) and the rest of the path (its BSDF ray's emission and every later
+// vertex). first_light + rest is sample_indirect's value for that first ray.
+struct PathRadiance {
+  glm::vec3 first_light{0.0f};
+  glm::vec3 rest{0.0f};  // already multiplied by rest_weight
+  // What the continuation returned (1 without one); 0: the path stopped at the first light
+  // sample. Also 0 when the first hit reflects nothing (the continuation was not asked).
+  float rest_weight = 0.0f;
+};
+
+// Decides after the first vertex's light sample whether the path goes on, and returns the
+// weight of the rest (1 / the probability of going on: the rest stays unbiased), or 0 to stop
+// there. May draw from `rng`.
+class PathContinuation {
+ public:
+  virtual float weight_of_rest(RandomStream& rng) const = 0;
+
+ protected:
+  ~PathContinuation() = default;
+};
+
+// `continuation` null: the path always goes on (weight 1).
+PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& hit,
+                                  const glm::vec3& direction, RandomStream& rng, int max_bounces,
+                                  uint64_t& rays, const PathContinuation* continuation = nullptr);
+
+// The cosine-weighted first direction of sample_indirect at `point` (2 draws of `rng`) and
+// the ray origin it leaves from; pdf 0 where the direction is degenerate.
+struct FirstRay {
+  glm::vec3 origin;
+  glm::vec3 direction;
+  float pdf;
+};
+FirstRay sample_first_ray(const DirectLight& direct, const SurfacePoint& point,
+                          RandomStream& rng);
+
 }  // namespace bakegi
