@@ -1,8 +1,9 @@
 // The path tracer's ray throughput on the benchmark scene, next to Embree's raw rate
 // (embree_ray_rate_bench.cpp): a pathtrace job through the C API on all bake points at 16
-// samples; rays/s = the report's "rays" (every ray traced: bounces and shadow rays)
-// over the job's wall time (BVH build included, as a user sees it), and over the time of
-// the tracing stage alone (rays/s_tracing).
+// samples; rays/s = the report's "rays" and "error_probe_rays" (every ray traced: bounces
+// and shadow rays, of the bake and of its error probes) over the job's wall time (BVH build
+// included, as a user sees it), and over the time of the tracing stages alone
+// (rays/s_tracing).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -15,12 +16,18 @@
 namespace bakegi::bench {
 namespace {
 
-// The number stored under "key" at the top level of a report (the core writes counters
-// there); 0 if absent.
-double report_number(const std::string& report, const std::string& key) {
+// The number stored under the first "key" of a report at or after `from` (the core writes
+// counters at the top level, stage times under "seconds"); 0 if absent or not a number.
+double report_number(const std::string& report, const std::string& key, size_t from = 0) {
   const std::string needle = "\"" + key + "\": ";
-  const size_t at = report.find(needle);
+  const size_t at = report.find(needle, from);
   return at == std::string::npos ? 0.0 : std::strtod(report.c_str() + at + needle.size(), nullptr);
+}
+
+// A stage's seconds ("error_estimate" is also the name of a top-level object).
+double stage_seconds(const std::string& report, const std::string& stage) {
+  const size_t seconds = report.find("\"seconds\": ");
+  return seconds == std::string::npos ? 0.0 : report_number(report, stage, seconds);
 }
 
 std::string job_report(const bakegi_job* job) {
@@ -57,9 +64,11 @@ void BM_PathtraceJob(benchmark::State& state) {
     }
     state.SetIterationTime(wall);
     const std::string report = job_report(job);
-    rays += report_number(report, "rays");
-    // The stage where the paths are traced (the pathtrace field is evaluated at the points).
-    tracing_seconds += report_number(report, "evaluate");
+    // The error probes (on by default) trace the same paths in their own stage, counted
+    // apart; leaving them out would charge their time to the bake's rays.
+    rays += report_number(report, "rays") + report_number(report, "error_probe_rays");
+    // The stages where paths are traced: the field evaluated at the points, the probes.
+    tracing_seconds += stage_seconds(report, "evaluate") + stage_seconds(report, "error_estimate");
     seconds += wall;
     bakegi_job_destroy(job);
   }

@@ -19,12 +19,11 @@ AreaLight::AreaLight(const Light& light)
   half_u_ = 0.5f * light.size_x;
   half_v_ = 0.5f * (uniform ? light.size_x : light.size_y);
   area_ = round_ ? kPi * half_u_ * half_v_ : 4.0f * half_u_ * half_v_;
-}
-
-SphericalRectangle AreaLight::spherical_rectangle(const glm::vec3& p) const {
-  return SphericalRectangle(
-      glm::dvec3(p), glm::dvec3(center_ - axis_u_ * half_u_ - axis_v_ * half_v_),
-      glm::dvec3(axis_u_ * (2.0f * half_u_)), glm::dvec3(axis_v_ * (2.0f * half_v_)));
+  if (!round_) {
+    rectangle_ = SphericalRectangle::Shape(
+        glm::dvec3(center_ - axis_u_ * half_u_ - axis_v_ * half_v_),
+        glm::dvec3(axis_u_ * (2.0f * half_u_)), glm::dvec3(axis_v_ * (2.0f * half_v_)));
+  }
 }
 
 bool AreaLight::sample(const glm::vec3& p, float u1, float u2, LightSample& out) const {

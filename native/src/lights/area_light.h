@@ -23,7 +23,9 @@ class AreaLight {
   float area() const { return area_; }
 
  private:
-  SphericalRectangle spherical_rectangle(const glm::vec3& p) const;
+  SphericalRectangle spherical_rectangle(const glm::vec3& p) const {
+    return SphericalRectangle(glm::dvec3(p), rectangle_);
+  }
 
   glm::vec3 center_;
   glm::vec3 normal_;  // emission side
@@ -32,6 +34,7 @@ class AreaLight {
   bool round_;
   float area_;
   glm::vec3 radiance_;
+  SphericalRectangle::Shape rectangle_;  // squares and rectangles: the frame sampling uses
 };
 
 }  // namespace bakegi

@@ -13,14 +13,18 @@ double safe_acos(double x) {
 
 }  // namespace
 
-SphericalRectangle::SphericalRectangle(const glm::dvec3& point, const glm::dvec3& corner,
-                                       const glm::dvec3& edge_u, const glm::dvec3& edge_v)
-    : point_(point) {
-  const double length_u = glm::length(edge_u), length_v = glm::length(edge_v);
-  x_ = edge_u / length_u;
-  y_ = edge_v / length_v;
-  z_ = glm::cross(x_, y_);
-  const glm::dvec3 d = corner - point;
+SphericalRectangle::Shape::Shape(const glm::dvec3& corner, const glm::dvec3& edge_u,
+                                 const glm::dvec3& edge_v)
+    : corner(corner), length_u(glm::length(edge_u)), length_v(glm::length(edge_v)) {
+  x = edge_u / length_u;
+  y = edge_v / length_v;
+  z = glm::cross(x, y);
+}
+
+SphericalRectangle::SphericalRectangle(const glm::dvec3& point, const Shape& shape)
+    : point_(point), x_(shape.x), y_(shape.y), z_(shape.z) {
+  const double length_u = shape.length_u, length_v = shape.length_v;
+  const glm::dvec3 d = shape.corner - point;
   z0_ = glm::dot(d, z_);
   if (z0_ > 0.0) {  // the local z must point away from the rectangle's plane
     z_ = -z_;

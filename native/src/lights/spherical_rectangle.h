@@ -12,10 +12,19 @@ namespace bakegi {
 
 class SphericalRectangle {
  public:
-  // The rectangle corner + s * edge_u + t * edge_v (s, t in [0,1], edges orthogonal) seen
-  // from `point`.
-  SphericalRectangle(const glm::dvec3& point, const glm::dvec3& corner, const glm::dvec3& edge_u,
-                     const glm::dvec3& edge_v);
+  // The part that does not depend on the viewing point, computed once per light: the
+  // rectangle corner + s * edge_u + t * edge_v (s, t in [0,1], edges orthogonal).
+  struct Shape {
+    Shape() = default;
+    Shape(const glm::dvec3& corner, const glm::dvec3& edge_u, const glm::dvec3& edge_v);
+
+    glm::dvec3 corner{0.0};
+    glm::dvec3 x{0.0}, y{0.0}, z{0.0};  // unit edge directions and x cross y
+    double length_u = 0.0, length_v = 0.0;
+  };
+
+  // `shape` seen from `point`.
+  SphericalRectangle(const glm::dvec3& point, const Shape& shape);
 
   double solid_angle() const { return solid_angle_; }
   // A point on the rectangle, uniform in solid angle for (u1, u2) uniform in [0,1)^2.
