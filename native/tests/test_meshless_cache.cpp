@@ -150,8 +150,9 @@ TEST(MeshlessCache, KeyCoversSettingsAndPlacementPointsButNotLightsOrRelightSett
   // a method may hand its bake to, like samples).
   std::vector<std::string> sorted = ignored;
   std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(sorted, (std::vector<std::string>{"bounces", "cache_dir", "direct_samples", "samples",
-                                              "sender_cutoff", "target_error", "threads"}));
+  EXPECT_EQ(sorted, (std::vector<std::string>{"bounces", "cache_dir", "denoise", "direct_samples",
+                                              "samples", "sender_cutoff", "target_error",
+                                              "threads"}));
   std::map<std::string, SettingValue> settings = {{"levels", int64_t(3)}, {"epsilon", 0.01}};
   const CacheKey key = precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &points);
 

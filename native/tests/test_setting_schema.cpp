@@ -85,9 +85,11 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
   };
   EXPECT_EQ(changeable("antiradiance"),
             sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
-                    "target_error", "threads", "cache_dir", "residual", "residual_fraction"}));
-  EXPECT_EQ(changeable("meshless"), sorted({"direct_samples", "sender_cutoff", "bounces",
-                                            "cache_dir", "samples", "target_error", "threads"}));
+                    "target_error", "threads", "cache_dir", "residual", "residual_fraction",
+                    "denoise"}));
+  EXPECT_EQ(changeable("meshless"),
+            sorted({"direct_samples", "sender_cutoff", "bounces", "cache_dir", "samples",
+                    "target_error", "threads", "denoise"}));
 }
 
 TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {

@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "bake/error_estimate.h"
+#include "bake/point_denoiser.h"
 #include "bake/point_sharing.h"
 #include "bake/solver_run.h"
 #include "lights/direct_light.h"
@@ -117,6 +118,7 @@ void BakeJob::start() {
   settings.get_string("method");  // remembered: the report and cache keys name the method
   threads_ = int(settings.get_int("threads"));
   error_probes_ = settings.get_int("error_probes");
+  denoise_ = settings.get_int("denoise") != 0;
   error_probe_samples_ = settings.get_int("error_probe_samples");
   memory_budget_bytes_ = size_t(settings.get_int("memory_budget_mb")) << 20;
   fallback_ = settings.get_int("fallback") != 0;
@@ -209,11 +211,11 @@ void BakeJob::execute() {
     const SharedPoints shared = share_points(points_, *tracer_, direct_->ray_epsilon());
     if (shared.distinct_index.empty()) {
       results_.assign(points_.size(), glm::vec3(0.0f));
-      field->evaluate(points_, results_, context_);
+      evaluate_field(*field, points_, results_, report);
     } else {
       // Corners of one vertex in one light are evaluated once (bake/point_sharing.h).
       std::vector<glm::vec3> distinct(shared.distinct.size(), glm::vec3(0.0f));
-      field->evaluate(shared.distinct, distinct, context_);
+      evaluate_field(*field, shared.distinct, distinct, report);
       spread_shared_values(shared, distinct, results_);
     }
     report.add_count("evaluated_points",
@@ -231,6 +233,28 @@ void BakeJob::execute() {
     if (estimate) estimate_error(report);
   });
   report.add_seconds("total", seconds_since(start));
+}
+
+void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& points,
+                             std::span<glm::vec3> out, Report& report) {
+  if (!denoise_) {
+    field.evaluate(points, out, context_);
+    return;
+  }
+  std::vector<float> variance(points.size(), 0.0f);
+  if (!field.evaluate_with_variance(points, out, variance, context_)) {
+    report.warn("denoise: this method's result has no noise estimates and is not filtered");
+    return;
+  }
+  context_.throw_if_cancelled();
+  const auto start = std::chrono::steady_clock::now();
+  context_.set_stage_text("denoising");
+  const DenoiseStatistics statistics =
+      denoise_points(points, out, variance, *tracer_, direct_->ray_epsilon(), context_);
+  report.add_seconds("denoise", seconds_since(start));
+  report.add_count("rays", statistics.rays);
+  report.set_number("denoise_noise_before", statistics.noise_before);
+  report.set_number("denoise_noise_after", statistics.noise_after);
 }
 
 const Scene& BakeJob::build_scene_and_report(Report& report,

@@ -89,6 +89,10 @@ class BakeJob {
   // Validates and flattens the description into scene_, with its counts in the report.
   const Scene& build_scene_and_report(Report& report, std::chrono::steady_clock::time_point start);
   std::unique_ptr<IndirectField> solve_full(Report& report);
+  // field.evaluate(), filtered when "denoise" is set and the field estimates its noise
+  // (bake/point_denoiser.h).
+  void evaluate_field(const IndirectField& field, const BakePoints& points,
+                      std::span<glm::vec3> out, Report& report);
   std::unique_ptr<IndirectField> solve_relight(Report& report);
   // Path-traces probes and compares the results there (settings error_probes,
   // error_probe_samples); writes error_estimate, estimated_error and its interval.
@@ -116,6 +120,7 @@ class BakeJob {
   std::string method_;
   int threads_ = 0;
   int64_t error_probes_ = 0;
+  bool denoise_ = false;
   int64_t error_probe_samples_ = 0;
   size_t memory_budget_bytes_ = 0;
   // A solver that cannot model the scene within the memory budget hands the bake to the path

@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "scene/mutual_visibility.h"
 #include "scene/ray_tracer.h"
 #include "util/error.h"
 
@@ -18,12 +19,8 @@ bool can_share(const BakePoints& points, uint32_t a, uint32_t b, const RayTracer
   const glm::vec3& na = points.normals[a];
   const glm::vec3& nb = points.normals[b];
   if (!(glm::dot(na, nb) >= kSharedNormalCosine)) return false;
-  const glm::vec3 from = points.positions[a] + na * ray_epsilon;
-  const glm::vec3 to = points.positions[b] + nb * ray_epsilon;
-  const glm::vec3 span = to - from;
-  const float length = glm::length(span);
-  if (!(length > 0.0f)) return true;
-  return !tracer.occluded(Ray{from, span / length, 0.0f, length});
+  return points_see_each_other(tracer, points.positions[a], na, points.positions[b], nb,
+                               ray_epsilon);
 }
 
 // Groups whose candidate was blocked keep trying the points of their group evaluated so far;

@@ -25,6 +25,17 @@ class IndirectField {
   // progress and honours cancel through the context.
   virtual void evaluate(const BakePoints& points, std::span<glm::vec3> out,
                         JobContext& context) const = 0;
+  // evaluate(), and for a Monte Carlo field each point's variance of its luminance (the
+  // noise a denoiser may trade for bias, bake/point_denoiser.h): returns true when
+  // `variance_of_mean` (one per point) was filled, false (and nothing written there) for a
+  // field without noise estimates.
+  virtual bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
+                                      std::span<float> variance_of_mean,
+                                      JobContext& context) const {
+    (void)variance_of_mean;
+    evaluate(points, out, context);
+    return false;
+  }
 };
 
 }  // namespace bakegi

@@ -58,6 +58,10 @@ const std::vector<SettingSpec>& common_setting_specs() {
                       "random seed; results are deterministic for a seed"),
       integer_setting("sample_offset", 0, 0, int64_t(1) << 40, R::kShapes,
                       "index of the first sample: bakes of samples [o, o + n) average to one bake"),
+      integer_setting("denoise", 0, 0, 1, R::kLighting,
+                      "1: filter a sampling bake's noise over neighbouring points (edge- and "
+                      "noise-aware; report \"denoise_noise_after\"): less noise for some bias, "
+                      "which the error probes measure; 0: off"),
       integer_setting("threads", 0, 0, 1024, R::kExecution, "worker threads, 0 = all cores"),
       integer_setting("memory_budget_mb", 4096, 1, int64_t(1) << 30, R::kShapes,
                       "a bake whose estimate exceeds it is refused; antiradiance coarsens an "

@@ -112,8 +112,9 @@ void sample_round(const BakePoints& points, std::vector<PointSums>& sums,
 
 void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
                         const SampleSettings& sampling, const PointSampleEstimator& estimator,
-                        JobContext& context) {
-  if (out.size() != points.size()) {
+                        JobContext& context, std::span<float> variance_of_mean) {
+  if (out.size() != points.size() ||
+      (!variance_of_mean.empty() && variance_of_mean.size() != points.size())) {
     throw Error(BAKEGI_ERROR_INTERNAL, "output size does not match the number of bake points");
   }
   const size_t count = points.size();
@@ -161,6 +162,9 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
     out[i] = point.tally.samples > 0
                  ? glm::vec3(point.value / double(point.tally.samples))
                  : glm::vec3(0.0f);
+    if (!variance_of_mean.empty()) {
+      variance_of_mean[i] = float(luminance_variance_of_mean(point.tally));
+    }
   }
   if (dropped.load() > 0) {
     report.warn(std::to_string(dropped.load()) + " non-finite Monte Carlo samples were dropped");

@@ -38,8 +38,10 @@ struct SampleSettings {
 using PointSampleEstimator =
     std::function<glm::vec3(const SurfacePoint& point, RandomStream& rng, uint64_t& rays)>;
 
+// `variance_of_mean`, when not empty (one per point), receives each point's variance of its
+// result's luminance as its samples' spread estimates it (luminance_variance_of_mean).
 void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
                         const SampleSettings& sampling, const PointSampleEstimator& estimator,
-                        JobContext& context);
+                        JobContext& context, std::span<float> variance_of_mean = {});
 
 }  // namespace bakegi

@@ -56,8 +56,10 @@ double ControlledPathField::pilot(const BakePoints& points, JobContext& context)
   return statistics.best_rest_probability(kMinRestProbability);
 }
 
-void ControlledPathField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                                   JobContext& context) const {
+bool ControlledPathField::evaluate_with_variance(const BakePoints& points,
+                                                 std::span<glm::vec3> out,
+                                                 std::span<float> variance_of_mean,
+                                                 JobContext& context) const {
   const double q = rest_probability_ > 0.0 ? rest_probability_ : pilot(points, context);
   context.report().set_number("residual_fraction", q);
   const int max_bounces = settings_.max_bounces;
@@ -68,7 +70,8 @@ void ControlledPathField::evaluate(const BakePoints& points, std::span<glm::vec3
         return sample_indirect_controlled(direct_, *cache_, x, rng, max_bounces,
                                           rest_probability, rays);
       },
-      context);
+      context, variance_of_mean);
+  return !variance_of_mean.empty();
 }
 
 }  // namespace bakegi

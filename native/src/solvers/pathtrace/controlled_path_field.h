@@ -32,7 +32,12 @@ class ControlledPathField : public IndirectField {
   ControlledPathField(const DirectLight& direct, std::shared_ptr<const RadianceCache> cache,
                       const PathTraceSettings& settings, double rest_probability);
   void evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                JobContext& context) const override;
+                JobContext& context) const override {
+    evaluate_with_variance(points, out, {}, context);
+  }
+  bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
+                              std::span<float> variance_of_mean,
+                              JobContext& context) const override;
 
  private:
   double pilot(const BakePoints& points, JobContext& context) const;

@@ -17,15 +17,17 @@ PathTraceSettings PathTraceSettings::from(const Settings& settings) {
 PathTracedField::PathTracedField(const DirectLight& direct, const PathTraceSettings& settings)
     : direct_(direct), settings_(settings) {}
 
-void PathTracedField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                               JobContext& context) const {
+bool PathTracedField::evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
+                                             std::span<float> variance_of_mean,
+                                             JobContext& context) const {
   const int max_bounces = settings_.max_bounces;
   estimate_at_points(
       points, out, settings_.sampling,
       [&](const SurfacePoint& x, RandomStream& rng, uint64_t& rays) {
         return sample_indirect(direct_, x, rng, max_bounces, rays);
       },
-      context);
+      context, variance_of_mean);
+  return !variance_of_mean.empty();
 }
 
 std::unique_ptr<IndirectField> PathTraceSolver::solve(const SolveInputs& inputs,

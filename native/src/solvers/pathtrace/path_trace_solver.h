@@ -22,7 +22,12 @@ class PathTracedField : public IndirectField {
   // `direct` (and the scene and tracer it refers to) must outlive the field.
   PathTracedField(const DirectLight& direct, const PathTraceSettings& settings);
   void evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                JobContext& context) const override;
+                JobContext& context) const override {
+    evaluate_with_variance(points, out, {}, context);
+  }
+  bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
+                              std::span<float> variance_of_mean,
+                              JobContext& context) const override;
 
  private:
   const DirectLight& direct_;
