@@ -12,10 +12,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "bake/local_linear_fit.h"
 #include "scene/mutual_visibility.h"
 #include "util/error.h"
 #include "util/job_context.h"
 #include "util/luminance.h"
+#include "util/sampling.h"
 
 namespace bakegi {
 
@@ -30,6 +32,9 @@ using Tree = bgi::rtree<Entry, bgi::quadratic<16>>;
 TreePoint tree_point(const glm::vec3& p) { return TreePoint(p.x, p.y, p.z); }
 
 constexpr size_t kPointsPerBlock = 64;
+// A guide plane whose weighted squared residuals exceed this many times the samples' noise
+// variance is not a plane (a step, a shadow edge): its slope is not used.
+constexpr double kPlaneFitTolerance = 2.0;
 
 struct Neighbour {
   uint32_t index;
@@ -107,21 +112,26 @@ DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> 
   // (measured: the filtered noise 2x the prediction on a flat floor).
   std::vector<uint64_t> admissible(count, 0);
   std::vector<float> guide(count), guide_variance(count);
+  std::vector<glm::vec2> guide_slope(count);  // per unit of offset / h_i, in i's tangent frame
   std::atomic<uint64_t> rays{0};
   for_each_point(count, context, 0.0, 0.8, [&](size_t i, auto& found, auto& near) {
     const float h2 = nearest_points(tree, points, i, found, near);
     const glm::vec3& x = points.positions[i];
     const glm::vec3& n = points.normals[i];
-    double sum = 0.0, weights = 0.0, weighted_variance = 0.0;
+    const Frame frame(n);
+    const float inverse_h = h2 > 0.0f ? 1.0f / std::sqrt(h2) : 0.0f;
+    std::vector<float> weights;
+    std::vector<glm::vec2> offsets;
+    std::vector<uint32_t> members;
     uint64_t mask = 0, traced = 0;
     for (size_t k = 0; k < near.size(); ++k) {
       const uint32_t j = near[k].index;
       const float w = j == i ? 1.0f : spatial_weight(near[k], h2);
+      const glm::vec3 d = points.positions[j] - x;
       if (j != i) {
         if (!(w > 1e-4f)) continue;
         const glm::vec3& nj = points.normals[j];
         if (!(glm::dot(n, nj) >= kMinNormalCosine)) continue;
-        const glm::vec3 d = points.positions[j] - x;
         if (std::abs(glm::dot(d, n)) > kMaxPlaneSlope * std::sqrt(near[k].distance_squared)) {
           continue;
         }
@@ -129,13 +139,34 @@ DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> 
         if (!points_see_each_other(tracer, x, n, points.positions[j], nj, ray_epsilon)) continue;
       }
       mask |= uint64_t(1) << k;
-      sum += double(w) * luminances[j];
-      weights += double(w);
-      weighted_variance += double(w) * double(w) * double(variance_of_mean[j]);
+      weights.push_back(w);
+      offsets.push_back(inverse_h * glm::vec2(glm::dot(d, frame.tangent),
+                                              glm::dot(d, frame.bitangent)));
+      members.push_back(j);
     }
+    std::vector<double> kernel;
+    std::vector<glm::dvec2> slope_kernel;
+    local_linear_kernel(weights, offsets, kernel, &slope_kernel);
+    double value = 0.0, variance = 0.0;
+    glm::dvec2 slope(0.0);
+    for (size_t m = 0; m < members.size(); ++m) {
+      value += kernel[m] * luminances[members[m]];
+      slope += slope_kernel[m] * double(luminances[members[m]]);
+      variance += kernel[m] * kernel[m] * double(variance_of_mean[members[m]]);
+    }
+    // The plane guides the range kernel only where it fits to within the noise: across a
+    // step it would pass for a ramp and let the other side in.
+    double residual = 0.0, noise = 0.0;
+    for (size_t m = 0; m < members.size(); ++m) {
+      const double r = luminances[members[m]] - value - glm::dot(slope, glm::dvec2(offsets[m]));
+      residual += weights[m] * r * r;
+      noise += weights[m] * double(variance_of_mean[members[m]]);
+    }
+    const bool planar = residual <= kPlaneFitTolerance * noise;
     admissible[i] = mask;
-    guide[i] = weights > 0.0 ? float(sum / weights) : luminances[i];
-    guide_variance[i] = weights > 0.0 ? float(weighted_variance / (weights * weights)) : 0.0f;
+    guide[i] = float(value);
+    guide_slope[i] = planar ? glm::vec2(slope) : glm::vec2(0.0f);
+    guide_variance[i] = float(variance);
     rays.fetch_add(traced, std::memory_order_relaxed);
   });
 
@@ -145,28 +176,46 @@ DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> 
   std::vector<float> filtered_variance(count);
   for_each_point(count, context, 0.8, 1.0, [&](size_t i, auto& found, auto& near) {
     const float h2 = nearest_points(tree, points, i, found, near);
-    glm::dvec3 sum(0.0);
-    double weights = 0.0, weighted_variance = 0.0;
+    const glm::vec3& x = points.positions[i];
+    const Frame frame(points.normals[i]);
+    const float inverse_h = h2 > 0.0f ? 1.0f / std::sqrt(h2) : 0.0f;
+    std::vector<float> weights;
+    std::vector<glm::vec2> offsets;
+    std::vector<uint32_t> members;
     for (size_t k = 0; k < near.size(); ++k) {
       if (!(admissible[i] >> k & 1)) continue;
       const uint32_t j = near[k].index;
       // The point itself always counts fully: where every neighbour lies far from the guide
       // (at an edge the guide mixes both sides) the point keeps its own value.
+      const glm::vec3 d = points.positions[j] - x;
+      const glm::vec2 offset =
+          inverse_h * glm::vec2(glm::dot(d, frame.tangent), glm::dot(d, frame.bitangent));
       float w = 1.0f;
       if (j != i) {
         const float noise = guide_variance[i] + variance_of_mean[j];
         if (!(noise > 0.0f)) continue;  // noise-free: nothing to trade
-        const float difference = guide[i] - luminances[j];
+        // Against the guide's plane at j: against its value at i a gradient would favour the
+        // neighbours whose noise leans towards i (measured: a bias at a ramp's rim).
+        const float difference = guide[i] + glm::dot(guide_slope[i], offset) - luminances[j];
         const float excess = std::max(0.0f, difference * difference - noise);
         w = spatial_weight(near[k], h2) *
             std::exp(-excess / (kRangeStrength * kRangeStrength * noise));
       }
-      sum += double(w) * glm::dvec3(values[j]);
-      weights += double(w);
-      weighted_variance += double(w) * double(w) * double(variance_of_mean[j]);
+      weights.push_back(w);
+      offsets.push_back(offset);
+      members.push_back(j);
     }
-    filtered[i] = glm::vec3(sum / weights);
-    filtered_variance[i] = float(weighted_variance / (weights * weights));
+    std::vector<double> kernel;
+    local_linear_kernel(weights, offsets, kernel);
+    glm::dvec3 value(0.0);
+    double variance = 0.0;
+    for (size_t m = 0; m < members.size(); ++m) {
+      value += kernel[m] * glm::dvec3(values[members[m]]);
+      variance += kernel[m] * kernel[m] * double(variance_of_mean[members[m]]);
+    }
+    // A slope fitted from noise can extrapolate below zero; light cannot.
+    filtered[i] = glm::max(glm::vec3(value), glm::vec3(0.0f));
+    filtered_variance[i] = float(variance);
   });
 
   double mean = 0.0, before = 0.0, after = 0.0;

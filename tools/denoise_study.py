@@ -1,0 +1,73 @@
+"""Time against error of the path tracer with and without the point denoiser (setting
+"denoise", native/src/bake/point_denoiser.h) on one exported scene (.bgs, tools/export_scene.py),
+against a path-traced reference made of two independent halves (their mean is the reference;
+its own noise, NRMSE(a, b) / 2, is printed next to every figure).
+
+    /usr/bin/python3 tools/denoise_study.py --scene /tmp/cornell.bgs --reference-samples 32768 \
+        --samples 16 64 128 256 1024 [--cli build/bakegi] [--work /tmp/denoise_study]
+
+The halves are cached in --work (named after the scene and the sample count) and reused.
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+import numpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from real_scene_metrics import nrmse, weighted_relative_rmse  # noqa: E402
+
+
+def bake(cli, scene, out, samples, seed, extra=()):
+    report = out[:-4] + ".json"
+    subprocess.run([cli, "bake", scene, "--method", "pathtrace", "--samples", str(samples),
+                    "--seed", str(seed), "--set", "error_probes=0", *extra, "--out", out,
+                    "--report", report], check=True, stdout=subprocess.DEVNULL)
+    with open(report) as f:
+        return json.load(f)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--scene", required=True)
+    parser.add_argument("--reference-samples", type=int, required=True,
+                        help="paths per point of each reference half")
+    parser.add_argument("--samples", type=int, nargs="+", default=[16, 64, 256])
+    parser.add_argument("--cli", default=os.path.join(os.path.dirname(__file__), "..", "build",
+                                                      "bakegi"))
+    parser.add_argument("--work", default="/tmp/denoise_study")
+    args = parser.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    name = os.path.splitext(os.path.basename(args.scene))[0]
+
+    halves = []
+    for half in range(2):
+        path = os.path.join(args.work, "%s_ref%d_%d.npy" % (name, args.reference_samples, half))
+        if not os.path.exists(path):
+            # Seed 1, other samples than the bakes below (seed 0).
+            bake(args.cli, args.scene, path, args.reference_samples, 1,
+                 ["--set", "sample_offset=%d" % (half * args.reference_samples)])
+        halves.append(numpy.load(path))
+    reference = 0.5 * (halves[0] + halves[1])
+    noise = 0.5 * nrmse(halves[0], halves[1])
+    print("%s: reference %d paths per point, its noise (NRMSE) %.2f%%"
+          % (name, 2 * args.reference_samples, 100 * noise))
+    print("| samples | denoise | seconds | NRMSE | weighted rel. RMSE | predicted noise |")
+    print("|---:|---|---:|---:|---:|---:|")
+    for samples in args.samples:
+        for denoise in (0, 1):
+            out = os.path.join(args.work, "%s_%d_%d.npy" % (name, samples, denoise))
+            report = bake(args.cli, args.scene, out, samples, 0, ["--set", "denoise=%d" % denoise])
+            values = numpy.load(out)
+            predicted = report.get("denoise_noise_after") if denoise else None
+            print("| %d | %s | %.2f | %.2f%% | %.2f%% | %s |" % (
+                samples, "on" if denoise else "off", report["seconds"]["total"],
+                100 * nrmse(values, reference), 100 * weighted_relative_rmse(values, reference),
+                "%.2f%%" % (100 * predicted) if predicted is not None else ""))
+
+
+if __name__ == "__main__":
+    main()
