@@ -55,6 +55,22 @@ class Scripting(common.SmallCornellCase):
         same = [numpy.array_equal(colors[c], colors[first[int(v)]]) for c, v in enumerate(loop_vertex)]
         self.assertTrue(all(same), f"{same.count(False)} back wall corners differ from their vertex's first")
 
+    def test_denoise_reaches_the_core_and_lowers_the_noise(self):
+        """The panel's Denoise asks the core to filter a path-traced bake; the core's
+        prediction of the noise left (bake/point_denoiser.h) falls well below the noise
+        before (measured 3-5x on rooms at 16 samples)."""
+        scene = bpy.context.scene
+        scene.bakegi.method = "pathtrace"
+        scene.bakegi.denoise = True
+        self.assertEqual(scene.bakegi.request().method_settings.get("denoise"), 1)
+        report = self.bakegi.bake(method="pathtrace", samples=16, seed=1, target="CORNER",
+                                  objects="VISIBLE", estimate_error=False,
+                                  method_settings={"denoise": 1})
+        self.assertEqual(report["settings"]["denoise"], 1)
+        self.assertLess(report["denoise_noise_after"], 0.5 * report["denoise_noise_before"])
+        scene.bakegi.denoise = False
+        self.assertNotIn("denoise", scene.bakegi.request().method_settings)
+
     def test_add_on_preferences_reach_the_bake(self):
         """Threads and the memory budget come from the add-on preferences, unless the call
         names them."""

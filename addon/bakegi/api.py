@@ -56,7 +56,8 @@ def bake(method=None, samples=64, seed=0, target="CORNER", objects="SELECTED",
     Returns the report: seconds per stage (export, bake, writeback, total and the core's
     own), bake_points, method, settings, warnings, memory, rays, objects.
     method_settings: further core settings of the method, e.g. {"bins": 300, "iterations":
-    32} for method="antiradiance" (docs/settings.md lists every method's keys).
+    32} for method="antiradiance", {"denoise": 1} to filter a path-traced bake's noise
+    (docs/settings.md lists every method's keys).
     method: None = the core's default ("antiradiance"; bakegi.native.default_method()),
     "pathtrace" (the Monte Carlo reference; samples
     applies to it only) or "meshless" (precomputed transfer; relights in milliseconds;

@@ -38,6 +38,7 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             col.prop(settings, "live_indirect")
         else:
             col.prop(settings, "samples")
+            col.prop(settings, "denoise")
             col.prop(settings, "seed")
         col.prop(settings, "target")
         if settings.target == "LIGHTMAP":

@@ -71,6 +71,11 @@ class BakeGISettings(bpy.types.PropertyGroup):
         "light units with Cycles")
     samples: IntProperty(name="Samples", default=64, min=1, max=1 << 30, soft_max=4096,
                          description="Paths per bake point: more is slower and less noisy")
+    denoise: BoolProperty(
+        name="Denoise", default=False,
+        description="Path tracing: filter the noise over neighbouring points on the same "
+        "surface (edge- and noise-aware); 2-3x less error at the same samples for a bias of "
+        "about 1-2%, which Check Error measures")
     bins: IntProperty(name="Bins", default=300, min=12, max=3072,
                       description="Antiradiance: directional bins per element; more bins "
                       "sharpen indirect shadows and cost memory and time")
@@ -168,6 +173,8 @@ class BakeGISettings(bpy.types.PropertyGroup):
         settings = {} if self.estimate_error else {"error_probes": 0}
         if method == "antiradiance":
             settings.update(bins=self.bins, iterations=self.iterations)
+        elif method == "pathtrace" and self.denoise:
+            settings["denoise"] = 1
         elif method == "meshless":
             settings.update(levels=self.meshless_levels, epsilon=self.meshless_epsilon)
             if self.use_cache:
