@@ -4,9 +4,11 @@ against a path-traced reference made of two independent halves (their mean is th
 its own noise, NRMSE(a, b) / 2, is printed next to every figure).
 
     /usr/bin/python3 tools/denoise_study.py --scene /tmp/cornell.bgs --reference-samples 32768 \
-        --samples 16 64 128 256 1024 [--cli build/bakegi] [--work /tmp/denoise_study]
+        --samples 16 64 128 256 1024 [--cli build/bakegi] [--work /tmp/denoise_study] \
+        [--json docs/denoise_cornell.json]
 
 The halves are cached in --work (named after the scene and the sample count) and reused.
+--json keeps the rows for tools/plot_denoise_study.py.
 """
 
 import argparse
@@ -39,6 +41,7 @@ def main():
     parser.add_argument("--cli", default=os.path.join(os.path.dirname(__file__), "..", "build",
                                                       "bakegi"))
     parser.add_argument("--work", default="/tmp/denoise_study")
+    parser.add_argument("--json", help="write the rows here")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     name = os.path.splitext(os.path.basename(args.scene))[0]
@@ -55,6 +58,7 @@ def main():
     noise = 0.5 * nrmse(halves[0], halves[1])
     print("%s: reference %d paths per point, its noise (NRMSE) %.2f%%"
           % (name, 2 * args.reference_samples, 100 * noise))
+    rows = []
     print("| samples | denoise | seconds | NRMSE | weighted rel. RMSE | predicted noise |")
     print("|---:|---|---:|---:|---:|---:|")
     for samples in args.samples:
@@ -63,10 +67,20 @@ def main():
             report = bake(args.cli, args.scene, out, samples, 0, ["--set", "denoise=%d" % denoise])
             values = numpy.load(out)
             predicted = report.get("denoise_noise_after") if denoise else None
+            rows.append({"samples": samples, "denoise": bool(denoise),
+                         "seconds": report["seconds"]["total"],
+                         "nrmse": nrmse(values, reference),
+                         "weighted_relative_rmse": weighted_relative_rmse(values, reference),
+                         "predicted_noise": predicted})
             print("| %d | %s | %.2f | %.2f%% | %.2f%% | %s |" % (
                 samples, "on" if denoise else "off", report["seconds"]["total"],
                 100 * nrmse(values, reference), 100 * weighted_relative_rmse(values, reference),
                 "%.2f%%" % (100 * predicted) if predicted is not None else ""))
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"scene": name, "points": report.get("evaluated_points"),
+                       "reference_paths": 2 * args.reference_samples,
+                       "reference_noise": noise, "rows": rows}, f, indent=1)
 
 
 if __name__ == "__main__":

@@ -58,11 +58,12 @@ size_t triangle_count(const SceneDescription& d) {
 
 }  // namespace
 
-size_t BakeJob::estimate_memory(const SceneDescription& description, size_t point_count) {
+size_t BakeJob::estimate_memory(const SceneDescription& description, size_t point_count,
+                                bool denoise) {
   // The Scene holds a second copy of the description next to its triangles.
   return description_bytes(description) + estimate_scene_bytes(description) +
          triangle_count(description) * kEmbreeBytesPerTriangle +
-         point_count * (kBytesPerPoint + kBytesPerResult);
+         point_count * (kBytesPerPoint + kBytesPerResult + (denoise ? kDenoiseBytesPerPoint : 0));
 }
 
 BakeJob::BakeJob(SceneDescription description, BakePoints points, Settings settings,
@@ -272,7 +273,7 @@ const Scene& BakeJob::build_scene_and_report(Report& report,
 std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   context_.set_stage("validating", 0.0, 0.02);
   auto stage_start = std::chrono::steady_clock::now();
-  const size_t estimate = estimate_memory(description_, points_.size());
+  const size_t estimate = estimate_memory(description_, points_.size(), denoise_);
   report.add_count("memory_estimate_bytes", estimate);
   if (estimate > memory_budget_bytes_) {
     throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,

@@ -79,7 +79,8 @@ class BakeJob {
 
   // Bytes a bake is expected to need (flattened scene, BVH, points and results), before
   // any of it is allocated.
-  static size_t estimate_memory(const SceneDescription& description, size_t point_count);
+  static size_t estimate_memory(const SceneDescription& description, size_t point_count,
+                                bool denoise = false);
 
  private:
   void run() noexcept;

@@ -20,6 +20,7 @@
 // (bake/error_estimate.h) compare the filtered values with the path tracer and measure it.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -43,6 +44,9 @@ inline constexpr int kDenoiseNeighbours = 32;
 inline constexpr float kMinNormalCosine = 0.9f;  // 25.8°
 inline constexpr float kMaxPlaneSlope = 0.25f;
 inline constexpr float kRangeStrength = 1.0f;
+// What the filter holds per point at its peak (the R-tree's entry and nodes, luminance,
+// variance, neighbour mask, guide plane, filtered value), for the job's memory estimate.
+inline constexpr size_t kDenoiseBytesPerPoint = 96;
 
 // Filters `values` in place (one per point; `variance_of_mean` likewise). Parallel (TBB),
 // cancellable (Error(CANCELLED) through the context, `values` then unchanged).
