@@ -1,5 +1,6 @@
 """The scripting API: bakegi.bake's report, both targets, remove_bake, and undo of the operator."""
 
+import json
 import os
 import sys
 
@@ -70,6 +71,32 @@ class Scripting(common.SmallCornellCase):
         self.assertLess(report["denoise_noise_after"], 0.5 * report["denoise_noise_before"])
         scene.bakegi.denoise = False
         self.assertNotIn("denoise", scene.bakegi.request().method_settings)
+
+    def test_quality_is_a_target_error(self):
+        """Path tracing's Quality asks the core for an error (Draft 10%, Good 5%, Final 2%)
+        with a high cap on samples; Fixed Samples asks for exactly Samples. A Draft bake
+        reports what it predicts for itself, at or below the target."""
+        scene = bpy.context.scene
+        scene.bakegi.method = "pathtrace"
+        scene.bakegi.samples = 32
+        expected = {"DRAFT": 0.10, "GOOD": 0.05, "FINAL": 0.02}
+        for quality, target in expected.items():
+            scene.bakegi.quality = quality
+            request = scene.bakegi.request()
+            self.assertEqual(request.method_settings.get("target_error"), target)
+            self.assertGreater(request.samples, 1000)
+        scene.bakegi.quality = "SAMPLES"
+        request = scene.bakegi.request()
+        self.assertNotIn("target_error", request.method_settings)
+        self.assertEqual(request.samples, 32)
+        scene.bakegi.quality = "DRAFT"
+        scene.bakegi.objects = "VISIBLE"
+        scene.bakegi.estimate_error = False
+        self.assertEqual(bpy.ops.bakegi.bake_indirect(), {"FINISHED"})
+        report = json.loads(scene.bakegi.last_report)
+        self.assertEqual(report["settings"]["target_error"], 0.1)
+        self.assertLessEqual(report["sampling_predicted_error"], 0.1)
+        scene.bakegi.quality = "GOOD"
 
     def test_add_on_preferences_reach_the_bake(self):
         """Threads and the memory budget come from the add-on preferences, unless the call

@@ -37,7 +37,9 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             col.prop(settings, "use_cache")
             col.prop(settings, "live_indirect")
         else:
-            col.prop(settings, "samples")
+            col.prop(settings, "quality")
+            if settings.quality == "SAMPLES":
+                col.prop(settings, "samples")
             col.prop(settings, "denoise")
             col.prop(settings, "seed")
         col.prop(settings, "target")

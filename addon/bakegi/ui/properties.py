@@ -45,6 +45,20 @@ LINKED_DUPLICATE_ITEMS = [
      "the mesh and bake each with its own light (more memory; undo restores the sharing)"),
 ]
 
+# Path tracing: the quality is the error to reach (the core's target_error: samples go where the
+# noise is until the predicted NRMSE meets it, an upper bound with its quasi-random samples;
+# docs/benchmarks.md section 0), or a fixed sample count.
+QUALITY_ITEMS = [
+    ("DRAFT", "Draft (10%)", "Sample until the predicted error is 10%"),
+    ("GOOD", "Good (5%)", "Sample until the predicted error is 5%"),
+    ("FINAL", "Final (2%)", "Sample until the predicted error is 2%"),
+    ("SAMPLES", "Fixed Samples", "Exactly Samples paths per bake point"),
+]
+QUALITY_TARGETS = {"DRAFT": 0.10, "GOOD": 0.05, "FINAL": 0.02}
+# A target's cap on the paths of one point: far above what 2% needs on the scenes measured
+# (a few thousand), so that the target, not the cap, ends the bake.
+QUALITY_MAX_SAMPLES = 1 << 16
+
 OBJECTS_ITEMS = [
     ("SELECTED", "Selected", "Bake the selected mesh objects"),
     ("VISIBLE", "All Visible", "Bake every visible mesh object"),
@@ -71,6 +85,10 @@ class BakeGISettings(bpy.types.PropertyGroup):
         "light units with Cycles")
     samples: IntProperty(name="Samples", default=64, min=1, max=1 << 30, soft_max=4096,
                          description="Paths per bake point: more is slower and less noisy")
+    quality: EnumProperty(
+        name="Quality", items=QUALITY_ITEMS, default="GOOD",
+        description="Path tracing: the error to reach (samples go where the noise is and the "
+        "bake stops when its own estimate meets it), or a fixed number of samples")
     denoise: BoolProperty(
         name="Denoise", default=False,
         description="Path tracing: filter the noise over neighbouring points on the same "
@@ -173,8 +191,11 @@ class BakeGISettings(bpy.types.PropertyGroup):
         settings = {} if self.estimate_error else {"error_probes": 0}
         if method == "antiradiance":
             settings.update(bins=self.bins, iterations=self.iterations)
-        elif method == "pathtrace" and self.denoise:
-            settings["denoise"] = 1
+        elif method == "pathtrace":
+            if self.quality in QUALITY_TARGETS:
+                settings["target_error"] = QUALITY_TARGETS[self.quality]
+            if self.denoise:
+                settings["denoise"] = 1
         elif method == "meshless":
             settings.update(levels=self.meshless_levels, epsilon=self.meshless_epsilon)
             if self.use_cache:
@@ -188,7 +209,8 @@ class BakeGISettings(bpy.types.PropertyGroup):
 
     def request(self):
         """The bake these settings ask for (threads: the add-on preferences')."""
-        return BakeRequest(method=self.resolved_method(), samples=self.samples, seed=self.seed,
+        return BakeRequest(method=self.resolved_method(), samples=self.request_samples(),
+                           seed=self.seed,
                            target=self.target, objects=self.objects,
                            hook_materials=self.hook_materials,
                            method_settings=self.method_settings(), live=self.live_requested(),
@@ -196,6 +218,12 @@ class BakeGISettings(bpy.types.PropertyGroup):
                            lightmap_folder=self.lightmap_directory(),
                            lightmap_full_float=self.lightmap_float,
                            linked_duplicates=self.linked_duplicates)
+
+    def request_samples(self):
+        """Samples per point: the fixed count, or a quality target's cap."""
+        if self.resolved_method() == "pathtrace" and self.quality in QUALITY_TARGETS:
+            return QUALITY_MAX_SAMPLES
+        return self.samples
 
     def lightmap_options(self):
         return LightmapOptions(uv_map=self.lightmap_uv_map, texels_per_meter=self.texels_per_meter,
