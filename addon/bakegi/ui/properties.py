@@ -92,8 +92,8 @@ class BakeGISettings(bpy.types.PropertyGroup):
     denoise: BoolProperty(
         name="Denoise", default=False,
         description="Path tracing: filter the noise over neighbouring points on the same "
-        "surface (edge- and noise-aware); 2-3x less error at the same samples for a bias of "
-        "about 1-2%, which Check Error measures")
+        "surface (edge- and noise-aware); 2-3.5x less error at the same samples for a bias of "
+        "about 1-3%, which Check Error measures")
     bins: IntProperty(name="Bins", default=300, min=12, max=3072,
                       description="Antiradiance: directional bins per element; more bins "
                       "sharpen indirect shadows and cost memory and time")

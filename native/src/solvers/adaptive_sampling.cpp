@@ -5,17 +5,6 @@
 
 namespace bakegi {
 
-namespace {
-
-double sample_variance(const PointTally& t) {
-  if (t.samples < 2) return 0.0;
-  const double n = double(t.samples);
-  const double mean = t.luminance_sum / n;
-  return std::max(0.0, (t.luminance_squares - n * mean * mean) / (n - 1.0));
-}
-
-}  // namespace
-
 SamplingRound plan_sampling_round(std::span<const PointTally> tallies, double target_error,
                                   int64_t max_samples) {
   SamplingRound round;
@@ -26,7 +15,7 @@ SamplingRound plan_sampling_round(std::span<const PointTally> tallies, double ta
   double mean_value = 0.0, mean_variance = 0.0;
   for (const PointTally& t : tallies) {
     if (t.samples > 0) mean_value += t.luminance_sum / double(t.samples);
-    mean_variance += sample_variance(t);
+    mean_variance += luminance_sample_variance(t);
   }
   mean_value /= double(count);
   mean_variance /= double(count);
@@ -38,7 +27,7 @@ SamplingRound plan_sampling_round(std::span<const PointTally> tallies, double ta
     const PointTally& t = tallies[i];
     const double own_weight = std::max(0.0, double(t.samples) - 1.0);
     variance[i] =
-        (own_weight * sample_variance(t) + kPriorSamples * mean_variance) /
+        (own_weight * luminance_sample_variance(t) + kPriorSamples * mean_variance) /
         (own_weight + kPriorSamples);
     mean_root += std::sqrt(variance[i]);
     if (t.samples > 0) mean_error_squared += variance[i] / double(t.samples);

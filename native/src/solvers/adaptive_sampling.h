@@ -18,6 +18,7 @@
 // than v_i / n_i, so the prediction is an upper bound and the bake stops late, not early.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -40,16 +41,18 @@ struct SamplingRound {
 
 inline constexpr double kPriorSamples = 4.0;
 
-// The variance of a point's mean luminance from its samples' spread: s^2 / n (0 below two
-// samples).
-inline double luminance_variance_of_mean(const PointTally& tally) {
+// The sample variance s^2 of a point's luminance samples (0 below two samples).
+inline double luminance_sample_variance(const PointTally& tally) {
   if (tally.samples < 2) return 0.0;
   const double n = double(tally.samples);
   const double mean = tally.luminance_sum / n;
-  const double variance = (tally.luminance_squares - n * mean * mean) / (n - 1.0);
-  return variance > 0.0 ? variance / n : 0.0;
+  return std::max(0.0, (tally.luminance_squares - n * mean * mean) / (n - 1.0));
 }
 
+// The variance of a point's mean luminance: s^2 / n.
+inline double luminance_variance_of_mean(const PointTally& tally) {
+  return tally.samples > 0 ? luminance_sample_variance(tally) / double(tally.samples) : 0.0;
+}
 // The prediction E of the tallies, and the samples each point adds next (none once E <=
 // target or every point that wants more has reached max_samples). Points with 0 samples count as
 // needing a first round (callers start with one).

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "field/indirect_field.h"
 #include "scene/bake_points.h"
 #include "lights/surface_point.h"
 
@@ -43,5 +44,15 @@ using PointSampleEstimator =
 void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
                         const SampleSettings& sampling, const PointSampleEstimator& estimator,
                         JobContext& context, std::span<float> variance_of_mean = {});
+
+// A field that samples (estimate_at_points): it always knows its noise, so evaluate() is
+// evaluate_with_variance() without the variances.
+class SampledField : public IndirectField {
+ public:
+  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
+                JobContext& context) const final {
+    evaluate_with_variance(points, out, {}, context);
+  }
+};
 
 }  // namespace bakegi

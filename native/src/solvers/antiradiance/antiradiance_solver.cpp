@@ -240,6 +240,31 @@ void check_made_for(const ElementHierarchy& hierarchy, const Scene& scene) {
   }
 }
 
+// What the hierarchy, links and iteration came to, for the report (whatever the output).
+void report_solution(Report& report, const AntiradiancePrecomputation& system,
+                     const RadianceTables& tables, const IterationResult& result,
+                     double direct_seconds, double iterate_seconds) {
+  const ElementHierarchy& hierarchy = system.hierarchy;
+  report.add_count("antiradiance_bins", uint64_t(system.bins.bin_count()));
+  report.add_count("antiradiance_elements", hierarchy.element_count());
+  report.add_count("antiradiance_patches", hierarchy.patch_count());
+  report.add_count("antiradiance_back_side_patches", hierarchy.back_side_count());
+  report.add_count("antiradiance_merged_patches", hierarchy.merged_patch_count());
+  report.add_count("antiradiance_merged_triangles", hierarchy.member_count());
+  report.add_count("antiradiance_links", system.link_statistics.link_count);
+  report.add_count("antiradiance_iterations", result.history.size());
+  report.add_count("antiradiance_table_bytes", tables.memory_bytes());
+  report.add_count("antiradiance_link_bytes", system.transport.memory_bytes());
+  report.add_count("antiradiance_hierarchy_bytes", hierarchy.memory_bytes());
+  report.set_number("antiradiance_patch_size", double(hierarchy.max_edge()));
+  report.set_text("antiradiance_scheme",
+                  result.scheme_used == IterationScheme::kSymmetric ? "symmetric" : "asymmetric");
+  report.set_json("antiradiance_residuals", residual_history_json(result));
+  report.set_number("antiradiance_converged", result.converged ? 1.0 : 0.0);
+  report.add_seconds("antiradiance_direct", direct_seconds);
+  report.add_seconds("antiradiance_iterate", iterate_seconds);
+}
+
 }  // namespace
 
 void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
@@ -515,13 +540,11 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(
         std::move(indirect_over_pi));
   }
   if (settings.residual_path_traced) {
+    // The solution only serves as the path tracer's control variate (controlled_path.h).
     report.add_count("memory_bytes", system.memory_bytes() + tables.memory_bytes() +
                                          cache->memory_bytes());
-    report.add_seconds("antiradiance_direct", direct_seconds);
-    report.add_seconds("antiradiance_iterate", iterate_seconds);
+    report_solution(report, system, tables, result, direct_seconds, iterate_seconds);
     report.add_seconds("antiradiance_output", seconds_since(stage_start));
-    report.add_count("antiradiance_patches", hierarchy.patch_count());
-    report.add_count("antiradiance_iterations", result.history.size());
     return std::make_unique<ControlledPathField>(inputs.direct, std::move(cache),
                                                  PathTraceSettings::from(inputs.settings),
                                                  settings.residual_fraction);
@@ -540,30 +563,13 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(
   SurfaceInterpolation interpolation(std::move(samples), &inputs.tracer);
   const double output_seconds = seconds_since(stage_start);
 
-  report.add_count("antiradiance_bins", uint64_t(m));
-  report.add_count("antiradiance_elements", hierarchy.element_count());
-  report.add_count("antiradiance_patches", hierarchy.patch_count());
-  report.add_count("antiradiance_back_side_patches", hierarchy.back_side_count());
-  report.add_count("antiradiance_merged_patches", hierarchy.merged_patch_count());
-  report.add_count("antiradiance_merged_triangles", hierarchy.member_count());
-  report.add_count("antiradiance_links", system.link_statistics.link_count);
-  report.add_count("antiradiance_iterations", result.history.size());
-  report.add_count("antiradiance_table_bytes", tables.memory_bytes());
-  report.add_count("antiradiance_link_bytes", system.transport.memory_bytes());
-  report.add_count("antiradiance_hierarchy_bytes", hierarchy.memory_bytes());
+  report_solution(report, system, tables, result, direct_seconds, iterate_seconds);
   // The job's memory: what relighting keeps, the bin tables (the peak is during the
   // iteration), and the output field.
   report.add_count("memory_bytes", system.memory_bytes() + tables.memory_bytes() +
                                        interpolation.memory_bytes() +
                                        (cache ? cache->memory_bytes() : 0));
-  report.set_number("antiradiance_patch_size", double(hierarchy.max_edge()));
   report.set_number("antiradiance_support_radius", double(interpolation.support_radius()));
-  report.set_text("antiradiance_scheme",
-                  result.scheme_used == IterationScheme::kSymmetric ? "symmetric" : "asymmetric");
-  report.set_json("antiradiance_residuals", residual_history_json(result));
-  report.set_number("antiradiance_converged", result.converged ? 1.0 : 0.0);
-  report.add_seconds("antiradiance_direct", direct_seconds);
-  report.add_seconds("antiradiance_iterate", iterate_seconds);
   report.add_seconds("antiradiance_output", output_seconds);
   return std::make_unique<AntiradianceField>(std::move(interpolation), std::move(near_field));
 }

@@ -11,7 +11,6 @@
 
 #include <memory>
 
-#include "field/indirect_field.h"
 #include "solvers/pathtrace/path_trace_solver.h"
 
 namespace bakegi {
@@ -19,7 +18,7 @@ namespace bakegi {
 class DirectLight;
 class RadianceCache;
 
-class ControlledPathField : public IndirectField {
+class ControlledPathField : public SampledField {
  public:
   static constexpr size_t kPilotPoints = 256;
   static constexpr int kPilotSamples = 32;
@@ -31,10 +30,6 @@ class ControlledPathField : public IndirectField {
   // or 0 for the pilot's choice.
   ControlledPathField(const DirectLight& direct, std::shared_ptr<const RadianceCache> cache,
                       const PathTraceSettings& settings, double rest_probability);
-  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                JobContext& context) const override {
-    evaluate_with_variance(points, out, {}, context);
-  }
   bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
                               std::span<float> variance_of_mean,
                               JobContext& context) const override;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "lights/direct_light.h"
 #include "scene/surface_bsdf.h"
@@ -60,36 +61,35 @@ PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hi
     const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
     const Material& material = scene.material_of(triangle);
 
-    DirectionSample next;
+    // Light sampling (next-event estimation).
+    std::optional<SurfaceBsdf> bsdf;
     if (!material.has_glossy()) {
-      // Diffuse fast path. Next-event estimation: rho / pi * E_light.
+      // Diffuse fast path: rho / pi * E_light.
       if (!(max_component(albedo) > 0.0f)) break;
       radiance += throughput * albedo * (kInvPi * direct.sample_lights(x, rng, rays));
-      if (bounce == 1) {
-        result.first_light = radiance;
-        radiance = glm::vec3(0.0f);
-        result.rest_weight = continuation ? continuation->weight_of_rest(rng) : 1.0f;
-        if (!(result.rest_weight > 0.0f)) return result;
-        throughput *= result.rest_weight;
-      }
-      // BSDF sampling: rho / pi * (pi L) per cosine-weighted sample.
+    } else {
+      // Diffuse + Phong: the same two strategies with the mixture's f cos and density.
+      bsdf.emplace(x.shading_normal, -direction, albedo, material.glossy,
+                   material.glossy_exponent);
+      radiance += throughput * direct.sample_lights(x, *bsdf, rng, rays);
+    }
+    if (bounce == 1) {
+      result.first_light = radiance;
+      radiance = glm::vec3(0.0f);
+      result.rest_weight = continuation ? continuation->weight_of_rest(rng) : 1.0f;
+      if (!(result.rest_weight > 0.0f)) return result;
+      throughput *= result.rest_weight;
+    }
+    // BSDF sampling.
+    DirectionSample next;
+    if (!bsdf) {
+      // rho / pi * (pi L) per cosine-weighted sample.
       next = sample_cosine(x, rng);
       if (!(next.pdf > 0.0f) || glm::dot(next.direction, x.geometric_normal) <= 0.0f) break;
       throughput *= albedo;
     } else {
-      // Diffuse + Phong: the same two strategies with the mixture's f cos and density.
-      const SurfaceBsdf bsdf(x.shading_normal, -direction, albedo, material.glossy,
-                             material.glossy_exponent);
-      radiance += throughput * direct.sample_lights(x, bsdf, rng, rays);
-      if (bounce == 1) {
-        result.first_light = radiance;
-        radiance = glm::vec3(0.0f);
-        result.rest_weight = continuation ? continuation->weight_of_rest(rng) : 1.0f;
-        if (!(result.rest_weight > 0.0f)) return result;
-        throughput *= result.rest_weight;
-      }
       const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
-      const BsdfSample sampled = bsdf.sample(u0, u1, u2);
+      const BsdfSample sampled = bsdf->sample(u0, u1, u2);
       if (!(sampled.pdf > 0.0f) || glm::dot(sampled.direction, x.geometric_normal) <= 0.0f) {
         break;
       }

@@ -17,14 +17,10 @@ struct PathTraceSettings {
   static PathTraceSettings from(const Settings& settings);
 };
 
-class PathTracedField : public IndirectField {
+class PathTracedField : public SampledField {
  public:
   // `direct` (and the scene and tracer it refers to) must outlive the field.
   PathTracedField(const DirectLight& direct, const PathTraceSettings& settings);
-  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                JobContext& context) const override {
-    evaluate_with_variance(points, out, {}, context);
-  }
   bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
                               std::span<float> variance_of_mean,
                               JobContext& context) const override;
