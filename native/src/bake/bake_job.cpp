@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include <tbb/task_arena.h>
 
@@ -236,6 +237,53 @@ void BakeJob::execute() {
   report.add_seconds("total", seconds_since(start));
 }
 
+namespace {
+
+// The denoiser as the filter an adaptive sampler aims through: its neighbourhoods (rays) are
+// found when the sampler first asks, or after the evaluation, so that a field without noise
+// estimates costs nothing.
+class DenoiserOnDemand : public NoiseFilter {
+ public:
+  DenoiserOnDemand(const BakePoints& points, const RayTracer& tracer, float ray_epsilon)
+      : points_(points), tracer_(tracer), ray_epsilon_(ray_epsilon) {}
+
+  FilteredNoise predict(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
+                        JobContext& context) const override {
+    if (!denoiser_) {
+      seconds_ += timed([&] {
+        denoiser_.emplace(points_, tracer_, ray_epsilon_, context, /*report_progress=*/false);
+      });
+    }
+    FilteredNoise predicted;
+    seconds_ += timed([&] { predicted = denoiser_->predict(values, variance_of_mean, context); });
+    return predicted;
+  }
+
+  const PointDenoiser& get(JobContext& context) const {
+    if (!denoiser_) {
+      seconds_ += timed([&] { denoiser_.emplace(points_, tracer_, ray_epsilon_, context); });
+    }
+    return *denoiser_;
+  }
+  double seconds() const { return seconds_; }
+
+ private:
+  template <typename Work>
+  static double timed(Work work) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    return seconds_since(start);
+  }
+
+  const BakePoints& points_;
+  const RayTracer& tracer_;
+  float ray_epsilon_;
+  mutable std::optional<PointDenoiser> denoiser_;
+  mutable double seconds_ = 0.0;
+};
+
+}  // namespace
+
 void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& points,
                              std::span<glm::vec3> out, Report& report) {
   if (!denoise_) {
@@ -243,19 +291,22 @@ void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& point
     return;
   }
   std::vector<float> variance(points.size(), 0.0f);
-  if (!field.evaluate_with_variance(points, out, variance, context_)) {
+  const DenoiserOnDemand denoiser(points, *tracer_, direct_->ray_epsilon());
+  if (!field.evaluate_with_variance(points, out, variance, &denoiser, context_)) {
     report.warn("denoise: this method's result has no noise estimates and is not filtered");
     return;
   }
   context_.throw_if_cancelled();
-  const auto start = std::chrono::steady_clock::now();
   context_.set_stage_text("denoising");
-  const DenoiseStatistics statistics =
-      denoise_points(points, out, variance, *tracer_, direct_->ray_epsilon(), context_);
-  report.add_seconds("denoise", seconds_since(start));
+  const PointDenoiser& filter = denoiser.get(context_);
+  const auto start = std::chrono::steady_clock::now();
+  const DenoiseStatistics statistics = filter.filter(out, variance, context_);
+  // Finding the neighbourhoods and every prediction the sampler asked for count as denoising.
+  report.add_seconds("denoise", seconds_since(start) + denoiser.seconds());
   report.add_count("rays", statistics.rays);
   report.set_number("denoise_noise_before", statistics.noise_before);
   report.set_number("denoise_noise_after", statistics.noise_after);
+  report.set_number("denoise_mean_shift", statistics.mean_shift);
 }
 
 const Scene& BakeJob::build_scene_and_report(Report& report,

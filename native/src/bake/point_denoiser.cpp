@@ -10,6 +10,7 @@
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "bake/local_linear_fit.h"
@@ -66,7 +67,8 @@ float spatial_weight(const Neighbour& neighbour, float h2) {
   return h2 > 0.0f ? std::exp(-neighbour.distance_squared / (2.0f * h2)) : 0.0f;
 }
 
-// Parallel over blocks of points, cancellable, progress from `from` to `to`.
+// Parallel over blocks of points, cancellable, progress from `from` to `to` (none when
+// `from` == `to`).
 template <typename PerPoint>
 void for_each_point(size_t count, JobContext& context, double from, double to,
                     PerPoint per_point) {
@@ -74,11 +76,8 @@ void for_each_point(size_t count, JobContext& context, double from, double to,
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, kPointsPerBlock),
                     [&](const tbb::blocked_range<size_t>& block) {
                       context.throw_if_cancelled();
-                      std::vector<Entry> found;
-                      std::vector<Neighbour> near;
-                      for (size_t i = block.begin(); i != block.end(); ++i) {
-                        per_point(i, found, near);
-                      }
+                      for (size_t i = block.begin(); i != block.end(); ++i) per_point(i);
+                      if (from == to) return;
                       const size_t now = done.fetch_add(block.size()) + block.size();
                       context.set_stage_progress(from + (to - from) * double(now) /
                                                             double(count));
@@ -87,109 +86,148 @@ void for_each_point(size_t count, JobContext& context, double from, double to,
 
 }  // namespace
 
-DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> values,
-                                 std::span<const float> variance_of_mean,
-                                 const RayTracer& tracer, float ray_epsilon, JobContext& context) {
+PointDenoiser::PointDenoiser(const BakePoints& points, const RayTracer& tracer,
+                             float ray_epsilon, JobContext& context, bool report_progress)
+    : points_(points) {
   const size_t count = points.size();
-  if (values.size() != count || variance_of_mean.size() != count) {
-    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
-  }
-  DenoiseStatistics statistics;
-  if (count == 0) return statistics;
+  neighbour_count_.assign(count, 0);
+  neighbours_.assign(count * kDenoiseNeighbours, 0);
+  bandwidth_squared_.assign(count, 0.0f);
+  if (count == 0) return;
 
   std::vector<Entry> entries(count);
   for (size_t i = 0; i < count; ++i) entries[i] = {tree_point(points.positions[i]), uint32_t(i)};
   const Tree tree(entries.begin(), entries.end());  // packed: built in one pass
   std::vector<Entry>().swap(entries);
 
-  std::vector<float> luminances(count);
-  for (size_t i = 0; i < count; ++i) luminances[i] = float(luminance(values[i]));
-
-  // Pass 1: which neighbours lie on the same surface in sight of the point (a bit per
-  // neighbour, in nearest_points' order), and the guide: the spatially weighted mean g_i of
-  // their luminance with its variance. The range kernel compares neighbours with g_i, not
-  // with y_i: against a noisy centre it would favour the neighbours that share y_i's noise
-  // (measured: the filtered noise 2x the prediction on a flat floor).
-  std::vector<uint64_t> admissible(count, 0);
-  std::vector<float> guide(count), guide_variance(count);
-  std::vector<glm::vec2> guide_slope(count);  // per unit of offset / h_i, in i's tangent frame
+  // Which neighbours lie on the same surface in sight of the point.
   std::atomic<uint64_t> rays{0};
-  for_each_point(count, context, 0.0, 0.8, [&](size_t i, auto& found, auto& near) {
+  tbb::enumerable_thread_specific<std::pair<std::vector<Entry>, std::vector<Neighbour>>> scratch;
+  for_each_point(count, context, 0.0, report_progress ? 1.0 : 0.0, [&](size_t i) {
+    auto& [found, near] = scratch.local();
     const float h2 = nearest_points(tree, points, i, found, near);
     const glm::vec3& x = points.positions[i];
     const glm::vec3& n = points.normals[i];
-    const Frame frame(n);
-    const float inverse_h = h2 > 0.0f ? 1.0f / std::sqrt(h2) : 0.0f;
-    std::vector<float> weights;
-    std::vector<glm::vec2> offsets;
-    std::vector<uint32_t> members;
-    uint64_t mask = 0, traced = 0;
-    for (size_t k = 0; k < near.size(); ++k) {
-      const uint32_t j = near[k].index;
-      const float w = j == i ? 1.0f : spatial_weight(near[k], h2);
-      const glm::vec3 d = points.positions[j] - x;
+    uint64_t traced = 0;
+    size_t kept = 0;
+    for (const Neighbour& neighbour : near) {
+      const uint32_t j = neighbour.index;
       if (j != i) {
-        if (!(w > 1e-4f)) continue;
+        if (!(spatial_weight(neighbour, h2) > 1e-4f)) continue;
         const glm::vec3& nj = points.normals[j];
         if (!(glm::dot(n, nj) >= kMinNormalCosine)) continue;
-        if (std::abs(glm::dot(d, n)) > kMaxPlaneSlope * std::sqrt(near[k].distance_squared)) {
+        const glm::vec3 d = points.positions[j] - x;
+        if (std::abs(glm::dot(d, n)) > kMaxPlaneSlope * std::sqrt(neighbour.distance_squared)) {
           continue;
         }
         ++traced;
         if (!points_see_each_other(tracer, x, n, points.positions[j], nj, ray_epsilon)) continue;
       }
-      mask |= uint64_t(1) << k;
-      weights.push_back(w);
-      offsets.push_back(inverse_h * glm::vec2(glm::dot(d, frame.tangent),
-                                              glm::dot(d, frame.bitangent)));
-      members.push_back(j);
+      neighbours_[i * kDenoiseNeighbours + kept] = j;
+      ++kept;
     }
+    neighbour_count_[i] = uint8_t(kept);
+    bandwidth_squared_[i] = h2;
+    rays.fetch_add(traced, std::memory_order_relaxed);
+  });
+  rays_ = rays.load();
+}
+
+DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
+                                     std::span<const float> variance_of_mean,
+                                     std::vector<glm::vec3>* filtered, JobContext& context,
+                                     bool report_progress) const {
+  const size_t count = points_.size();
+  if (values.size() != count || variance_of_mean.size() != count) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
+  }
+  DenoiseStatistics statistics;
+  statistics.rays = rays_;
+  if (count == 0) return statistics;
+  const double progress_to = report_progress ? 1.0 : 0.0;
+
+  std::vector<float> luminances(count);
+  for (size_t i = 0; i < count; ++i) luminances[i] = float(luminance(values[i]));
+
+  // Point i's admissible neighbour j: its weight by distance, and its offset in units of h_i
+  // in i's tangent frame.
+  const auto distance_weight = [&](size_t i, uint32_t j) {
+    const glm::vec3 d = points_.positions[j] - points_.positions[i];
+    return spatial_weight({j, glm::dot(d, d)}, bandwidth_squared_[i]);
+  };
+  const auto offset_of = [&](size_t i, const Frame& frame, uint32_t j) {
+    const float h2 = bandwidth_squared_[i];
+    const float inverse_h = h2 > 0.0f ? 1.0f / std::sqrt(h2) : 0.0f;
+    const glm::vec3 d = points_.positions[j] - points_.positions[i];
+    return inverse_h * glm::vec2(glm::dot(d, frame.tangent), glm::dot(d, frame.bitangent));
+  };
+
+  // Pass 1: the guide, the spatially weighted local linear fit g_i of the admissible
+  // neighbours' luminance with its variance. The range kernel compares neighbours with g_i,
+  // not with y_i: against a noisy centre it would favour the neighbours that share y_i's noise
+  // (measured: the filtered noise 2x the prediction on a flat floor).
+  std::vector<float> guide(count), guide_variance(count);
+  std::vector<glm::vec2> guide_slope(count);  // per unit of offset / h_i, in i's tangent frame
+  struct Scratch {
+    std::vector<float> weights;
+    std::vector<glm::vec2> offsets;
+    std::vector<uint32_t> members;
     std::vector<double> kernel;
     std::vector<glm::dvec2> slope_kernel;
-    local_linear_kernel(weights, offsets, kernel, &slope_kernel);
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  for_each_point(count, context, 0.0, 0.5 * progress_to, [&](size_t i) {
+    Scratch& s = scratch.local();
+    const Frame frame(points_.normals[i]);
+    const size_t base = i * kDenoiseNeighbours;
+    s.weights.clear();
+    s.offsets.clear();
+    s.members.clear();
+    for (size_t m = 0; m < neighbour_count_[i]; ++m) {
+      const uint32_t j = neighbours_[base + m];
+      s.weights.push_back(j == i ? 1.0f : distance_weight(i, j));
+      s.offsets.push_back(offset_of(i, frame, j));
+      s.members.push_back(j);
+    }
+    local_linear_kernel(s.weights, s.offsets, s.kernel, &s.slope_kernel);
     double value = 0.0, variance = 0.0;
     glm::dvec2 slope(0.0);
-    for (size_t m = 0; m < members.size(); ++m) {
-      value += kernel[m] * luminances[members[m]];
-      slope += slope_kernel[m] * double(luminances[members[m]]);
-      variance += kernel[m] * kernel[m] * double(variance_of_mean[members[m]]);
+    for (size_t m = 0; m < s.members.size(); ++m) {
+      value += s.kernel[m] * luminances[s.members[m]];
+      slope += s.slope_kernel[m] * double(luminances[s.members[m]]);
+      variance += s.kernel[m] * s.kernel[m] * double(variance_of_mean[s.members[m]]);
     }
     // The plane guides the range kernel only where it fits to within the noise: across a
     // step it would pass for a ramp and let the other side in.
     double residual = 0.0, noise = 0.0;
-    for (size_t m = 0; m < members.size(); ++m) {
-      const double r = luminances[members[m]] - value - glm::dot(slope, glm::dvec2(offsets[m]));
-      residual += weights[m] * r * r;
-      noise += weights[m] * double(variance_of_mean[members[m]]);
+    for (size_t m = 0; m < s.members.size(); ++m) {
+      const double r =
+          luminances[s.members[m]] - value - glm::dot(slope, glm::dvec2(s.offsets[m]));
+      residual += s.weights[m] * r * r;
+      noise += s.weights[m] * double(variance_of_mean[s.members[m]]);
     }
     const bool planar = residual <= kPlaneFitTolerance * noise;
-    admissible[i] = mask;
     guide[i] = float(value);
     guide_slope[i] = planar ? glm::vec2(slope) : glm::vec2(0.0f);
     guide_variance[i] = float(variance);
-    rays.fetch_add(traced, std::memory_order_relaxed);
   });
 
   // Pass 2: the admissible neighbours (the point itself included) weighted by distance and
   // by how far their value lies from the guide beyond the noise of both.
-  std::vector<glm::vec3> filtered(count);
-  std::vector<float> filtered_variance(count);
-  for_each_point(count, context, 0.8, 1.0, [&](size_t i, auto& found, auto& near) {
-    const float h2 = nearest_points(tree, points, i, found, near);
-    const glm::vec3& x = points.positions[i];
-    const Frame frame(points.normals[i]);
-    const float inverse_h = h2 > 0.0f ? 1.0f / std::sqrt(h2) : 0.0f;
-    std::vector<float> weights;
-    std::vector<glm::vec2> offsets;
-    std::vector<uint32_t> members;
-    for (size_t k = 0; k < near.size(); ++k) {
-      if (!(admissible[i] >> k & 1)) continue;
-      const uint32_t j = near[k].index;
+  if (filtered) filtered->assign(count, glm::vec3(0.0f));
+  std::vector<float> filtered_variance(count), filtered_luminances(count);
+  for_each_point(count, context, 0.5 * progress_to, progress_to, [&](size_t i) {
+    Scratch& s = scratch.local();
+    const Frame frame(points_.normals[i]);
+    const size_t base = i * kDenoiseNeighbours;
+    s.weights.clear();
+    s.offsets.clear();
+    s.members.clear();
+    for (size_t m = 0; m < neighbour_count_[i]; ++m) {
+      const uint32_t j = neighbours_[base + m];
       // The point itself always counts fully: where every neighbour lies far from the guide
       // (at an edge the guide mixes both sides) the point keeps its own value.
-      const glm::vec3 d = points.positions[j] - x;
-      const glm::vec2 offset =
-          inverse_h * glm::vec2(glm::dot(d, frame.tangent), glm::dot(d, frame.bitangent));
+      const glm::vec2 offset = offset_of(i, frame, j);
       float w = 1.0f;
       if (j != i) {
         const float noise = guide_variance[i] + variance_of_mean[j];
@@ -198,39 +236,72 @@ DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> 
         // neighbours whose noise leans towards i (measured: a bias at a ramp's rim).
         const float difference = guide[i] + glm::dot(guide_slope[i], offset) - luminances[j];
         const float excess = std::max(0.0f, difference * difference - noise);
-        w = spatial_weight(near[k], h2) *
-            std::exp(-excess / (kRangeStrength * kRangeStrength * noise));
+        w = distance_weight(i, j) * std::exp(-excess / (kRangeStrength * kRangeStrength * noise));
       }
-      weights.push_back(w);
-      offsets.push_back(offset);
-      members.push_back(j);
+      s.weights.push_back(w);
+      s.offsets.push_back(offset);
+      s.members.push_back(j);
     }
-    std::vector<double> kernel;
-    local_linear_kernel(weights, offsets, kernel);
+    local_linear_kernel(s.weights, s.offsets, s.kernel);
     glm::dvec3 value(0.0);
-    double variance = 0.0;
-    for (size_t m = 0; m < members.size(); ++m) {
-      value += kernel[m] * glm::dvec3(values[members[m]]);
-      variance += kernel[m] * kernel[m] * double(variance_of_mean[members[m]]);
+    double variance = 0.0, filtered_luminance = 0.0;
+    for (size_t m = 0; m < s.members.size(); ++m) {
+      const uint32_t j = s.members[m];
+      if (filtered) value += s.kernel[m] * glm::dvec3(values[j]);
+      variance += s.kernel[m] * s.kernel[m] * double(variance_of_mean[j]);
+      filtered_luminance += s.kernel[m] * double(luminances[j]);
     }
     // A slope fitted from noise can extrapolate below zero; light cannot.
-    filtered[i] = glm::max(glm::vec3(value), glm::vec3(0.0f));
+    if (filtered) (*filtered)[i] = glm::max(glm::vec3(value), glm::vec3(0.0f));
     filtered_variance[i] = float(variance);
+    filtered_luminances[i] = float(std::max(0.0, filtered_luminance));
   });
 
-  double mean = 0.0, before = 0.0, after = 0.0;
+  double mean = 0.0, before = 0.0, after = 0.0, filtered_mean = 0.0;
   for (size_t i = 0; i < count; ++i) {
     mean += double(luminances[i]);
     before += double(variance_of_mean[i]);
     after += double(filtered_variance[i]);
+    filtered_mean += double(filtered_luminances[i]);
   }
-  std::copy(filtered.begin(), filtered.end(), values.begin());
   if (mean > 0.0) {
-    statistics.noise_before = std::sqrt(before / double(count)) / (mean / double(count));
-    statistics.noise_after = std::sqrt(after / double(count)) / (mean / double(count));
+    const double mean_value = mean / double(count);
+    statistics.noise_before = std::sqrt(before / double(count)) / mean_value;
+    statistics.noise_after = std::sqrt(after / double(count)) / mean_value;
+    statistics.mean_shift = std::abs(filtered_mean - mean) / mean;
   }
-  statistics.rays = rays.load();
   return statistics;
+}
+
+DenoiseStatistics PointDenoiser::filter(std::span<glm::vec3> values,
+                                        std::span<const float> variance_of_mean,
+                                        JobContext& context) const {
+  std::vector<glm::vec3> filtered;
+  const DenoiseStatistics statistics = run(values, variance_of_mean, &filtered, context, true);
+  std::copy(filtered.begin(), filtered.end(), values.begin());
+  return statistics;
+}
+
+FilteredNoise PointDenoiser::predict(std::span<const glm::vec3> values,
+                                     std::span<const float> variance_of_mean,
+                                     JobContext& context) const {
+  const DenoiseStatistics statistics = run(values, variance_of_mean, nullptr, context, false);
+  FilteredNoise predicted;
+  if (statistics.noise_before > 0.0) {
+    predicted.noise_left = statistics.noise_after / statistics.noise_before;
+  }
+  predicted.bias = statistics.mean_shift;
+  return predicted;
+}
+
+DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> values,
+                                 std::span<const float> variance_of_mean,
+                                 const RayTracer& tracer, float ray_epsilon, JobContext& context) {
+  if (values.size() != points.size() || variance_of_mean.size() != points.size()) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
+  }
+  return PointDenoiser(points, tracer, ray_epsilon, context).filter(values, variance_of_mean,
+                                                                     context);
 }
 
 }  // namespace bakegi

@@ -18,14 +18,20 @@
 // The noise after filtering is predicted as Σ_j w_ij² v_j / (Σ_j w_ij)² (weights taken as
 // fixed). The bias the filter adds is not predicted: the bake's error probes
 // (bake/error_estimate.h) compare the filtered values with the path tracer and measure it.
+//
+// The neighbourhoods (nearest points, the surface tests, the visibility rays) depend on the
+// points only and are found once; filtering and predicting its noise (for an adaptive
+// sampler that aims at the noise left after the filter, field/noise_filter.h) reuse them.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "field/noise_filter.h"
 #include "scene/bake_points.h"
 
 namespace bakegi {
@@ -37,6 +43,11 @@ struct DenoiseStatistics {
   // sqrt(mean v_i) / mean y_i before and after (the NRMSE the noise alone would give).
   double noise_before = 0.0;
   double noise_after = 0.0;
+  // |mean f_i - mean y_i| / mean y_i: how far the filter moved the mean, a part of its bias
+  // that can be measured (the raw mean is unbiased and, over all points, nearly noise-free).
+  // Path-traced noise is heavy-tailed: the range kernel shuts out a neighbour's rare bright
+  // sample more often than a dark one, so the filtered mean falls (measured 1-3%).
+  double mean_shift = 0.0;
   uint64_t rays = 0;  // visibility rays between neighbours
 };
 
@@ -44,12 +55,47 @@ inline constexpr int kDenoiseNeighbours = 32;
 inline constexpr float kMinNormalCosine = 0.9f;  // 25.8°
 inline constexpr float kMaxPlaneSlope = 0.25f;
 inline constexpr float kRangeStrength = 1.0f;
-// What the filter holds per point at its peak (the R-tree's entry and nodes, luminance,
-// variance, neighbour mask, guide plane, filtered value), for the job's memory estimate.
-inline constexpr size_t kDenoiseBytesPerPoint = 96;
+// What the filter holds per point at its peak (the R-tree's entry and nodes while the
+// neighbourhoods are found; kDenoiseNeighbours neighbour indices; luminance, guide, filtered
+// value and variance), for the job's memory estimate.
+inline constexpr size_t kDenoiseBytesPerPoint = 64 + 4 * kDenoiseNeighbours + 48;
 
-// Filters `values` in place (one per point; `variance_of_mean` likewise). Parallel (TBB),
-// cancellable (Error(CANCELLED) through the context, `values` then unchanged).
+class PointDenoiser : public NoiseFilter {
+ public:
+  // Finds each point's admissible neighbours: parallel (TBB), cancellable (Error(CANCELLED)
+  // through the context), progress over the context's stage unless `report_progress` is
+  // false. `points` must outlive it.
+  PointDenoiser(const BakePoints& points, const RayTracer& tracer, float ray_epsilon,
+                JobContext& context, bool report_progress = true);
+
+  // Filters `values` in place (one per point; `variance_of_mean` likewise). Cancellable
+  // (`values` then unchanged). The statistics' rays are those of the constructor.
+  DenoiseStatistics filter(std::span<glm::vec3> values, std::span<const float> variance_of_mean,
+                           JobContext& context) const;
+
+  // noise_after / noise_before and the mean shift (as its bias) of filter() (noise left 1
+  // where there is no noise), values unchanged.
+  FilteredNoise predict(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
+                        JobContext& context) const override;
+
+  uint64_t rays() const { return rays_; }
+
+ private:
+  // Filters into `filtered` (may be empty: only the variances) and returns the statistics.
+  DenoiseStatistics run(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
+                        std::vector<glm::vec3>* filtered, JobContext& context,
+                        bool report_progress) const;
+
+  const BakePoints& points_;
+  // Point i's admissible neighbours, nearest first (i among them), are the first
+  // neighbour_count_[i] of neighbours_[i * kDenoiseNeighbours ...].
+  std::vector<uint8_t> neighbour_count_;
+  std::vector<uint32_t> neighbours_;
+  std::vector<float> bandwidth_squared_;  // h_i²
+  uint64_t rays_ = 0;
+};
+
+// PointDenoiser(points, ...).filter(values, ...): one filtering pass.
 DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> values,
                                  std::span<const float> variance_of_mean,
                                  const RayTracer& tracer, float ray_epsilon, JobContext& context);

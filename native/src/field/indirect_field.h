@@ -17,6 +17,7 @@
 namespace bakegi {
 
 class JobContext;
+class NoiseFilter;
 
 class IndirectField {
  public:
@@ -28,11 +29,13 @@ class IndirectField {
   // evaluate(), and for a Monte Carlo field each point's variance of its luminance (the
   // noise a denoiser may trade for bias, bake/point_denoiser.h): returns true when
   // `variance_of_mean` (one per point) was filled, false (and nothing written there) for a
-  // field without noise estimates.
+  // field without noise estimates. `after`, when given, is what the bake will filter the
+  // result with: a field that samples to a target error aims at the noise left after it.
   virtual bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
-                                      std::span<float> variance_of_mean,
+                                      std::span<float> variance_of_mean, const NoiseFilter* after,
                                       JobContext& context) const {
     (void)variance_of_mean;
+    (void)after;
     evaluate(points, out, context);
     return false;
   }

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "field/noise_filter.h"
 #include "settings/settings.h"
 #include "solvers/adaptive_sampling.h"
 #include "solvers/solver.h"
@@ -112,7 +113,8 @@ void sample_round(const BakePoints& points, std::vector<PointSums>& sums,
 
 void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
                         const SampleSettings& sampling, const PointSampleEstimator& estimator,
-                        JobContext& context, std::span<float> variance_of_mean) {
+                        JobContext& context, std::span<float> variance_of_mean,
+                        const NoiseFilter* after) {
   if (out.size() != points.size() ||
       (!variance_of_mean.empty() && variance_of_mean.size() != points.size())) {
     throw Error(BAKEGI_ERROR_INTERNAL, "output size does not match the number of bake points");
@@ -138,13 +140,44 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
         points, sums, sampling, estimator, [&](size_t) { return first; },
         uint64_t(first) * count, 0.0, 0.5, dropped, context);
     std::vector<PointTally> tallies(count);
+    std::vector<glm::vec3> means;
+    std::vector<float> variances;
     double slice = 0.5;
     int64_t rounds = 1;
     for (;;) {
       for (size_t i = 0; i < count; ++i) tallies[i] = sums[i].tally;
-      const SamplingRound next =
-          plan_sampling_round(tallies, sampling.target_error, sampling.samples);
-      report.set_number("sampling_predicted_error", next.predicted_error);
+      // With a filter after the bake the raw noise may be larger by what the filter takes
+      // out, less what its bias adds (error² = (left · noise)² + bias²), both measured again
+      // each round (the filter takes out less, and adds less, as the noise falls below the
+      // differences between neighbours). Where its bias alone exceeds the target the rounds
+      // aim at the raw target, as without the filter.
+      FilteredNoise filtered;
+      double target = sampling.target_error;
+      if (after) {
+        means.resize(count);
+        variances.resize(count);
+        for (size_t i = 0; i < count; ++i) {
+          const PointSums& point = sums[i];
+          means[i] = point.tally.samples > 0
+                         ? glm::vec3(point.value / double(point.tally.samples))
+                         : glm::vec3(0.0f);
+          variances[i] = float(luminance_variance_of_mean(point.tally));
+        }
+        filtered = after->predict(means, variances, context);
+        filtered.noise_left = std::clamp(filtered.noise_left, 1e-3, 1.0);
+        if (filtered.bias < target) {
+          target = std::sqrt(target * target - filtered.bias * filtered.bias) /
+                   filtered.noise_left;
+        }
+      }
+      const SamplingRound next = plan_sampling_round(tallies, target, sampling.samples);
+      const double noise = next.predicted_error * filtered.noise_left;
+      report.set_number("sampling_predicted_error",
+                        std::sqrt(noise * noise + filtered.bias * filtered.bias));
+      if (after) {
+        report.set_number("sampling_noise_left_by_filter", filtered.noise_left);
+        report.set_number("sampling_filter_bias", filtered.bias);
+      }
       if (next.done()) break;
       sample_round(
           points, sums, sampling, estimator, [&](size_t i) { return next.added[i]; },

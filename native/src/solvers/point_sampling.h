@@ -41,9 +41,12 @@ using PointSampleEstimator =
 
 // `variance_of_mean`, when not empty (one per point), receives each point's variance of its
 // result's luminance as its samples' spread estimates it (luminance_variance_of_mean).
+// `after`: the filter the result will go through (field/noise_filter.h); with a target error
+// the rounds stop when the noise left after it, not the raw noise, meets the target.
 void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
                         const SampleSettings& sampling, const PointSampleEstimator& estimator,
-                        JobContext& context, std::span<float> variance_of_mean = {});
+                        JobContext& context, std::span<float> variance_of_mean = {},
+                        const NoiseFilter* after = nullptr);
 
 // A field that samples (estimate_at_points): it always knows its noise, so evaluate() is
 // evaluate_with_variance() without the variances.
@@ -51,7 +54,7 @@ class SampledField : public IndirectField {
  public:
   void evaluate(const BakePoints& points, std::span<glm::vec3> out,
                 JobContext& context) const final {
-    evaluate_with_variance(points, out, {}, context);
+    evaluate_with_variance(points, out, {}, nullptr, context);
   }
 };
 

@@ -59,6 +59,7 @@ double ControlledPathField::pilot(const BakePoints& points, JobContext& context)
 bool ControlledPathField::evaluate_with_variance(const BakePoints& points,
                                                  std::span<glm::vec3> out,
                                                  std::span<float> variance_of_mean,
+                                                 const NoiseFilter* after,
                                                  JobContext& context) const {
   const double q = rest_probability_ > 0.0 ? rest_probability_ : pilot(points, context);
   context.report().set_number("residual_fraction", q);
@@ -70,7 +71,7 @@ bool ControlledPathField::evaluate_with_variance(const BakePoints& points,
         return sample_indirect_controlled(direct_, *cache_, x, rng, max_bounces,
                                           rest_probability, rays);
       },
-      context, variance_of_mean);
+      context, variance_of_mean, after);
   return !variance_of_mean.empty();
 }
 

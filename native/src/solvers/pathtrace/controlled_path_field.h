@@ -31,7 +31,7 @@ class ControlledPathField : public SampledField {
   ControlledPathField(const DirectLight& direct, std::shared_ptr<const RadianceCache> cache,
                       const PathTraceSettings& settings, double rest_probability);
   bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
-                              std::span<float> variance_of_mean,
+                              std::span<float> variance_of_mean, const NoiseFilter* after,
                               JobContext& context) const override;
 
  private:

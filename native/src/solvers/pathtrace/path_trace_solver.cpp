@@ -19,14 +19,14 @@ PathTracedField::PathTracedField(const DirectLight& direct, const PathTraceSetti
 
 bool PathTracedField::evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
                                              std::span<float> variance_of_mean,
-                                             JobContext& context) const {
+                                             const NoiseFilter* after, JobContext& context) const {
   const int max_bounces = settings_.max_bounces;
   estimate_at_points(
       points, out, settings_.sampling,
       [&](const SurfacePoint& x, RandomStream& rng, uint64_t& rays) {
         return sample_indirect(direct_, x, rng, max_bounces, rays);
       },
-      context, variance_of_mean);
+      context, variance_of_mean, after);
   return !variance_of_mean.empty();
 }
 

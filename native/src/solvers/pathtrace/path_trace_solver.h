@@ -22,7 +22,7 @@ class PathTracedField : public SampledField {
   // `direct` (and the scene and tracer it refers to) must outlive the field.
   PathTracedField(const DirectLight& direct, const PathTraceSettings& settings);
   bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
-                              std::span<float> variance_of_mean,
+                              std::span<float> variance_of_mean, const NoiseFilter* after,
                               JobContext& context) const override;
 
  private:

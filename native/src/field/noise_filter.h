@@ -1,0 +1,30 @@
+// What the bake does to a Monte Carlo field's noise after evaluating it (a denoiser,
+// bake/point_denoiser.h): an adaptive sampler (solvers/adaptive_sampling.h) that knows it
+// aims at the noise left after the filter, not at the noise of its raw means.
+#pragma once
+
+#include <span>
+
+#include <glm/glm.hpp>
+
+namespace bakegi {
+
+class JobContext;
+
+// What a filter would make of values with a given noise, both in the NRMSE's units.
+struct FilteredNoise {
+  double noise_left = 1.0;  // the noise it leaves over the noise it is given, in (0, 1]
+  double bias = 0.0;        // the error it adds as far as it can tell, relative to the mean
+};
+
+class NoiseFilter {
+ public:
+  virtual ~NoiseFilter() = default;
+  // For these values (one per evaluated point) and the variances of their means; does not
+  // change them.
+  virtual FilteredNoise predict(std::span<const glm::vec3> values,
+                                std::span<const float> variance_of_mean,
+                                JobContext& context) const = 0;
+};
+
+}  // namespace bakegi

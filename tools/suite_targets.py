@@ -1,0 +1,96 @@
+"""The path tracer with the denoiser against the issue's targets on scenes of the real-scene
+suite: for every scene already set up by tools/real_scenes.py (its export, 2,000-point subset
+and path-traced reference, reused here), bakes the whole scene with `--method pathtrace` at
+each target error, with and without `denoise`, and compares the values at the subset with the
+reference (tools/real_scene_metrics.py; the reference's own noise is stated and removed in
+quadrature).
+
+    /usr/bin/python3 tools/real_scenes.py --scenes sponza_spot --targets CORNER --methods pathtrace
+    /usr/bin/python3 tools/suite_targets.py --scenes sponza_spot --targets 0.1 0.05 0.03 \\
+        [--work /tmp/bakegi_real_scenes] [--cli build/bakegi] [--json docs/suite_targets.json]
+
+Seconds are the core's (`report["seconds"]["total"]`: validation, BVH, tracing, denoising),
+error probes off (they measure, they do not change the result).
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from real_scene_metrics import compare_at_subset  # noqa: E402
+from real_scenes import object_names_at, reference  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def bake(cli, bgs, folder, target, denoise):
+    name = "target_%g_denoise_%d" % (target, denoise)
+    out = os.path.join(folder, name + ".npy")
+    report_path = os.path.join(folder, name + "_report.json")
+    subprocess.run([cli, "bake", bgs, "--method", "pathtrace", "--samples", "65536",
+                    "--set", "target_error=%g" % target, "--set", "denoise=%d" % denoise,
+                    "--set", "error_probes=0", "--seed", "0", "--out", out,
+                    "--report", report_path], check=True, stdout=subprocess.DEVNULL)
+    with open(report_path) as f:
+        return numpy.load(out).astype(numpy.float64), json.load(f)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--scenes", required=True, help="comma-separated suite scene names")
+    parser.add_argument("--targets", type=float, nargs="+", default=[0.1, 0.05])
+    parser.add_argument("--denoise", type=int, nargs="+", default=[1, 0])
+    parser.add_argument("--work", default="/tmp/bakegi_real_scenes")
+    parser.add_argument("--cli", default=os.path.join(ROOT, "build", "bakegi"))
+    parser.add_argument("--json", help="write the rows here")
+    args = parser.parse_args()
+    rows = []
+    for scene in args.scenes.split(","):
+        folder = os.path.join(args.work, scene, "corner")
+        bgs = os.path.join(folder, "scene.bgs")
+        if not os.path.exists(bgs):
+            sys.exit("%s: no export in %s: run tools/real_scenes.py for it first" % (scene, folder))
+        with open(os.path.join(folder, "export.json")) as f:
+            info = json.load(f)
+        indices = numpy.load(os.path.join(folder, "subset_indices.npy")).astype(numpy.int64)
+        ref, ref_noise, ref_samples = reference(args.cli, os.path.join(folder, "subset.bgs"), folder)
+        names = object_names_at(info, indices)
+        print("%s: reference %d paths per point, its noise %.2f%%" % (scene, ref_samples, 100 * ref_noise))
+        for target in args.targets:
+            for denoise in args.denoise:
+                values, report = bake(args.cli, bgs, folder, target, denoise)
+                metrics = compare_at_subset(values[indices], ref, ref_noise, names)
+                row = {
+                    "scene": scene, "target_error": target, "denoise": denoise,
+                    "seconds": report["seconds"]["total"], "samples": report.get("samples"),
+                    "bake_points": report.get("bake_points"),
+                    "evaluated_points": report.get("evaluated_points"),
+                    "predicted": report.get("sampling_predicted_error"),
+                    "noise_left_by_filter": report.get("sampling_noise_left_by_filter"),
+                    "denoise_mean_shift": report.get("denoise_mean_shift"),
+                    "reference_samples": ref_samples, "reference_noise": ref_noise,
+                    "nrmse": metrics["nrmse"],
+                    "nrmse_without_reference_noise": metrics["nrmse_without_reference_noise"],
+                    "weighted_relative_rmse": metrics["weighted_relative_rmse"],
+                    "bias": metrics["bias"], "worst_objects": metrics["per_object"][:3],
+                }
+                rows.append(row)
+                print("%s target %g denoise %d: %.1f s, %s paths, predicted %.2f%%, NRMSE %.2f%% "
+                      "(%.2f%% without the reference's noise), wRRMSE %.2f%%, bias %+.1f%%"
+                      % (scene, target, denoise, row["seconds"], row["samples"], 100 * row["predicted"],
+                         100 * row["nrmse"], 100 * row["nrmse_without_reference_noise"],
+                         100 * row["weighted_relative_rmse"], 100 * row["bias"]), flush=True)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"command": " ".join(sys.argv), "date": time.strftime("%Y-%m-%d %H:%M"),
+                       "load_average": os.getloadavg(), "rows": rows}, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
