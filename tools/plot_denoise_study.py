@@ -1,5 +1,5 @@
 """Chart of tools/denoise_study.py results: error (NRMSE) against seconds, path tracer with
-and without the denoiser, one panel per scene.
+and without the denoiser, at fixed samples and to target errors, one panel per scene.
 
     /usr/bin/python3 tools/plot_denoise_study.py docs/denoise_cornell.json \\
         docs/denoise_two_rooms.json docs/denoise_office.json --out docs/denoise_speed_accuracy.png
@@ -29,6 +29,16 @@ def main():
             for r in rows:
                 ax.annotate(str(r["samples"]), (r["seconds"], 100 * r["nrmse"]), fontsize=7,
                             textcoords="offset points", xytext=(4, 3))
+        for denoise, style, label in ((False, "^--", "to a target"),
+                                      (True, "v--", "to a target + denoise")):
+            rows = [r for r in study.get("target_rows", []) if r["denoise"] == denoise]
+            if not rows:
+                continue
+            ax.plot([r["seconds"] for r in rows], [100 * r["nrmse"] for r in rows], style,
+                    label=label)
+            for r in rows:
+                ax.annotate("%g%%" % (100 * r["target_error"]), (r["seconds"], 100 * r["nrmse"]),
+                            fontsize=7, textcoords="offset points", xytext=(4, -9))
         ax.axhline(100 * study["reference_noise"], color="grey", lw=0.8, ls=":",
                    label="reference noise")
         ax.set_xscale("log")

@@ -93,7 +93,8 @@ class BakeGISettings(bpy.types.PropertyGroup):
         name="Denoise", default=False,
         description="Path tracing: filter the noise over neighbouring points on the same "
         "surface (edge- and noise-aware); 2-3.5x less error at the same samples for a bias of "
-        "about 1-3%, which Check Error measures")
+        "about 1-3%, which Check Error measures. With a Quality target the bake stops when "
+        "the error left after the filter meets it")
     bins: IntProperty(name="Bins", default=300, min=12, max=3072,
                       description="Antiradiance: directional bins per element; more bins "
                       "sharpen indirect shadows and cost memory and time")

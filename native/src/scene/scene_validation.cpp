@@ -108,14 +108,17 @@ void check_texture(const Texture& texture, size_t index) {
     invalid(name + ": holds " + std::to_string(texels.size()) + " pixels, expected " +
             std::to_string(size_t(texture.width) * texture.height));
   }
+  // The pixel's name is built only for a bad pixel: per pixel it cost 2.7 s on Sponza.
+  const auto where = [&](size_t i) {
+    return name + ", pixel (" + std::to_string(i % texture.width) + ", " +
+           std::to_string(i / texture.width) + ")";
+  };
   for (size_t i = 0; i < texels.size(); ++i) {
     const glm::vec3& p = texels[i];
-    const std::string where = name + ", pixel (" + std::to_string(i % texture.width) + ", " +
-                              std::to_string(i / texture.width) + ")";
-    if (!finite(p)) invalid(where + ": value is " + non_finite_word(p));
+    if (!finite(p)) invalid(where(i) + ": value is " + non_finite_word(p));
     if (p.x < 0 || p.y < 0 || p.z < 0 || p.x > 1 + kTextureTolerance ||
         p.y > 1 + kTextureTolerance || p.z > 1 + kTextureTolerance) {
-      invalid(where + ": value " + vec(p) +
+      invalid(where(i) + ": value " + vec(p) +
               " is outside [0,1] (textures hold linear factors of a material's albedo or "
               "emission)");
     }
