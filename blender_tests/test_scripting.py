@@ -213,6 +213,16 @@ class PanelAgreesWithTheCore(common.AddonCase):
         panel = bpy.context.scene.bakegi.bl_rna.properties
         self.assertEqual(panel["method"].default, native.default_method())
         self.assertEqual(bpy.context.scene.bakegi.request().method, native.default_method())
+        # The panel's defaults ask for the core's default bake (the path tracer to 5% through
+        # the denoiser), as bakegi.bake() without a method does.
+        from bakegi.request import BakeRequest
+        panel_settings = bpy.context.scene.bakegi.request().core_settings()
+        script_settings = BakeRequest().core_settings()
+        for key, value in native.default_method_settings().items():
+            with self.subTest(key=key):
+                self.assertEqual(panel_settings[key], value)
+                self.assertEqual(script_settings[key], value)
+        self.assertEqual(script_settings["method"], native.default_method())
         for item in panel["method"].enum_items:
             self.assertIn(item.identifier, native.method_names())
         for prop_name, method, key in properties.SCHEMA_PROPERTIES:

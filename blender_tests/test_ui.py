@@ -241,6 +241,7 @@ class UiTest:
         # Esc cancels a running bake and leaves the scene exactly as it was.
         started = time.perf_counter()
         failures = []
+        scene.bakegi.quality = "SAMPLES"  # a fixed count, so that the bake is long
         scene.bakegi.samples = 1 << 22
         before_snapshot = common.scene_snapshot()
         with self.override():
@@ -262,6 +263,7 @@ class UiTest:
         if differences:
             failures.append("the scene changed after Esc: " + "; ".join(differences[:10]))
         print(f"ui: Esc stopped the bake in {cancel_seconds:.2f} s")
+        scene.bakegi.quality = "GOOD"
         self.record("test_ui.escape_cancels_and_changes_nothing", started, failures)
         self.screenshot("ui_after_cancel.png")
 

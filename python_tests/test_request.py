@@ -10,7 +10,15 @@ def test_the_defaults_are_a_valid_request(native):
     BakeRequest().validate()
     # No method named: the core's default, the same one the CLI and the C API use.
     assert BakeRequest().with_core_default().method == native.describe_settings()["default"]
-    assert BakeRequest().core_settings()["method"] == "antiradiance"
+    # ...with its recipe: the path tracer to 5% through the denoiser, at most 65,536 paths.
+    settings = BakeRequest().core_settings()
+    assert settings["method"] == "pathtrace"
+    assert (settings["target_error"], settings["denoise"], settings["samples"]) == (0.05, 1, 65536)
+    # What the caller gives stays; a named method gets its own defaults and 64 samples.
+    given = BakeRequest(method_settings={"target_error": 0.02}, samples=1000).core_settings()
+    assert (given["target_error"], given["denoise"], given["samples"]) == (0.02, 1, 1000)
+    named = BakeRequest(method="pathtrace").core_settings()
+    assert named["samples"] == 64 and "target_error" not in named and "denoise" not in named
 
 
 def test_the_methods_are_the_cores(native):

@@ -1,7 +1,9 @@
 """Bakes the open .blend with bakegi, saves it, renders a PNG that shows the bake, and
 prints time and size figures. Run inside Blender:
-    blender -b scene.blend --python tools/bake_and_render.py -- --samples 256 \
+    blender -b scene.blend --python tools/bake_and_render.py -- [--method M --samples N] \
         --blend baked.blend --png baked.png --report report.json
+Without --method it makes bakegi's default bake (bakegi.bake() with no method: the path
+tracer to a 5% target error through its denoiser).
 The PNG is a Cycles render with direct light only (max bounces 0) plus the emission that
 the bakegi material hook adds (base color x baked indirect, camera rays only), i.e.
 albedo x (direct + baked indirect): what Material Preview shows, rendered offline.
@@ -18,8 +20,8 @@ import bpy
 def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     parser = argparse.ArgumentParser()
-    parser.add_argument("--samples", type=int, default=256)
-    parser.add_argument("--method", default="antiradiance")
+    parser.add_argument("--samples", type=int, default=None)
+    parser.add_argument("--method", default=None)
     parser.add_argument("--blend", required=True)
     parser.add_argument("--png", required=True)
     parser.add_argument("--report", required=True)
@@ -65,9 +67,17 @@ def main():
         json.dump(report, f, indent=2)
 
     seconds = report.get("seconds", {})
-    samples = " %d samples," % args.samples if report.get("method") == "pathtrace" else ""
+    settings = report.get("settings", {})
+    if report.get("method") != "pathtrace":
+        how = ""
+    elif settings.get("target_error"):
+        how = " to a %g%% target%s, %d paths," % (
+            100 * settings["target_error"], " through the denoiser" if settings.get("denoise") else "",
+            report.get("samples", 0))
+    else:
+        how = " %s samples per point," % settings.get("samples")
     print("bakegi bake: method %s,%s %d bake points, %d triangles"
-          % (report.get("method"), samples, report.get("bake_points", 0),
+          % (report.get("method"), how, report.get("bake_points", 0),
              report.get("triangles", 0)))
     for stage in sorted(seconds):
         print("  %-22s %8.3f s" % (stage, seconds[stage]))
@@ -77,6 +87,9 @@ def main():
     if rays and solve > 0:
         print("  %-22s %8.2f Mrays/s (%d rays)" % ("ray throughput", rays / solve / 1e6, rays))
     print("  %-22s %8.1f MiB" % ("core memory", report.get("memory_bytes", 0) / 2**20))
+    if report.get("estimated_error") is not None:
+        print("  %-22s %8.2f %% (the bake's own check against the path tracer)"
+              % ("estimated error", 100 * report["estimated_error"]))
     print("  %-22s %8.3f s (Cycles, direct + baked indirect)" % ("render", render_seconds))
     print("  %-22s %8.1f KiB  %s" % ("baked .blend", os.path.getsize(args.blend) / 1024, args.blend))
     print("  %-22s %8.1f KiB  %s" % ("PNG", os.path.getsize(args.png) / 1024, args.png))

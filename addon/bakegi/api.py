@@ -34,7 +34,7 @@ def _context(context):
     return context
 
 
-def bake(method=None, samples=64, seed=0, target="CORNER", objects="SELECTED",
+def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
          threads=None, hook_materials=True, context=None, method_settings=None, live=False,
          texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
          lightmap_uv_method="SMART", lightmap_padding=4, lightmap_folder="//bakegi_lightmaps",
@@ -58,10 +58,15 @@ def bake(method=None, samples=64, seed=0, target="CORNER", objects="SELECTED",
     method_settings: further core settings of the method, e.g. {"bins": 300, "iterations":
     32} for method="antiradiance", {"denoise": 1} to filter a path-traced bake's noise
     (docs/settings.md lists every method's keys).
-    method: None = the core's default ("antiradiance"; bakegi.native.default_method()),
-    "pathtrace" (the Monte Carlo reference; samples
-    applies to it only) or "meshless" (precomputed transfer; relights in milliseconds;
-    method_settings e.g. {"levels": 0, "epsilon": 0.01, "cache_dir": "/path"}).
+    method: None = the core's default bake: "pathtrace" to a 5% target error through the
+    denoiser (bakegi.native.default_method() and default_method_settings(); method_settings
+    may change any of them, e.g. {"target_error": 0.02}), the fastest to 5% on every scene
+    measured (docs/benchmarks.md, section 0c); "pathtrace" (the Monte Carlo reference, 64
+    paths per point unless samples or a target_error says otherwise; samples applies to the
+    sampling methods only), "antiradiance" (fast and smooth, biased by patch size and bins) or
+    "meshless" (precomputed transfer; relights in milliseconds; method_settings e.g.
+    {"levels": 0, "epsilon": 0.01, "cache_dir": "/path"}).
+    samples: None = 64 for a named method, the default bake's cap (65,536) otherwise.
     live: meshless only: keep the precomputation so that live_update() (or, in the UI, any
     change of a light) relights the bake.
     linked_duplicates (attribute targets): 'SHARED' bakes the first of the objects that share

@@ -269,6 +269,12 @@ def default_method():
     return describe_settings()["default"]
 
 
+def default_method_settings():
+    """The settings a bake that names no method gets where it does not set them (the core's
+    default_method_settings: target_error, denoise and the paths' cap)."""
+    return dict(describe_settings().get("default_settings", {}))
+
+
 def library_loaded():
     return _library is not None
 

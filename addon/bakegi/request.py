@@ -15,6 +15,8 @@ from .native import BakeGIError
 
 # Methods whose finished bake can be kept for live indirect (relit when lights change).
 LIVE_METHODS = ("meshless",)
+# Paths per point of a named sampling method when the request gives none.
+FIXED_SAMPLES = 64
 TARGET_DOMAINS = ("CORNER", "POINT", "LIGHTMAP")
 LINKED_DUPLICATES = ("SHARED", "SINGLE_USER")
 
@@ -40,11 +42,14 @@ class BakeRequest:
     writes its atlas (absolute). linked_duplicates (attribute targets): 'SHARED' bakes the
     first object of a shared mesh (the others show its light), 'SINGLE_USER' gives each its
     own copy first. live: keep the precomputation so light changes relight (meshless).
-    method None: the core's default method (native.default_method(); with_core_default()
-    names it). The methods are the core's (native.method_names()): no list here."""
+    method None: the core's default bake (native.default_method() with
+    native.default_method_settings() under the given method_settings: the path tracer to 5%
+    through its denoiser; with_core_default() names it). samples None: 64, or the default
+    bake's cap on paths per point. The methods are the core's (native.method_names()): no
+    list here."""
 
     method: Optional[str] = None
-    samples: int = 64
+    samples: Optional[int] = None
     seed: int = 0
     target: str = "CORNER"
     objects: Any = "SELECTED"
@@ -58,8 +63,15 @@ class BakeRequest:
     linked_duplicates: str = "SHARED"
 
     def with_core_default(self):
-        """This request with its method named (the core's default where it was None)."""
-        return self if self.method else replace(self, method=native.default_method())
+        """This request with its method and samples named: the core's default bake where the
+        method was None (its settings under the request's own), 64 samples where None."""
+        if self.method:
+            return self if self.samples is not None else replace(self, samples=FIXED_SAMPLES)
+        recipe = dict(native.default_method_settings())
+        samples = recipe.pop("samples", FIXED_SAMPLES)
+        return replace(self, method=native.default_method(),
+                       samples=samples if self.samples is None else self.samples,
+                       method_settings={**recipe, **self.method_settings})
 
     def with_threads(self, threads):
         return replace(self, threads=threads)
@@ -81,7 +93,8 @@ class BakeRequest:
             refuse(f"live indirect needs a method that relights ({', '.join(LIVE_METHODS)}), "
                    f"not {self.method!r}")
         threads = 0 if self.threads is None else self.threads
-        for name, value, low in (("samples", self.samples, 1), ("seed", self.seed, 0),
+        samples = FIXED_SAMPLES if self.samples is None else self.samples
+        for name, value, low in (("samples", samples, 1), ("seed", self.seed, 0),
                                  ("threads", threads, 0)):
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
                 refuse(f"{name} must be an integer >= {low}, not {value!r}")
@@ -95,5 +108,6 @@ class BakeRequest:
 
     def core_settings(self):
         """The settings the core receives (method_settings may add or override)."""
-        return {"method": self.with_core_default().method, "samples": self.samples, "seed": self.seed,
-                "threads": 0 if self.threads is None else self.threads, **self.method_settings}
+        named = self.with_core_default()
+        return {"method": named.method, "samples": named.samples, "seed": self.seed,
+                "threads": 0 if self.threads is None else self.threads, **named.method_settings}

@@ -89,6 +89,27 @@ constexpr const char* kMarkdownPreamble =
     "is keyed by it), **lighting** (used again when lighting: a relight may change it, a cache "
     "ignores it), **execution** (how the work runs, never what it computes).\n\n";
 
+// The method and the settings a bake gets when it names no method.
+void print_default_recipe() {
+  const JsonValue all = JsonValue::parse(describe_settings(nullptr));
+  std::string settings;
+  if (const JsonValue* given = all.find("default_settings")) {
+    if (const auto* object = std::get_if<JsonValue::Object>(&given->value)) {
+      for (const auto& [key, value] : *object) {
+        const auto number = value.number();
+        if (!number) continue;
+        char text[64];
+        std::snprintf(text, sizeof text, "%g", *number);
+        settings += (settings.empty() ? "" : ", ") + ("`" + key + "` " + text);
+      }
+    }
+  }
+  std::printf("A bake that names no method bakes with `%s`%s%s (the fastest bake to a 5%% target "
+              "on every scene measured: docs/benchmarks.md, section 0c).\n\n",
+              default_method().c_str(), settings.empty() ? "" : " and, where not given, ",
+              settings.c_str());
+}
+
 }  // namespace
 
 int run_settings_command(const std::vector<std::string>& words) {
@@ -100,7 +121,10 @@ int run_settings_command(const std::vector<std::string>& words) {
   } else {
     methods.push_back(args.positional()[0]);
   }
-  if (args.has("markdown") && args.positional().empty()) std::fputs(kMarkdownPreamble, stdout);
+  if (args.has("markdown") && args.positional().empty()) {
+    std::fputs(kMarkdownPreamble, stdout);
+    print_default_recipe();
+  }
   for (const std::string& method : methods) {
     const std::string json = describe_settings(method.c_str());
     if (args.has("json")) {

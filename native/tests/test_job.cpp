@@ -396,18 +396,24 @@ TEST(BakeJob, MemoryBudgetRefusesBeforeAllocating) {
 }
 
 // Settings that name no method bake with the core's default, and the report says which.
+// No method named: the default recipe (the path tracer to 5% through the denoiser), with
+// what the caller did set kept.
 TEST(BakeJob, SettingsWithoutAMethodBakeWithTheDefault) {
   ScenePtr scene = new_box_scene();
   PointsPtr points = new_floor_points(16);
   SettingsPtr settings = new_settings(nullptr);
-  ASSERT_EQ(bakegi_settings_set_int(settings.get(), "bins", 48), BAKEGI_OK);
+  ASSERT_EQ(bakegi_settings_set_float(settings.get(), "target_error", 0.1), BAKEGI_OK);
+  ASSERT_EQ(bakegi_settings_set_int(settings.get(), "error_probes", 0), BAKEGI_OK);
   bakegi_job* job = nullptr;
   ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK)
       << bakegi_last_error();
   JobPtr owned(job);
   ASSERT_EQ(bakegi_job_wait(job), BAKEGI_OK) << bakegi_last_error();
   Json report = parse_report(job);
-  EXPECT_EQ(report.members["method"].text, "antiradiance");
+  EXPECT_EQ(report.members["method"].text, "pathtrace");
+  EXPECT_DOUBLE_EQ(report.members["target_error"].number, 0.1);
+  EXPECT_GT(report.members["denoise_noise_after"].number, 0.0);
+  EXPECT_LE(report.members["sampling_predicted_error"].number, 0.1);
 }
 
 TEST(BakeJob, KeepsItsOwnCopiesAndReportsWarnings) {

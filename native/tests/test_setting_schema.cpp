@@ -127,7 +127,8 @@ TEST(SettingSchema, TheCApiDescribesEachMethod) {
   all.resize(length);
   EXPECT_EQ(all,
             "{\"methods\": [\"pathtrace\", \"direct\", \"antiradiance\", \"meshless\"], "
-            "\"default\": \"antiradiance\"}");
+            "\"default\": \"pathtrace\", \"default_settings\": {\"denoise\": 1, "
+            "\"samples\": 65536, \"target_error\": 0.050000000000000003}}");
 
   ASSERT_EQ(bakegi_settings_describe("meshless", nullptr, 0, &length), BAKEGI_OK);
   std::string meshless(length + 1, '\0');

@@ -12,9 +12,10 @@ from ..request import BakeRequest, LightmapOptions
 from . import preferences
 
 # The methods the panel offers, with their labels. The default is the core's (register() sets
-# it from bakegi_settings_describe; antiradiance reaches every error level of the Cornell chart
-# 2-5x sooner than the path tracer, docs/methods/antiradiance.md). A method not listed here is
-# still bakeable from scripts: bakegi.bake(method=...) takes any the core registers.
+# it from bakegi_settings_describe): the path tracer, which with the panel's default Quality
+# (Good, 5%) and Denoise on is the core's default bake, the fastest to 5% on every scene
+# measured (docs/benchmarks.md, section 0c). A method not listed here is still bakeable from
+# scripts: bakegi.bake(method=...) takes any the core registers.
 METHOD_ITEMS = [
     ("antiradiance", "Antiradiance", "Dachsbacher et al. 2007: light exchanged between "
      "surface patches through directional bins, occlusion by antiradiance instead of "
@@ -90,7 +91,7 @@ class BakeGISettings(bpy.types.PropertyGroup):
         description="Path tracing: the error to reach (samples go where the noise is and the "
         "bake stops when its own estimate meets it), or a fixed number of samples")
     denoise: BoolProperty(
-        name="Denoise", default=False,
+        name="Denoise", default=True,
         description="Path tracing: filter the noise over neighbouring points on the same "
         "surface (edge- and noise-aware); 2-3.5x less error at the same samples for a bias of "
         "about 1-3%, which Check Error measures. With a Quality target the bake stops when "

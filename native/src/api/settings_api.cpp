@@ -81,7 +81,13 @@ bakegi_status bakegi_settings_describe(const char* method, char* buffer, size_t 
       for (const std::string& name : bakegi::method_names()) {
         json += (json.back() == '[' ? "" : ", ") + bakegi::json_quote(name);
       }
-      json += "], \"default\": " + bakegi::json_quote(bakegi::kDefaultMethod) + "}";
+      json += "], \"default\": " + bakegi::json_quote(bakegi::kDefaultMethod) +
+              ", \"default_settings\": {";
+      for (const auto& [key, value] : bakegi::default_method_settings()) {
+        json += (json.back() == '{' ? "" : ", ") + bakegi::json_quote(key) + ": " +
+                bakegi::setting_to_json(value);
+      }
+      json += "}}";
     } else {
       json = bakegi::schema_json(bakegi::method_schema(method));
     }

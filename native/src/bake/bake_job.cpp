@@ -105,6 +105,7 @@ BakeJob::BakeJob(SceneDescription description, BakePoints points,
 
 void BakeJob::start() {
   // The method picks the schema; every given value is then checked at once (before any work).
+  apply_default_method_settings(settings_);
   const auto method = settings_.values().find("method");
   if (method != settings_.values().end() && !std::holds_alternative<std::string>(method->second)) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "setting \"method\" must be a string, got " +

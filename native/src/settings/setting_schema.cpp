@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "settings/settings.h"
 #include "util/report.h"
 
 namespace bakegi {
@@ -197,6 +198,19 @@ std::string schema_markdown(const SettingSchema& schema) {
            " | " + role_name(s.role) + " | " + s.doc + " |\n";
   }
   return out;
+}
+
+const std::map<std::string, SettingValue>& default_method_settings() {
+  static const std::map<std::string, SettingValue> settings = {
+      {"target_error", 0.05}, {"denoise", int64_t(1)}, {"samples", int64_t(1) << 16}};
+  return settings;
+}
+
+void apply_default_method_settings(Settings& settings) {
+  if (settings.has("method")) return;
+  for (const auto& [key, value] : default_method_settings()) {
+    if (!settings.has(key)) settings.set(key, value);
+  }
 }
 
 }  // namespace bakegi

@@ -8,12 +8,15 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "settings/setting_value.h"
 
 namespace bakegi {
+
+class Settings;
 
 enum class SettingType { kInteger, kNumber, kText };
 
@@ -42,9 +45,16 @@ SettingSpec text_setting(std::string key, std::string fallback, std::vector<std:
                          SettingRole role, std::string doc);
 
 // The method a bake uses when its settings name none: the "method" setting's default, the
-// same in the core, the CLI and the add-on (fast at every error level of the method charts;
-// the path tracer is the reference, asked for by name).
-constexpr const char* kDefaultMethod = "antiradiance";
+// same in the core, the CLI and the add-on. With default_method_settings() it is the fastest
+// bake to a 5% target on every scene measured (docs/benchmarks.md, section 0c: the path
+// tracer through its denoiser lands at 4.2-5.7%; antiradiance misses 5% in the real rooms).
+constexpr const char* kDefaultMethod = "pathtrace";
+
+// What a bake that names no method also sets, where its settings do not: the target error
+// (the add-on's Good quality), the denoiser, and the target's cap on paths per point.
+const std::map<std::string, SettingValue>& default_method_settings();
+// Adds default_method_settings() to `settings` if they name no method (keys they set stay).
+void apply_default_method_settings(Settings& settings);
 
 // Settings every method reads (through the job, the sampling loop or the error estimate).
 const std::vector<SettingSpec>& common_setting_specs();
