@@ -168,26 +168,32 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   // (measured: the filtered noise 2x the prediction on a flat floor).
   std::vector<float> guide(count), guide_variance(count);
   std::vector<glm::vec2> guide_slope(count);  // per unit of offset / h_i, in i's tangent frame
+  // One point's admissible neighbours as a pass weighs them, and their fitted kernel.
   struct Scratch {
     std::vector<float> weights;
     std::vector<glm::vec2> offsets;
     std::vector<uint32_t> members;
     std::vector<double> kernel;
     std::vector<glm::dvec2> slope_kernel;
+
+    void add(float weight, const glm::vec2& offset, uint32_t member) {
+      weights.push_back(weight);
+      offsets.push_back(offset);
+      members.push_back(member);
+    }
+    void clear() {
+      weights.clear();
+      offsets.clear();
+      members.clear();
+    }
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
   for_each_point(count, context, 0.0, 0.5 * progress_to, [&](size_t i) {
     Scratch& s = scratch.local();
     const Frame frame(points_.normals[i]);
-    const size_t base = i * kDenoiseNeighbours;
-    s.weights.clear();
-    s.offsets.clear();
-    s.members.clear();
-    for (size_t m = 0; m < neighbour_count_[i]; ++m) {
-      const uint32_t j = neighbours_[base + m];
-      s.weights.push_back(j == i ? 1.0f : distance_weight(i, j));
-      s.offsets.push_back(offset_of(i, frame, j));
-      s.members.push_back(j);
+    s.clear();
+    for (const uint32_t j : admissible(i)) {
+      s.add(j == i ? 1.0f : distance_weight(i, j), offset_of(i, frame, j), j);
     }
     local_linear_kernel(s.weights, s.offsets, s.kernel, &s.slope_kernel);
     double value = 0.0, variance = 0.0;
@@ -219,12 +225,8 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   for_each_point(count, context, 0.5 * progress_to, progress_to, [&](size_t i) {
     Scratch& s = scratch.local();
     const Frame frame(points_.normals[i]);
-    const size_t base = i * kDenoiseNeighbours;
-    s.weights.clear();
-    s.offsets.clear();
-    s.members.clear();
-    for (size_t m = 0; m < neighbour_count_[i]; ++m) {
-      const uint32_t j = neighbours_[base + m];
+    s.clear();
+    for (const uint32_t j : admissible(i)) {
       // The point itself always counts fully: where every neighbour lies far from the guide
       // (at an edge the guide mixes both sides) the point keeps its own value.
       const glm::vec2 offset = offset_of(i, frame, j);
@@ -238,9 +240,7 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
         const float excess = std::max(0.0f, difference * difference - noise);
         w = distance_weight(i, j) * std::exp(-excess / (kRangeStrength * kRangeStrength * noise));
       }
-      s.weights.push_back(w);
-      s.offsets.push_back(offset);
-      s.members.push_back(j);
+      s.add(w, offset, j);
     }
     local_linear_kernel(s.weights, s.offsets, s.kernel);
     glm::dvec3 value(0.0);

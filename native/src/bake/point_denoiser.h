@@ -86,6 +86,10 @@ class PointDenoiser : public NoiseFilter {
                         std::vector<glm::vec3>* filtered, JobContext& context,
                         bool report_progress) const;
 
+  std::span<const uint32_t> admissible(size_t i) const {
+    return {neighbours_.data() + i * kDenoiseNeighbours, neighbour_count_[i]};
+  }
+
   const BakePoints& points_;
   // Point i's admissible neighbours, nearest first (i among them), are the first
   // neighbour_count_[i] of neighbours_[i * kDenoiseNeighbours ...].
