@@ -53,6 +53,10 @@ namespace {
 struct PointSums {
   glm::dvec3 value{0.0};
   PointTally tally;
+
+  glm::vec3 mean() const {
+    return tally.samples > 0 ? glm::vec3(value / double(tally.samples)) : glm::vec3(0.0f);
+  }
 };
 
 // The first round of an adaptive bake: enough samples for a first variance estimate.
@@ -157,11 +161,8 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
         means.resize(count);
         variances.resize(count);
         for (size_t i = 0; i < count; ++i) {
-          const PointSums& point = sums[i];
-          means[i] = point.tally.samples > 0
-                         ? glm::vec3(point.value / double(point.tally.samples))
-                         : glm::vec3(0.0f);
-          variances[i] = float(luminance_variance_of_mean(point.tally));
+          means[i] = sums[i].mean();
+          variances[i] = float(luminance_variance_of_mean(sums[i].tally));
         }
         filtered = after->predict(means, variances, context);
         filtered.noise_left = std::clamp(filtered.noise_left, 1e-3, 1.0);
@@ -192,9 +193,7 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
   for (size_t i = 0; i < count; ++i) {
     const PointSums& point = sums[i];
     total += uint64_t(point.tally.samples);
-    out[i] = point.tally.samples > 0
-                 ? glm::vec3(point.value / double(point.tally.samples))
-                 : glm::vec3(0.0f);
+    out[i] = point.mean();
     if (!variance_of_mean.empty()) {
       variance_of_mean[i] = float(luminance_variance_of_mean(point.tally));
     }
