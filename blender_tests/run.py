@@ -202,6 +202,8 @@ def main():
     if arguments.junit:
         write_junit(arguments.junit, results)
     print(f"{version}: {counts['passed']} passed, {counts['failed']} failed, {counts['skipped']} skipped")
+    if not counts["failed"]:
+        shutil.rmtree(scratch, ignore_errors=True)  # the logs are kept only where a test failed
     return 1 if counts["failed"] else 0
 
 

@@ -7,6 +7,7 @@ commands themselves: exit codes, the files and JSON they write, and the relight 
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -29,6 +30,7 @@ class CommandLine(common.SmallCornellCase):
         if not os.path.isfile(self.cli):
             self.skipTest("no bakegi CLI next to the library (run with --library build/libbakegi.so)")
         self.work = tempfile.mkdtemp(prefix="bakegi_cli_")
+        self.addCleanup(shutil.rmtree, self.work, ignore_errors=True)
         self.scene = os.path.join(self.work, "cornell.bgs")
         self.bakegi.export_scene_file(self.scene, target="CORNER", objects="VISIBLE")
 

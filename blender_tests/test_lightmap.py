@@ -3,6 +3,7 @@ user's, seams, a wall that must not leak, agreement with the color attribute bak
 Remove Bake."""
 
 import os
+import shutil
 import sys
 import tempfile
 
@@ -53,6 +54,7 @@ class LightmapCase(common.SmallCornellCase):
     def setUp(self):
         super().setUp()
         self.folder = tempfile.mkdtemp(prefix="bakegi_lightmap_test_")
+        self.addCleanup(shutil.rmtree, self.folder, ignore_errors=True)
 
     def bake_lightmap(self, **kwargs):
         settings = dict(target="LIGHTMAP", objects="VISIBLE", lightmap_folder=self.folder,
@@ -309,9 +311,10 @@ class WallBehindWall(common.AddonCase):
         light.location = (0.5, 0.5, 0.6)
         scene.collection.objects.link(light)
         bpy.context.view_layer.update()
+        folder = tempfile.mkdtemp(prefix="bakegi_wall_")
+        self.addCleanup(shutil.rmtree, folder, ignore_errors=True)
         report = self.bakegi.bake(method="pathtrace", samples=16, target="LIGHTMAP",
-                                  objects=[floor], texels_per_meter=64.0,
-                                  lightmap_folder=tempfile.mkdtemp(prefix="bakegi_wall_"))
+                                  objects=[floor], texels_per_meter=64.0, lightmap_folder=folder)
         self.assertEqual(report["lightmap"]["uv_maps_created"], [])
         pixels = read_image(bpy.data.images["BakeGI_Lightmap_" + scene.name])
         su, sv = floor["bakegi_lightmap_scale"][:2]

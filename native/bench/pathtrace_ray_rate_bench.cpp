@@ -16,18 +16,38 @@
 namespace bakegi::bench {
 namespace {
 
-// The number stored under the first "key" of a report at or after `from` (the core writes
-// counters at the top level, stage times under "seconds"); 0 if absent or not a number.
-double report_number(const std::string& report, const std::string& key, size_t from = 0) {
+// The number stored under `key` directly inside the JSON object that opens at `object`
+// (a '{'), not in objects nested in it: the report has "rays" at the top level and inside
+// "error_estimate". 0 if absent or not a number.
+double number_in_object(const std::string& report, const std::string& key, size_t object = 0) {
   const std::string needle = "\"" + key + "\": ";
-  const size_t at = report.find(needle, from);
-  return at == std::string::npos ? 0.0 : std::strtod(report.c_str() + at + needle.size(), nullptr);
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = object; i < report.size(); ++i) {
+    const char c = report[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '{' || c == '[') {
+      ++depth;
+    } else if (c == '}' || c == ']') {
+      if (--depth == 0) break;
+    } else if (c == '"') {
+      if (depth == 1 && report.compare(i, needle.size(), needle) == 0)
+        return std::strtod(report.c_str() + i + needle.size(), nullptr);
+      in_string = true;
+    }
+  }
+  return 0.0;
 }
 
-// A stage's seconds ("error_estimate" is also the name of a top-level object).
+// A stage's seconds, from the top-level object "seconds".
 double stage_seconds(const std::string& report, const std::string& stage) {
-  const size_t seconds = report.find("\"seconds\": ");
-  return seconds == std::string::npos ? 0.0 : report_number(report, stage, seconds);
+  const size_t seconds = report.find("\"seconds\": {");
+  if (seconds == std::string::npos) return 0.0;
+  return number_in_object(report, stage, report.find('{', seconds));
 }
 
 std::string job_report(const bakegi_job* job) {
@@ -66,7 +86,7 @@ void BM_PathtraceJob(benchmark::State& state) {
     const std::string report = job_report(job);
     // The error probes (on by default) trace the same paths in their own stage, counted
     // apart; leaving them out would charge their time to the bake's rays.
-    rays += report_number(report, "rays") + report_number(report, "error_probe_rays");
+    rays += number_in_object(report, "rays") + number_in_object(report, "error_probe_rays");
     // The stages where paths are traced: the field evaluated at the points, the probes.
     tracing_seconds += stage_seconds(report, "evaluate") + stage_seconds(report, "error_estimate");
     seconds += wall;

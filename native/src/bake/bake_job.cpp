@@ -40,6 +40,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 std::string megabytes(size_t bytes) { return MemoryBudget::megabytes(bytes); }
 
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f%%", 100.0 * fraction);
+  return text;
+}
+
 size_t description_bytes(const SceneDescription& d) {
   size_t bytes = d.materials.size() * sizeof(Material) + d.lights.size() * sizeof(Light);
   for (const Texture& t : d.textures) bytes += t.texels().size() * sizeof(glm::vec3);
@@ -301,13 +307,31 @@ void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& point
   context_.set_stage_text("denoising");
   const PointDenoiser& filter = denoiser.get(context_);
   const auto start = std::chrono::steady_clock::now();
+  const std::vector<glm::vec3> raw(out.begin(), out.end());
   const DenoiseStatistics statistics = filter.filter(out, variance, context_);
+  // Where the bias it adds outweighs the noise it takes out, the raw means are the better bake.
+  const double bias = std::max(statistics.mean_shift, statistics.local_bias);
+  const double filtered_error = std::hypot(statistics.noise_after, bias);
+  const bool applied =
+      !(statistics.noise_before > 0.0 && filtered_error >= statistics.noise_before);
+  if (!applied) {
+    std::copy(raw.begin(), raw.end(), out.begin());
+    report.warn("denoise: the filter would add more error (bias " + percent(bias) +
+                ") than it takes out (noise " + percent(statistics.noise_before) + " to " +
+                percent(statistics.noise_after) + "); the values are not filtered");
+    // The sampler predicted the filtered error; the raw means' is their noise.
+    if (report.has_number("sampling_predicted_error")) {
+      report.set_number("sampling_predicted_error", statistics.noise_before);
+    }
+  }
+  report.set_number("denoise_applied", applied ? 1.0 : 0.0);
   // Finding the neighbourhoods and every prediction the sampler asked for count as denoising.
   report.add_seconds("denoise", seconds_since(start) + denoiser.seconds());
   report.add_count("rays", statistics.rays);
   report.set_number("denoise_noise_before", statistics.noise_before);
   report.set_number("denoise_noise_after", statistics.noise_after);
   report.set_number("denoise_mean_shift", statistics.mean_shift);
+  report.set_number("denoise_local_bias", statistics.local_bias);
 }
 
 const Scene& BakeJob::build_scene_and_report(Report& report,

@@ -222,6 +222,9 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   // by how far their value lies from the guide beyond the noise of both.
   if (filtered) filtered->assign(count, glm::vec3(0.0f));
   std::vector<float> filtered_variance(count), filtered_luminances(count);
+  // Per point the filter's squared bias as far as it can be measured: its change to the
+  // value, squared, less the part of that the noise explains (weights taken as fixed).
+  std::vector<float> squared_bias(count);
   for_each_point(count, context, 0.5 * progress_to, progress_to, [&](size_t i) {
     Scratch& s = scratch.local();
     const Frame frame(points_.normals[i]);
@@ -244,31 +247,37 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
     }
     local_linear_kernel(s.weights, s.offsets, s.kernel);
     glm::dvec3 value(0.0);
-    double variance = 0.0, filtered_luminance = 0.0;
+    double variance = 0.0, filtered_luminance = 0.0, change_variance = 0.0;
     for (size_t m = 0; m < s.members.size(); ++m) {
       const uint32_t j = s.members[m];
       if (filtered) value += s.kernel[m] * glm::dvec3(values[j]);
       variance += s.kernel[m] * s.kernel[m] * double(variance_of_mean[j]);
       filtered_luminance += s.kernel[m] * double(luminances[j]);
+      const double change_weight = s.kernel[m] - (j == i ? 1.0 : 0.0);
+      change_variance += change_weight * change_weight * double(variance_of_mean[j]);
     }
     // A slope fitted from noise can extrapolate below zero; light cannot.
     if (filtered) (*filtered)[i] = glm::max(glm::vec3(value), glm::vec3(0.0f));
     filtered_variance[i] = float(variance);
     filtered_luminances[i] = float(std::max(0.0, filtered_luminance));
+    const double change = double(filtered_luminances[i]) - double(luminances[i]);
+    squared_bias[i] = float(change * change - change_variance);
   });
 
-  double mean = 0.0, before = 0.0, after = 0.0, filtered_mean = 0.0;
+  double mean = 0.0, before = 0.0, after = 0.0, filtered_mean = 0.0, bias = 0.0;
   for (size_t i = 0; i < count; ++i) {
     mean += double(luminances[i]);
     before += double(variance_of_mean[i]);
     after += double(filtered_variance[i]);
     filtered_mean += double(filtered_luminances[i]);
+    bias += double(squared_bias[i]);
   }
   if (mean > 0.0) {
     const double mean_value = mean / double(count);
     statistics.noise_before = std::sqrt(before / double(count)) / mean_value;
     statistics.noise_after = std::sqrt(after / double(count)) / mean_value;
     statistics.mean_shift = std::abs(filtered_mean - mean) / mean;
+    statistics.local_bias = std::sqrt(std::max(0.0, bias / double(count))) / mean_value;
   }
   return statistics;
 }
@@ -290,7 +299,7 @@ FilteredNoise PointDenoiser::predict(std::span<const glm::vec3> values,
   if (statistics.noise_before > 0.0) {
     predicted.noise_left = statistics.noise_after / statistics.noise_before;
   }
-  predicted.bias = statistics.mean_shift;
+  predicted.bias = std::max(statistics.mean_shift, statistics.local_bias);
   return predicted;
 }
 

@@ -16,8 +16,9 @@
 // out, and where the points have no noise (v = 0) nothing is mixed.
 //
 // The noise after filtering is predicted as Σ_j w_ij² v_j / (Σ_j w_ij)² (weights taken as
-// fixed). The bias the filter adds is not predicted: the bake's error probes
-// (bake/error_estimate.h) compare the filtered values with the path tracer and measure it.
+// fixed), its bias from how far it moves each value beyond what the noise explains
+// (DenoiseStatistics::local_bias); the bake's error probes (bake/error_estimate.h) compare the
+// filtered values with the path tracer and measure both.
 //
 // The neighbourhoods (nearest points, the surface tests, the visibility rays) depend on the
 // points only and are found once; filtering and predicting its noise (for an adaptive
@@ -48,6 +49,14 @@ struct DenoiseStatistics {
   // Path-traced noise is heavy-tailed: the range kernel shuts out a neighbour's rare bright
   // sample more often than a dark one, so the filtered mean falls (measured 1-3%).
   double mean_shift = 0.0;
+  // The root mean square of the filter's bias over the points, relative to the mean y: the
+  // unbiased raw y_i is the filter's reference. With f_i = Σ_j k_ij y_j and the weights taken
+  // as fixed, E[(f_i - y_i)²] = b_i² + Σ_j (k_ij - δ_ij)² v_j, so the mean of
+  // (f_i - y_i)² - Σ_j (k_ij - δ_ij)² v_j estimates mean b_i² (Stein's unbiased risk
+  // estimate, as Li, Wu and Chuang 2012 use it for Monte Carlo filters). Where the filter
+  // blurs a gradient or an edge its weights cannot see, this grows; the mean shift is its
+  // mean's part.
+  double local_bias = 0.0;
   uint64_t rays = 0;  // visibility rays between neighbours
 };
 
@@ -73,8 +82,8 @@ class PointDenoiser : public NoiseFilter {
   DenoiseStatistics filter(std::span<glm::vec3> values, std::span<const float> variance_of_mean,
                            JobContext& context) const;
 
-  // noise_after / noise_before and the mean shift (as its bias) of filter() (noise left 1
-  // where there is no noise), values unchanged.
+  // noise_after / noise_before and the larger of the mean shift and the local bias (as its
+  // bias) of filter() (noise left 1 where there is no noise), values unchanged.
   FilteredNoise predict(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
                         JobContext& context) const override;
 

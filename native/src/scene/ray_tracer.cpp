@@ -182,6 +182,7 @@ RayTracer::RayTracer(const Scene& scene, const RayTracerOptions& options)
 RayTracer::~RayTracer() = default;
 
 Hit RayTracer::intersect(const Ray& ray) const {
+  if (log_) log_->push_back({ray, false});
   RTCRayHit rayhit;
   rayhit.ray = to_rtc_ray(ray);
   rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -204,6 +205,7 @@ Hit RayTracer::intersect(const Ray& ray) const {
 }
 
 bool RayTracer::occluded(const Ray& ray) const {
+  if (log_) log_->push_back({ray, true});
   RTCRay r = to_rtc_ray(ray);
 #if BAKEGI_EMBREE_MAJOR >= 4
   rtcOccluded1(impl_->scene, &r);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -25,6 +26,12 @@ struct Hit {
   float t = 0.0f;
   uint32_t triangle = 0;       // index into Scene::triangles
   float b1 = 0.0f, b2 = 0.0f;  // barycentrics of corners 1 and 2
+};
+
+// A ray as traced, for the benchmark that replays a solver's own rays through Embree alone.
+struct RecordedRay {
+  Ray ray;
+  bool occlusion = false;  // occluded() rather than intersect()
 };
 
 struct RayTracerOptions {
@@ -52,9 +59,15 @@ class RayTracer {
   // Bytes Embree holds for this scene (counted by its memory monitor).
   size_t memory_bytes() const;
 
+  // Appends every ray intersect() and occluded() trace to `log`, in order (null: off), so
+  // that native/bench can time Embree alone on the path tracer's own rays. Not
+  // thread-safe: record from one thread.
+  void record_rays(std::vector<RecordedRay>* log) { log_ = log; }
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  std::vector<RecordedRay>* log_ = nullptr;
 };
 
 }  // namespace bakegi

@@ -40,6 +40,11 @@ std::vector<std::string> Report::warnings() const {
   return warnings_;
 }
 
+bool Report::has_number(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return numbers_.count(key) > 0;
+}
+
 uint64_t Report::count(const std::string& key) const {
   std::lock_guard lock(mutex_);
   auto it = counts_.find(key);

@@ -1,0 +1,85 @@
+// Embree alone on the path tracer's own rays: the limit the path tracer's ray rate is
+// measured against (BM_PathtraceJob's rays/s_tracing).
+//
+// The rays of diffuse_rays.h are cheaper than the path tracer's: they leave from points
+// uniform over the surface area (the path tracer's first rays leave from bake points, many
+// in dense geometry), and their shadow segments join two random surface points, mostly
+// occluded, so Embree stops at the first blocker (the path tracer's shadow rays run to the
+// lights and mostly arrive, traversing to the end). On Sponza the path tracer's rays cost
+// Embree about twice as much as those. Here the rays are recorded while sample_indirect
+// traces 4 paths at every bake point (one thread, RayTracer::record_rays), then replayed in
+// the order traced through intersect() and occluded(), at 1 and 2 threads.
+#include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <vector>
+
+#include "bench_scene.h"
+#include "lights/direct_light.h"
+#include "solvers/pathtrace/indirect_path.h"
+#include "util/random.h"
+
+namespace bakegi::bench {
+namespace {
+
+constexpr int kPathsPerPoint = 4;
+constexpr int kMaxBounces = 64;  // the path tracer's default
+
+const std::vector<RecordedRay>& path_rays() {
+  static const std::vector<RecordedRay> recorded = [] {
+    const BenchScene& bench = bench_scene();
+    std::vector<RecordedRay> log;
+    log.reserve(bench.points.size() * kPathsPerPoint * 6);
+    const DirectLight direct(bench.scene, *bench.tracer);
+    bench.tracer->record_rays(&log);
+    uint64_t rays = 0;
+    for (size_t i = 0; i < bench.points.size(); ++i) {
+      const SurfacePoint x{bench.points.positions[i], bench.points.normals[i],
+                           bench.points.normals[i]};
+      RandomStream rng(1, i);
+      for (int s = 0; s < kPathsPerPoint; ++s) sample_indirect(direct, x, rng, kMaxBounces, rays);
+    }
+    bench.tracer->record_rays(nullptr);
+    return log;
+  }();
+  return recorded;
+}
+
+void BM_EmbreePathTracerRays(benchmark::State& state) {
+  const int threads = int(state.range(0));
+  const RayTracer& tracer = *bench_scene().tracer;
+  const std::vector<RecordedRay>& r = path_rays();
+  std::vector<uint8_t> hit(r.size());
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, r.size(), 4096),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        for (size_t i = range.begin(); i != range.end(); ++i) {
+                          hit[i] = r[i].occlusion ? tracer.occluded(r[i].ray)
+                                                  : tracer.intersect(r[i].ray).hit;
+                        }
+                      });
+    benchmark::DoNotOptimize(hit.data());
+  }
+  size_t occlusion = 0;
+  for (const RecordedRay& ray : r) occlusion += ray.occlusion ? 1 : 0;
+  state.counters["rays/s"] = benchmark::Counter(double(state.iterations()) * double(r.size()),
+                                                benchmark::Counter::kIsRate);
+  state.counters["rays"] = double(r.size());
+  state.counters["shadow_fraction"] = double(occlusion) / double(r.size());
+  state.counters["rays_per_path"] =
+      double(r.size()) / (double(bench_scene().points.size()) * kPathsPerPoint);
+  state.SetLabel(bench_scene().name);
+}
+
+BENCHMARK(BM_EmbreePathTracerRays)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace bakegi::bench
