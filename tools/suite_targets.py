@@ -47,6 +47,13 @@ def bake(cli, bgs, folder, target, denoise, kept_only):
         return numpy.load(out).astype(numpy.float64), json.load(f)
 
 
+def write_rows(path, rows):
+    """The rows as JSON, with the command that made them, when, and the machine's load."""
+    with open(path, "w") as f:
+        json.dump({"command": " ".join(sys.argv), "date": time.strftime("%Y-%m-%d %H:%M"),
+                   "load_average": os.getloadavg(), "rows": rows}, f, indent=1)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", required=True, help="comma-separated suite scene names")
@@ -99,9 +106,7 @@ def main():
                          100 * row["nrmse"], 100 * row["nrmse_without_reference_noise"],
                          100 * row["weighted_relative_rmse"], 100 * row["bias"]), flush=True)
     if args.json:
-        with open(args.json, "w") as f:
-            json.dump({"command": " ".join(sys.argv), "date": time.strftime("%Y-%m-%d %H:%M"),
-                       "load_average": os.getloadavg(), "rows": rows}, f, indent=1)
+        write_rows(args.json, rows)
 
 
 if __name__ == "__main__":

@@ -6,6 +6,9 @@
 #include <memory>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "scene/bake_points.h"
 #include "bakegi/bakegi.h"
 #include "scene/ray_tracer.h"
@@ -29,5 +32,15 @@ struct CApiScene {
   bakegi_points* points = nullptr;
 };
 const CApiScene& bench_scene_c_api();
+
+// body(i) for every i in [0, count) on the TBB workers (as many as a tbb::global_control
+// allows), in blocks of 4096 rays.
+template <typename Body>
+void for_each_ray(size_t count, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      for (size_t i = range.begin(); i != range.end(); ++i) body(i);
+                    });
+}
 
 }  // namespace bakegi::bench

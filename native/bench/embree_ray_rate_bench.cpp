@@ -8,9 +8,7 @@
 #include <algorithm>
 
 #include <benchmark/benchmark.h>
-#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "bench_scene.h"
 #include "diffuse_rays.h"
@@ -47,12 +45,7 @@ void BM_EmbreeSingleRays(benchmark::State& state) {
   std::vector<Hit> hits(r.size());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   for (auto _ : state) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, r.size(), 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                        for (size_t i = range.begin(); i != range.end(); ++i) {
-                          hits[i] = tracer.intersect(r[i]);
-                        }
-                      });
+    for_each_ray(r.size(), [&](size_t i) { hits[i] = tracer.intersect(r[i]); });
     benchmark::DoNotOptimize(hits.data());
   }
   report(state,
@@ -80,12 +73,7 @@ void BM_EmbreeShadowRays(benchmark::State& state) {
   std::vector<uint8_t> occluded(r.size());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   for (auto _ : state) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, r.size(), 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                        for (size_t i = range.begin(); i != range.end(); ++i) {
-                          occluded[i] = tracer.occluded(r[i]) ? 1 : 0;
-                        }
-                      });
+    for_each_ray(r.size(), [&](size_t i) { occluded[i] = tracer.occluded(r[i]) ? 1 : 0; });
     benchmark::DoNotOptimize(occluded.data());
   }
   report(state, size_t(std::count(occluded.begin(), occluded.end(), uint8_t{1})));

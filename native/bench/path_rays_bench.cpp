@@ -10,9 +10,7 @@
 // traces 4 paths at every bake point (one thread, RayTracer::record_rays), then replayed in
 // the order traced through intersect() and occluded(), at 1 and 2 threads.
 #include <benchmark/benchmark.h>
-#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include <vector>
 
@@ -54,13 +52,9 @@ void BM_EmbreePathTracerRays(benchmark::State& state) {
   std::vector<uint8_t> hit(r.size());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   for (auto _ : state) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, r.size(), 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                        for (size_t i = range.begin(); i != range.end(); ++i) {
-                          hit[i] = r[i].occlusion ? tracer.occluded(r[i].ray)
-                                                  : tracer.intersect(r[i].ray).hit;
-                        }
-                      });
+    for_each_ray(r.size(), [&](size_t i) {
+      hit[i] = r[i].occlusion ? tracer.occluded(r[i].ray) : tracer.intersect(r[i].ray).hit;
+    });
     benchmark::DoNotOptimize(hit.data());
   }
   size_t occlusion = 0;
