@@ -35,6 +35,9 @@ def main():
     axes.axvline(5.0, color="grey", linewidth=0.8)
     axes.set_xscale("log")
     axes.set_yscale("log")
+    ticks = [2, 3, 5, 10, 20, 50]
+    axes.set_xticks(ticks)
+    axes.set_xticklabels([str(t) for t in ticks])
     axes.set_xlabel("NRMSE against the reference, reference noise removed (%)")
     axes.set_ylabel("seconds (2 cores)")
     axes.set_title("bakegi's default bake (dots) and Cycles (squares: measured; lines: 1/sqrt(samples)\n"

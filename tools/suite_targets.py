@@ -93,6 +93,8 @@ def main():
                     "predicted": report.get("sampling_predicted_error"),
                     "noise_left_by_filter": report.get("sampling_noise_left_by_filter"),
                     "denoise_mean_shift": report.get("denoise_mean_shift"),
+                    "denoise_local_bias": report.get("denoise_local_bias"),
+                    "denoise_applied": report.get("denoise_applied"),
                     "reference_samples": ref_samples, "reference_noise": ref_noise,
                     "nrmse": metrics["nrmse"],
                     "nrmse_without_reference_noise": metrics["nrmse_without_reference_noise"],
