@@ -62,7 +62,9 @@ const std::vector<SettingSpec>& common_setting_specs() {
       integer_setting("denoise", 0, 0, 1, R::kLighting,
                       "1: filter a sampling bake's noise over neighbouring points (edge- and "
                       "noise-aware; report \"denoise_noise_after\"): less noise for some bias, "
-                      "which the error probes measure; 0: off"),
+                      "which it estimates (\"denoise_local_bias\"); where the bias would "
+                      "outweigh the noise it takes out the values stay unfiltered (warning); "
+                      "0: off"),
       integer_setting("threads", 0, 0, 1024, R::kExecution, "worker threads, 0 = all cores"),
       integer_setting("memory_budget_mb", 4096, 1, int64_t(1) << 30, R::kShapes,
                       "a bake whose estimate exceeds it is refused; antiradiance coarsens an "
