@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -41,6 +42,11 @@ void for_each_ray(size_t count, const Body& body) {
                     [&](const tbb::blocked_range<size_t>& range) {
                       for (size_t i = range.begin(); i != range.end(); ++i) body(i);
                     });
+}
+
+// A ray-rate benchmark's registration: at 1 and 2 threads (range(0)), wall time, in ms.
+inline void at_one_and_two_threads(benchmark::internal::Benchmark* b) {
+  b->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 
 }  // namespace bakegi::bench

@@ -79,24 +79,9 @@ void BM_EmbreeShadowRays(benchmark::State& state) {
   report(state, size_t(std::count(occluded.begin(), occluded.end(), uint8_t{1})));
 }
 
-BENCHMARK(BM_EmbreeSingleRays)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EmbreePackets16)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EmbreeShadowRays)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmbreeSingleRays)->Apply(at_one_and_two_threads);
+BENCHMARK(BM_EmbreePackets16)->Apply(at_one_and_two_threads);
+BENCHMARK(BM_EmbreeShadowRays)->Apply(at_one_and_two_threads);
 
 }  // namespace
 }  // namespace bakegi::bench

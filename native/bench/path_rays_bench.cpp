@@ -68,12 +68,7 @@ void BM_EmbreePathTracerRays(benchmark::State& state) {
   state.SetLabel(bench_scene().name);
 }
 
-BENCHMARK(BM_EmbreePathTracerRays)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmbreePathTracerRays)->Apply(at_one_and_two_threads);
 
 }  // namespace
 }  // namespace bakegi::bench
