@@ -66,8 +66,9 @@ inline constexpr float kMaxPlaneSlope = 0.25f;
 inline constexpr float kRangeStrength = 1.0f;
 // What the filter holds per point at its peak (the R-tree's entry and nodes while the
 // neighbourhoods are found; kDenoiseNeighbours neighbour indices; luminance, guide, filtered
-// value and variance), for the job's memory estimate.
-inline constexpr size_t kDenoiseBytesPerPoint = 64 + 4 * kDenoiseNeighbours + 48;
+// value and variance; the squared bias, and the bake's copy of the raw values), for the job's
+// memory estimate.
+inline constexpr size_t kDenoiseBytesPerPoint = 64 + 4 * kDenoiseNeighbours + 48 + 4 + 12;
 
 class PointDenoiser : public NoiseFilter {
  public:
