@@ -9,45 +9,20 @@
 #include <chrono>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "bench_scene.h"
+#include "json_value.h"
 #include "util/error.h"
 
 namespace bakegi::bench {
 namespace {
 
-// The number stored under `key` directly inside the JSON object that opens at `object`
-// (a '{'), not in objects nested in it: the report has "rays" at the top level and inside
-// "error_estimate". 0 if absent or not a number.
-double number_in_object(const std::string& report, const std::string& key, size_t object = 0) {
-  const std::string needle = "\"" + key + "\": ";
-  int depth = 0;
-  bool in_string = false;
-  for (size_t i = object; i < report.size(); ++i) {
-    const char c = report[i];
-    if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
-      continue;
-    }
-    if (c == '{' || c == '[') {
-      ++depth;
-    } else if (c == '}' || c == ']') {
-      if (--depth == 0) break;
-    } else if (c == '"') {
-      if (depth == 1 && report.compare(i, needle.size(), needle) == 0)
-        return std::strtod(report.c_str() + i + needle.size(), nullptr);
-      in_string = true;
-    }
-  }
-  return 0.0;
-}
-
-// A stage's seconds, from the top-level object "seconds".
-double stage_seconds(const std::string& report, const std::string& stage) {
-  const size_t seconds = report.find("\"seconds\": {");
-  if (seconds == std::string::npos) return 0.0;
-  return number_in_object(report, stage, report.find('{', seconds));
+// A number of the report at a path of keys ({"rays"} is the top level's, not the error
+// estimate's); 0 if absent.
+double report_number(const cli::JsonValue& report, const std::vector<std::string>& path) {
+  const cli::JsonValue* value = report.find_path(path);
+  return value ? value->number().value_or(0.0) : 0.0;
 }
 
 std::string job_report(const bakegi_job* job) {
@@ -83,12 +58,13 @@ void BM_PathtraceJob(benchmark::State& state) {
       break;
     }
     state.SetIterationTime(wall);
-    const std::string report = job_report(job);
+    const cli::JsonValue report = cli::JsonValue::parse(job_report(job));
     // The error probes (on by default) trace the same paths in their own stage, counted
     // apart; leaving them out would charge their time to the bake's rays.
-    rays += number_in_object(report, "rays") + number_in_object(report, "error_probe_rays");
+    rays += report_number(report, {"rays"}) + report_number(report, {"error_probe_rays"});
     // The stages where paths are traced: the field evaluated at the points, the probes.
-    tracing_seconds += stage_seconds(report, "evaluate") + stage_seconds(report, "error_estimate");
+    tracing_seconds += report_number(report, {"seconds", "evaluate"}) +
+                       report_number(report, {"seconds", "error_estimate"});
     seconds += wall;
     bakegi_job_destroy(job);
   }
