@@ -6,7 +6,6 @@
 
 #include "lights/direct_light.h"
 #include "scene/surface_bsdf.h"
-#include "solvers/pathtrace/lit_surfaces.h"
 #include "util/random.h"
 #include "util/sampling.h"
 
@@ -124,84 +123,6 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
   const PathRadiance path = trace_from_first_hit(direct, hit, first.direction, rng, max_bounces,
                                                  rays);
   return path.first_light + path.rest;
-}
-
-namespace {
-
-// The light a first vertex at `x` (hit along `direction`) reflects back of its light sample:
-// trace_from_first_hit's first term.
-glm::vec3 reflected_light_sample(const DirectLight& direct, const SurfacePoint& x,
-                                 uint32_t triangle_index, float b1, float b2,
-                                 const glm::vec3& direction, RandomStream& rng, uint64_t& rays) {
-  const Scene& scene = direct.scene();
-  const Triangle& triangle = scene.triangles[triangle_index];
-  const glm::vec3 albedo = scene.albedo_at(triangle, b1, b2);
-  const Material& material = scene.material_of(triangle);
-  if (!material.has_glossy()) {
-    if (!(max_component(albedo) > 0.0f)) return glm::vec3(0.0f);
-    return albedo * (kInvPi * direct.sample_lights(x, rng, rays));
-  }
-  const SurfaceBsdf bsdf(x.shading_normal, -direction, albedo, material.glossy,
-                         material.glossy_exponent);
-  return direct.sample_lights(x, bsdf, rng, rays);
-}
-
-// Solid-angle density with which `lit` picks the point at distance `distance` along
-// `direction` on triangle `triangle` (barycentrics b1, b2).
-float lit_pdf(const LitSurfaces& lit, const Triangle& triangle, uint32_t triangle_index, float b1,
-              float b2, const glm::vec3& direction, float distance) {
-  const float cos_y = std::abs(glm::dot(triangle.face_normal, direction));
-  if (!(cos_y > 0.0f)) return 0.0f;
-  return lit.pdf_area(triangle_index, b1, b2) * distance * distance / cos_y;
-}
-
-}  // namespace
-
-glm::vec3 sample_indirect_lit(const DirectLight& direct, const LitSurfaces& lit,
-                              const SurfacePoint& point, RandomStream& rng, int max_bounces,
-                              uint64_t& rays) {
-  const Scene& scene = direct.scene();
-  const RayTracer& tracer = direct.tracer();
-  glm::vec3 value(0.0f);
-  // Strategy 1: the cosine-weighted path, its first light sample weighed against strategy 2.
-  const FirstRay first = sample_first_ray(direct, point, rng);
-  if (first.pdf > 0.0f) {
-    ++rays;
-    const Hit hit = tracer.intersect(Ray{first.origin, first.direction, 0.0f, 1e30f});
-    const PathRadiance path =
-        trace_from_first_hit(direct, hit, first.direction, rng, max_bounces, rays);
-    float weight = 1.0f;
-    if (hit.hit && max_component(path.first_light) > 0.0f) {
-      const float other = lit_pdf(lit, scene.triangles[hit.triangle], hit.triangle, hit.b1,
-                                  hit.b2, first.direction, hit.t);
-      weight = power_heuristic(first.pdf, other);
-    }
-    value = path.first_light * weight + path.rest;
-  }
-  // Strategy 2: a point on the lit surfaces, if the bake point sees it.
-  LitSurfacePoint y;
-  const float u_pick = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
-  if (!lit.sample(u_pick, u1, u2, y)) return value;
-  const glm::vec3 origin = direct.ray_origin(point);
-  const glm::vec3 offset = y.position - origin;
-  const float distance = glm::length(offset);
-  if (!(distance > 0.0f)) return value;
-  const glm::vec3 direction = offset / distance;
-  const float cosine_pdf = glm::dot(point.shading_normal, direction) * kInvPi;
-  if (!(cosine_pdf > 0.0f)) return value;
-  const Triangle& triangle = scene.triangles[y.triangle];
-  const float pdf = lit_pdf(lit, triangle, y.triangle, y.b1, y.b2, direction, distance);
-  if (!(pdf > 0.0f)) return value;
-  // y must be the first surface the ray meets, as for the cosine-weighted ray.
-  ++rays;
-  const Hit hit = tracer.intersect(Ray{origin, direction, 0.0f, 1e30f});
-  if (!hit.hit || hit.triangle != y.triangle) return value;
-  const Hit at_y{true, distance, y.triangle, y.b1, y.b2};
-  const SurfacePoint x = surface_at_hit(scene, at_y, direction);
-  const glm::vec3 reflected =
-      reflected_light_sample(direct, x, y.triangle, y.b1, y.b2, direction, rng, rays);
-  // E/pi = integral of L cos/pi: the sample is L cos/pi / pdf, weighted.
-  return value + reflected * (cosine_pdf / pdf * power_heuristic(pdf, cosine_pdf));
 }
 
 }  // namespace bakegi

@@ -25,21 +25,10 @@
 namespace bakegi {
 
 class DirectLight;
-class LitSurfaces;
 class RandomStream;
 
 glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
                           int max_bounces, uint64_t& rays);
-
-// sample_indirect with a second strategy for the first vertex's light sample: a point y
-// picked on the directly lit surfaces (lit_surfaces.h), connected to the bake point by one
-// ray, with the lamps' light at y reflected back. The two are combined by multiple importance
-// sampling (power heuristic) on that term only; the rest of the path is sample_indirect's.
-// Same expected value; the random numbers of the cosine-weighted path come first and are
-// sample_indirect's own.
-glm::vec3 sample_indirect_lit(const DirectLight& direct, const LitSurfaces& lit,
-                              const SurfacePoint& point, RandomStream& rng, int max_bounces,
-                              uint64_t& rays);
 
 // The radiance a path reflects back along -direction from `hit` (the first hit of a ray
 // from the bake point along `direction`), in two parts: the first vertex's light sample

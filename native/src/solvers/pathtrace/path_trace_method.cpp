@@ -10,10 +10,6 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
       integer_setting("max_bounces", 64, 1, 1 << 16, SettingRole::kShapes,
                       "path length cap for indirect light (Russian roulette ends most paths far "
                       "sooner)"),
-      text_setting("lit_surfaces", "auto", {"auto", "on", "off"}, SettingRole::kLighting,
-                   "gathers also pick points on the directly lit surfaces and connect to them "
-                   "(same result, less noise where a small lit patch carries the indirect "
-                   "light); auto: where the lit power is concentrated"),
       number_setting("target_error", 0.0, 0.0, 1.0, SettingRole::kLighting,
                      "error to reach: NRMSE over the bake points as the samples' spread "
                      "predicts it (an upper bound with quasi-random samples); samples go where "
