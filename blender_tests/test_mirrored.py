@@ -10,6 +10,7 @@ indices, so the POINT domain lines up).
 
 import os
 import sys
+import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
@@ -36,6 +37,15 @@ def mirror_in_place(obj):
     obj.data = mesh
     obj.matrix_world = obj.matrix_world @ Matrix.Diagonal((-1.0, 1.0, 1.0, 1.0))
     assert obj.matrix_world.to_3x3().determinant() < 0.0
+
+
+# The closed-room cases check the core (antiradiance's and meshless' use of the winding on
+# closed solids) with about two minutes of bakes; the export of a mirrored object, the part
+# that differs between Blender versions, is checked on every version by test_cornell_box with
+# all three methods. So the closed rooms run on one version: Debian's Blender 3.4, the oldest.
+CLOSED_ROOMS_HERE = bpy.app.version < (4, 0, 0)
+CLOSED_ROOMS_ELSEWHERE = ("the closed rooms run in Blender 3.4 only (the core's part); "
+                          "test_cornell_box checks this version's export of mirrored objects")
 
 
 def mesh_objects():
@@ -107,6 +117,7 @@ class MirroredObjects(common.AddonCase):
         self.assertLess(abs(mirrored["rejected_samples"] - original["rejected_samples"]),
                         0.25 * original["rejected_samples"])
 
+    @unittest.skipUnless(CLOSED_ROOMS_HERE, CLOSED_ROOMS_ELSEWHERE)
     def test_office(self):
         """The office: closed solids with a window, sun and sky, at a coarse grid (0.5 m cells)
         to keep the three bakes per method short, antiradiance with 48 bins (2 s a bake instead
@@ -121,6 +132,7 @@ class MirroredObjects(common.AddonCase):
             with self.subTest(method=method):
                 self.compare(office, method, method_settings=settings)
 
+    @unittest.skipUnless(CLOSED_ROOMS_HERE, CLOSED_ROOMS_ELSEWHERE)
     def test_closed_room(self):
         def two_rooms():
             import two_rooms
