@@ -319,12 +319,9 @@ void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& point
     report.warn("denoise: the filter would add more error (bias " + percent(bias) +
                 ") than it takes out (noise " + percent(statistics.noise_before) + " to " +
                 percent(statistics.noise_after) + "); the values are not filtered");
-    // The sampler predicted the filtered error; the raw means' is their noise (and a final
-    // gather's cache error, which no point's spread shows).
+    // The sampler predicted the filtered error; the raw means' is their noise.
     if (report.has_number("sampling_predicted_error")) {
-      report.set_number("sampling_predicted_error",
-                        std::hypot(statistics.noise_before,
-                                   report.number("final_gather_cache_error")));
+      report.set_number("sampling_predicted_error", statistics.noise_before);
     }
   }
   report.set_number("denoise_applied", applied ? 1.0 : 0.0);

@@ -45,12 +45,6 @@ bool Report::has_number(const std::string& key) const {
   return numbers_.count(key) > 0;
 }
 
-double Report::number(const std::string& key) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const auto it = numbers_.find(key);
-  return it == numbers_.end() ? 0.0 : it->second;
-}
-
 uint64_t Report::count(const std::string& key) const {
   std::lock_guard lock(mutex_);
   auto it = counts_.find(key);

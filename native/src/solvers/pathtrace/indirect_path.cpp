@@ -6,7 +6,6 @@
 
 #include "lights/direct_light.h"
 #include "scene/surface_bsdf.h"
-#include "solvers/pathtrace/gather_cache.h"
 #include "util/random.h"
 #include "util/sampling.h"
 
@@ -17,10 +16,6 @@ namespace {
 // Roulette starts after this many reflecting vertices: early bounces carry most of the
 // light and would only gain variance from it.
 constexpr int kRouletteStartBounce = 3;
-// A final gather (gather_cache.h) may end a path at a later vertex than the first only when
-// paths may be this long: the bounces it adds beyond max_bounces carry under rho^16 of the
-// light (0.3% at albedo 0.7).
-constexpr int kGatherAnyVertexBounces = 16;
 // Survival probability sqrt(max throughput), as in Cycles: milder than the throughput
 // itself, which measured 1.4x (albedo 0.7) to 5x (albedo 0.3) less efficient (variance x
 // rays) in the closed sphere of test_pathtrace_sphere.cpp.
@@ -50,8 +45,7 @@ FirstRay sample_first_ray(const DirectLight& direct, const SurfacePoint& point,
 PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hit,
                                   const glm::vec3& first_direction, RandomStream& rng,
                                   int max_bounces, uint64_t& rays,
-                                  const PathContinuation* continuation,
-                                  const GatherCache* cache) {
+                                  const PathContinuation* continuation) {
   const Scene& scene = direct.scene();
   const RayTracer& tracer = direct.tracer();
   PathRadiance result;
@@ -67,22 +61,6 @@ PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hi
     const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
     const Material& material = scene.material_of(triangle);
 
-    // A final gather ends the path at its first diffuse vertex with cache entries near:
-    // its direct light sampled as below plus its BSDF ray's emission (one irradiance sample),
-    // its indirect light from the cache, which holds max_bounces - 1 bounces. Past the
-    // first vertex that counts a few bounces more than max_bounces; it is only done where
-    // those are negligible (kGatherAnyVertexBounces).
-    GatherCache::Reading cached;
-    if (cache && !material.has_glossy() && bounce < max_bounces &&
-        (bounce == 1 || max_bounces >= kGatherAnyVertexBounces) &&
-        cache->lookup(x.position, x.shading_normal, cached)) {
-      if (max_component(albedo) > 0.0f) {
-        radiance += throughput * albedo *
-                    (kInvPi * direct.irradiance_sample(x, rng, rays) + cached.value);
-        result.cache_half_difference = throughput * albedo * cached.half_difference;
-      }
-      break;
-    }
     // Light sampling (next-event estimation).
     std::optional<SurfaceBsdf> bsdf;
     if (!material.has_glossy()) {
@@ -144,19 +122,6 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
   const Hit hit = direct.tracer().intersect(Ray{first.origin, first.direction, 0.0f, 1e30f});
   const PathRadiance path = trace_from_first_hit(direct, hit, first.direction, rng, max_bounces,
                                                  rays);
-  return path.first_light + path.rest;
-}
-
-glm::vec3 sample_indirect_gathered(const DirectLight& direct, const GatherCache& cache,
-                                   const SurfacePoint& point, RandomStream& rng, int max_bounces,
-                                   uint64_t& rays, glm::vec3* cache_half_difference) {
-  const FirstRay first = sample_first_ray(direct, point, rng);
-  if (!(first.pdf > 0.0f)) return glm::vec3(0.0f);
-  ++rays;
-  const Hit hit = direct.tracer().intersect(Ray{first.origin, first.direction, 0.0f, 1e30f});
-  const PathRadiance path = trace_from_first_hit(direct, hit, first.direction, rng, max_bounces,
-                                                 rays, nullptr, &cache);
-  if (cache_half_difference) *cache_half_difference = path.cache_half_difference;
   return path.first_light + path.rest;
 }
 

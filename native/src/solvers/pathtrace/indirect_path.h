@@ -25,21 +25,10 @@
 namespace bakegi {
 
 class DirectLight;
-class GatherCache;
 class RandomStream;
 
 glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
                           int max_bounces, uint64_t& rays);
-
-// sample_indirect as a final gather (gather_cache.h): at its first diffuse vertex x with cache
-// entries near the path stops and adds rho(x) (E_direct(x)/pi, one sample as a path vertex
-// takes it, + the cached E_indirect/pi); glossy vertices before it are traced as always, and
-// a path that meets no such vertex is sample_indirect's. The cache must hold the light of
-// max_bounces - 1 bounces.
-// `cache_half_difference`: if not null, receives PathRadiance::cache_half_difference.
-glm::vec3 sample_indirect_gathered(const DirectLight& direct, const GatherCache& cache,
-                                   const SurfacePoint& point, RandomStream& rng, int max_bounces,
-                                   uint64_t& rays, glm::vec3* cache_half_difference = nullptr);
 
 // The radiance a path reflects back along -direction from `hit` (the first hit of a ray
 // from the bake point along `direction`), in two parts: the first vertex's light sample
@@ -51,10 +40,6 @@ struct PathRadiance {
   // What the continuation returned (1 without one); 0: the path stopped at the first light
   // sample. Also 0 when the first hit reflects nothing (the continuation was not asked).
   float rest_weight = 0.0f;
-  // With a final gather's cache: what the path read from it (already in first_light + rest)
-  // times the half difference of its two halves instead of their mean: a sample of the noise
-  // the cache adds (GatherCache::Reading). Zero where the path read nothing.
-  glm::vec3 cache_half_difference{0.0f};
 };
 
 // Decides after the first vertex's light sample whether the path goes on, and returns the
@@ -68,12 +53,10 @@ class PathContinuation {
   ~PathContinuation() = default;
 };
 
-// `continuation` null: the path always goes on (weight 1). `cache`: a final gather's cache
-// (sample_indirect_gathered), or null.
+// `continuation` null: the path always goes on (weight 1).
 PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& hit,
                                   const glm::vec3& direction, RandomStream& rng, int max_bounces,
-                                  uint64_t& rays, const PathContinuation* continuation = nullptr,
-                                  const GatherCache* cache = nullptr);
+                                  uint64_t& rays, const PathContinuation* continuation = nullptr);
 
 // The cosine-weighted first direction of sample_indirect at `point` (2 draws of `rng`) and
 // the ray origin it leaves from; pdf 0 where the direction is degenerate.

@@ -10,10 +10,6 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
       integer_setting("max_bounces", 64, 1, 1 << 16, SettingRole::kShapes,
                       "path length cap for indirect light (Russian roulette ends most paths far "
                       "sooner)"),
-      integer_setting("final_gather", 0, 0, 1 << 20, SettingRole::kLighting,
-                      "paths per entry of a cache of the indirect light where the gathers land; "
-                      "a path then stops at its first diffuse hit and reads the light bounced "
-                      "more than once there (less noise, a blur of that light); 0 = off"),
       number_setting("target_error", 0.0, 0.0, 1.0, SettingRole::kLighting,
                      "error to reach: NRMSE over the bake points as the samples' spread "
                      "predicts it (an upper bound with quasi-random samples); samples go where "

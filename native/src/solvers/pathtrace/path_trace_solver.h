@@ -13,8 +13,6 @@ namespace bakegi {
 struct PathTraceSettings {
   SampleSettings sampling;
   int max_bounces = 64;
-  // Paths per entry of a final gather's cache to begin with (final_gather.h); 0: none.
-  int64_t final_gather = 0;
 
   static PathTraceSettings from(const Settings& settings);
 };
@@ -30,7 +28,6 @@ class PathTracedField : public SampledField {
  private:
   const DirectLight& direct_;
   PathTraceSettings settings_;
-  static constexpr uint64_t kGatherCacheSalt = 0x6A7E0CAC4Eull;
 };
 
 class PathTraceSolver : public Solver {
