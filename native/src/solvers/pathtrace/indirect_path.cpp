@@ -6,7 +6,6 @@
 
 #include "lights/direct_light.h"
 #include "scene/surface_bsdf.h"
-#include "solvers/pathtrace/direction_guide.h"
 #include "util/random.h"
 #include "util/sampling.h"
 
@@ -124,30 +123,6 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
   const PathRadiance path = trace_from_first_hit(direct, hit, first.direction, rng, max_bounces,
                                                  rays);
   return path.first_light + path.rest;
-}
-
-glm::vec3 sample_indirect_guided(const DirectLight& direct, const DirectionGuide& guide,
-                                 const SurfacePoint& point, RandomStream& rng, int max_bounces,
-                                 uint64_t& rays) {
-  const int region = guide.region_of(point.position, point.shading_normal);
-  if (region < 0) return sample_indirect(direct, point, rng, max_bounces, rays);
-  constexpr float kCosine = DirectionGuide::kCosineShare;
-  const float u1 = rng.next_float(), u2 = rng.next_float();
-  glm::vec3 direction;
-  if (u1 < kCosine) {
-    direction = Frame(point.shading_normal).to_world(sample_cosine_hemisphere(u1 / kCosine, u2));
-  } else {
-    direction = guide.sample(region, (u1 - kCosine) / (1.0f - kCosine), u2);
-  }
-  const float cosine_pdf = glm::dot(point.shading_normal, direction) * kInvPi;
-  if (!(cosine_pdf > 0.0f)) return glm::vec3(0.0f);
-  const float pdf = kCosine * cosine_pdf + (1.0f - kCosine) * guide.pdf(region, direction);
-  ++rays;
-  const Hit hit =
-      direct.tracer().intersect(Ray{direct.ray_origin(point), direction, 0.0f, 1e30f});
-  const PathRadiance path = trace_from_first_hit(direct, hit, direction, rng, max_bounces, rays);
-  // E/pi = integral of L cos/pi: L cos/pi / pdf.
-  return (path.first_light + path.rest) * (cosine_pdf / pdf);
 }
 
 }  // namespace bakegi

@@ -25,19 +25,10 @@
 namespace bakegi {
 
 class DirectLight;
-class DirectionGuide;
 class RandomStream;
 
 glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng,
                           int max_bounces, uint64_t& rays);
-
-// sample_indirect with its first direction drawn from the mixture of direction_guide.h
-// (cosine-weighted or from the point's region's histogram) and weighted by the mixture's
-// density; a point without a region is sample_indirect's. The same two random numbers pick
-// the strategy and the direction, so quasi-random numbers stay stratified in each.
-glm::vec3 sample_indirect_guided(const DirectLight& direct, const DirectionGuide& guide,
-                                 const SurfacePoint& point, RandomStream& rng, int max_bounces,
-                                 uint64_t& rays);
 
 // The radiance a path reflects back along -direction from `hit` (the first hit of a ray
 // from the bake point along `direction`), in two parts: the first vertex's light sample

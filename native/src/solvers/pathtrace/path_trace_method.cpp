@@ -10,11 +10,6 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
       integer_setting("max_bounces", 64, 1, 1 << 16, SettingRole::kShapes,
                       "path length cap for indirect light (Russian roulette ends most paths far "
                       "sooner)"),
-      integer_setting("guide_paths", 0, 0, 1 << 16, SettingRole::kLighting,
-                      "path guiding: training paths per bake point that learn, per region, "
-                      "where the indirect light arrives from; half the first directions then "
-                      "go there (same result, less noise where it comes from a small area); "
-                      "0 = off"),
       number_setting("target_error", 0.0, 0.0, 1.0, SettingRole::kLighting,
                      "error to reach: NRMSE over the bake points as the samples' spread "
                      "predicts it (an upper bound with quasi-random samples); samples go where "

@@ -13,8 +13,6 @@ namespace bakegi {
 struct PathTraceSettings {
   SampleSettings sampling;
   int max_bounces = 64;
-  // Training paths per bake point for path guiding (direction_guide.h); 0: none.
-  int64_t guide_paths = 0;
 
   static PathTraceSettings from(const Settings& settings);
 };
@@ -30,7 +28,6 @@ class PathTracedField : public SampledField {
  private:
   const DirectLight& direct_;
   PathTraceSettings settings_;
-  static constexpr uint64_t kGuideSalt = 0x9D1DE5EEDull;
 };
 
 class PathTraceSolver : public Solver {
