@@ -1,12 +1,14 @@
 #include "lightmap/lightmap_set.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "lightmap/lightmap_padding.h"
 #include "lightmap/lightmap_seams.h"
 #include "lightmap/seam_stitching.h"
 #include "lightmap/texel_rasterizer.h"
+#include "lightmap/texel_sharing.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "util/error.h"
@@ -148,11 +150,22 @@ BakePoints LightmapSet::points() const {
   points.positions.reserve(total);
   points.normals.reserve(total);
   points.object_ids.reserve(total);
+  if (total > std::numeric_limits<uint32_t>::max()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "the lightmaps have " + std::to_string(total) + " texel samples, more than " +
+                    std::to_string(std::numeric_limits<uint32_t>::max()));
+  }
+  points.share_candidates.reserve(total);
   for (const LightmapLayout::Lightmap& l : layout_.lightmaps) {
     const BakePoints& p = l.samples.points;
+    // Samples of one texel on one surface are baked once (lightmap/texel_sharing.h).
+    const std::vector<uint32_t> candidates =
+        texel_share_candidates(l.samples, points.positions.size());
     points.positions.insert(points.positions.end(), p.positions.begin(), p.positions.end());
     points.normals.insert(points.normals.end(), p.normals.begin(), p.normals.end());
     points.object_ids.insert(points.object_ids.end(), p.object_ids.begin(), p.object_ids.end());
+    points.share_candidates.insert(points.share_candidates.end(), candidates.begin(),
+                                   candidates.end());
   }
   return points;
 }
