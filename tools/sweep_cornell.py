@@ -145,7 +145,9 @@ def bake_chunks(cli, bgs, samples, chunk, first_seed, out, threads):
 
 
 def compare(cli, values, reference):
-    return float(run([cli, "compare", values, reference], quiet=True).strip())
+    """The older relative RMSE (`bakegi compare`'s "relative_rmse"), the metric `bakegi sweep`
+    reports as "error", so that both sides of the chart use one."""
+    return float(json.loads(run([cli, "compare", values, reference], quiet=True))["relative_rmse"])
 
 
 def make_reference(cli, bgs, work, samples, chunk, threads):

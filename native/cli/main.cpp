@@ -38,7 +38,9 @@ commands:
       Triangles, lights and bake points in the file, whether the core accepts the scene,
       and the library version.
   compare values.npy reference.npy
-      Prints the error of values against reference.
+      Prints the error of values against reference as one line of JSON: "nrmse" and
+      "weighted_relative_rmse" (the project's metrics, on luminance) and "relative_rmse"
+      (the older per-channel one that `sweep` reports as "error").
   points scene.bgs [--positions p.npy] [--normals n.npy] [--object-ids ids.npy]
       Writes the file's bake points as float32 arrays.
   subset scene.bgs --count K --out subset.bgs [--indices idx.npy] [--seed S]

@@ -64,7 +64,9 @@ int run_sweep_command(const std::vector<std::string>& words) {
       all_seconds.push_back(run.wall_seconds);
       if (r == 0 || run.wall_seconds < best.wall_seconds) best = std::move(run);
     }
-    const auto error = relative_rmse_luminance(best.values.data(), reference.data(), count);
+    const auto metrics = error_metrics(best.values.data(), reference.data(), count);
+    const std::optional<double> error =
+        metrics ? std::optional<double>(metrics->relative_rmse) : std::nullopt;
     const ReportSummary summary = summarize_report(best.report_json);
 
     std::string seconds_list;
@@ -75,7 +77,11 @@ int run_sweep_command(const std::vector<std::string>& words) {
                  ", \"settings\": " + settings.to_json() +
                  ", \"seconds\": " + json_number(best.wall_seconds) + ", \"seconds_all\": [" +
                  seconds_list + "], \"core_seconds\": " + optional_number(summary.core_seconds) +
-                 ", \"error\": " + optional_number(error) +
+                 ", \"error\": " + optional_number(error) + ", \"nrmse\": " +
+                 optional_number(metrics ? std::optional<double>(metrics->nrmse) : std::nullopt) +
+                 ", \"weighted_relative_rmse\": " +
+                 optional_number(metrics ? std::optional<double>(metrics->weighted_relative_rmse)
+                                         : std::nullopt) +
                  ", \"memory_bytes\": " + optional_number(summary.memory_bytes) +
                  ", \"bake_points\": " + std::to_string(count) +
                  ", \"rays\": " + optional_number(summary.rays) +

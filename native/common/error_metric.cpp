@@ -22,4 +22,40 @@ std::optional<double> relative_rmse_luminance(const float* values, const float* 
   return std::sqrt(difference_sum / reference_sum);
 }
 
+namespace {
+
+double luminance_at(const float* rgb, size_t i) {
+  return kLuminanceWeights[0] * double(rgb[3 * i]) + kLuminanceWeights[1] * double(rgb[3 * i + 1]) +
+         kLuminanceWeights[2] * double(rgb[3 * i + 2]);
+}
+
+}  // namespace
+
+std::optional<ErrorMetrics> error_metrics(const float* values, const float* reference,
+                                          size_t count) {
+  const std::optional<double> relative = relative_rmse_luminance(values, reference, count);
+  if (!relative) return std::nullopt;
+  double mean_reference = 0.0, squares = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const double d = luminance_at(values, i) - luminance_at(reference, i);
+    mean_reference += luminance_at(reference, i);
+    squares += d * d;
+  }
+  mean_reference /= double(count);
+  if (!(mean_reference > 0.0)) return std::nullopt;
+  double weighted = 0.0, lit_sum = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const double r = luminance_at(reference, i);
+    if (!(r > 0.01 * mean_reference)) continue;
+    const double d = luminance_at(values, i) - r;
+    weighted += d * d / r;
+    lit_sum += r;
+  }
+  ErrorMetrics metrics;
+  metrics.relative_rmse = *relative;
+  metrics.nrmse = std::sqrt(squares / double(count)) / mean_reference;
+  metrics.weighted_relative_rmse = std::sqrt(weighted / lit_sum);
+  return metrics;
+}
+
 }  // namespace bakegi

@@ -48,5 +48,28 @@ TEST(ErrorMetric, IsUndefinedWithoutPointsOrSignalOrForNonFiniteValues) {
   EXPECT_FALSE(relative_rmse_luminance(one.data(), nan.data(), 1));
 }
 
+TEST(ErrorMetric, ProjectMetricsOnGreyPoints) {
+  // Grey points (luminance = the value): reference 1 and 3, values 1.5 and 2.
+  // NRMSE = sqrt(((0.5)^2 + (1)^2) / 2) / 2; wRRMSE = sqrt((0.25 / 1 + 1 / 3) / 4).
+  const std::vector<float> r = {1.0f, 1.0f, 1.0f, 3.0f, 3.0f, 3.0f};
+  const std::vector<float> v = {1.5f, 1.5f, 1.5f, 2.0f, 2.0f, 2.0f};
+  const auto m = error_metrics(v.data(), r.data(), 2);
+  ASSERT_TRUE(m);
+  EXPECT_NEAR(m->nrmse, std::sqrt((0.25 + 1.0) / 2.0) / 2.0, 1e-6);
+  EXPECT_NEAR(m->weighted_relative_rmse, std::sqrt((0.25 + 1.0 / 3.0) / 4.0), 1e-6);
+  EXPECT_NEAR(m->relative_rmse, *relative_rmse_luminance(v.data(), r.data(), 2), 1e-12);
+}
+
+TEST(ErrorMetric, WeightedRelativeRmseLeavesOutUnlitPoints) {
+  // A point whose reference is under 1% of the mean counts in the NRMSE, not in the
+  // weighted relative RMSE (which divides by the reference).
+  const std::vector<float> r = {2.0f, 2.0f, 2.0f, 0.001f, 0.001f, 0.001f};
+  const std::vector<float> v = {2.0f, 2.0f, 2.0f, 0.5f, 0.5f, 0.5f};
+  const auto m = error_metrics(v.data(), r.data(), 2);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->weighted_relative_rmse, 0.0);
+  EXPECT_GT(m->nrmse, 0.3);
+}
+
 }  // namespace
 }  // namespace bakegi
