@@ -65,8 +65,10 @@ int run_sweep_command(const std::vector<std::string>& words) {
       if (r == 0 || run.wall_seconds < best.wall_seconds) best = std::move(run);
     }
     const auto metrics = error_metrics(best.values.data(), reference.data(), count);
-    const std::optional<double> error =
-        metrics ? std::optional<double>(metrics->relative_rmse) : std::nullopt;
+    const auto metric = [&](double ErrorMetrics::*field) {
+      return metrics ? std::optional<double>((*metrics).*field) : std::nullopt;
+    };
+    const std::optional<double> error = metric(&ErrorMetrics::relative_rmse);
     const ReportSummary summary = summarize_report(best.report_json);
 
     std::string seconds_list;
@@ -77,11 +79,10 @@ int run_sweep_command(const std::vector<std::string>& words) {
                  ", \"settings\": " + settings.to_json() +
                  ", \"seconds\": " + json_number(best.wall_seconds) + ", \"seconds_all\": [" +
                  seconds_list + "], \"core_seconds\": " + optional_number(summary.core_seconds) +
-                 ", \"error\": " + optional_number(error) + ", \"nrmse\": " +
-                 optional_number(metrics ? std::optional<double>(metrics->nrmse) : std::nullopt) +
+                 ", \"error\": " + optional_number(error) +
+                 ", \"nrmse\": " + optional_number(metric(&ErrorMetrics::nrmse)) +
                  ", \"weighted_relative_rmse\": " +
-                 optional_number(metrics ? std::optional<double>(metrics->weighted_relative_rmse)
-                                         : std::nullopt) +
+                 optional_number(metric(&ErrorMetrics::weighted_relative_rmse)) +
                  ", \"memory_bytes\": " + optional_number(summary.memory_bytes) +
                  ", \"bake_points\": " + std::to_string(count) +
                  ", \"rays\": " + optional_number(summary.rays) +

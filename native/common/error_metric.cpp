@@ -1,6 +1,7 @@
 #include "error_metric.h"
 
 #include <cmath>
+#include <vector>
 
 namespace bakegi {
 
@@ -35,21 +36,21 @@ std::optional<ErrorMetrics> error_metrics(const float* values, const float* refe
                                           size_t count) {
   const std::optional<double> relative = relative_rmse_luminance(values, reference, count);
   if (!relative) return std::nullopt;
+  std::vector<double> y(count), r(count);
   double mean_reference = 0.0, squares = 0.0;
   for (size_t i = 0; i < count; ++i) {
-    const double d = luminance_at(values, i) - luminance_at(reference, i);
-    mean_reference += luminance_at(reference, i);
-    squares += d * d;
+    y[i] = luminance_at(values, i);
+    r[i] = luminance_at(reference, i);
+    mean_reference += r[i];
+    squares += (y[i] - r[i]) * (y[i] - r[i]);
   }
   mean_reference /= double(count);
   if (!(mean_reference > 0.0)) return std::nullopt;
   double weighted = 0.0, lit_sum = 0.0;
   for (size_t i = 0; i < count; ++i) {
-    const double r = luminance_at(reference, i);
-    if (!(r > 0.01 * mean_reference)) continue;
-    const double d = luminance_at(values, i) - r;
-    weighted += d * d / r;
-    lit_sum += r;
+    if (!(r[i] > 0.01 * mean_reference)) continue;
+    weighted += (y[i] - r[i]) * (y[i] - r[i]) / r[i];
+    lit_sum += r[i];
   }
   ErrorMetrics metrics;
   metrics.relative_rmse = *relative;

@@ -2,7 +2,6 @@
 // surface share; samples of two charts packed into one texel, or of two faces meeting at a
 // crease, do not; every group's first sample names itself and every name is earlier.
 #include <array>
-#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -13,16 +12,13 @@
 namespace bakegi::test {
 namespace {
 
-// A triangle with world position `origin` + (u, v, 0) * scale rotated by `tilt` about x
-// (0: the z = 0 plane).
-LightmapTriangle mapped(glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec3 origin, float scale,
-                        float tilt = 0.0f) {
+// A triangle with world position `origin` + (u, v, 0) * scale: on a z = const plane.
+LightmapTriangle mapped(glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec3 origin, float scale) {
   LightmapTriangle t;
   const glm::vec2 uv[3] = {a, b, c};
   for (int k = 0; k < 3; ++k) {
     t.uv[k] = uv[k];
-    const glm::vec3 flat(uv[k].x * scale, uv[k].y * scale, 0.0f);
-    t.p[k] = origin + glm::vec3(flat.x, flat.y * std::cos(tilt), flat.y * std::sin(tilt));
+    t.p[k] = origin + glm::vec3(uv[k].x * scale, uv[k].y * scale, 0.0f);
     t.n[k] = glm::vec3(0.0f);  // face normal
   }
   return t;

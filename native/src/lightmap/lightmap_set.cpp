@@ -146,15 +146,16 @@ BakePoints LightmapSet::points() const {
                 "the lightmaps have no texel samples (no lightmap added, or no triangle "
                 "covers a texel)");
   }
-  BakePoints points;
-  points.positions.reserve(total);
-  points.normals.reserve(total);
-  points.object_ids.reserve(total);
+  // Share candidates are 32-bit indices.
   if (total > std::numeric_limits<uint32_t>::max()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "the lightmaps have " + std::to_string(total) + " texel samples, more than " +
                     std::to_string(std::numeric_limits<uint32_t>::max()));
   }
+  BakePoints points;
+  points.positions.reserve(total);
+  points.normals.reserve(total);
+  points.object_ids.reserve(total);
   points.share_candidates.reserve(total);
   for (const LightmapLayout::Lightmap& l : layout_.lightmaps) {
     const BakePoints& p = l.samples.points;

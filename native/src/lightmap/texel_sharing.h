@@ -5,7 +5,7 @@
 // texel's footprint on the same surface: a dense mesh under a coarse lightmap bakes many
 // samples per texel, and the texel's value is their weighted mean anyway. Here each sample
 // names the first earlier sample of its texel (BakePoints::share_candidates) that has the
-// same normal (kSharedNormalCosine) and lies within kFootprints of the texel's footprint,
+// same normal (kSharedNormalCosine) and lies within kTexelShareFootprints of the texel's footprint,
 // measured as the distance to the first sample of a neighbouring texel on the same surface.
 // Samples of one texel from unrelated parts of the mesh (two charts packed against each
 // other, a crease) stay apart; bake/point_sharing.h then also checks that nothing stands
