@@ -49,7 +49,7 @@ BAKEGI_API const char* bakegi_version_string(void);
 #define BAKEGI_ABI_VERSION 1
 BAKEGI_API uint32_t bakegi_abi_version(void);
 /* sizeof a public struct by its name ("bakegi_material_desc", "bakegi_mesh_desc",
- * "bakegi_light_desc", "bakegi_lightmap_info"), 0 for another name: a binding checks its own
+ * "bakegi_light_desc", "bakegi_lightmap_info", "bakegi_grid_info"), 0 for another name: a binding checks its own
  * layouts against the library's. */
 BAKEGI_API size_t bakegi_struct_size(const char* name);
 
@@ -491,6 +491,79 @@ BAKEGI_API bakegi_status bakegi_lightmaps_write_file(const bakegi_lightmaps* lig
                                                      const char* path);
 BAKEGI_API bakegi_status bakegi_lightmaps_read_file(const char* path,
                                                     bakegi_lightmaps** out_lightmaps);
+
+/* ---- irradiance vector grids -------------------------------------------------------------- */
+
+/* An Irradiance Vector Grid (Pacanowski et al. 2008; docs/ivg.md): a box of grid vertices,
+ * each holding six irradiance vectors (one per axis hemisphere, RGB), gathered from a bake's
+ * full lighting so that ANY surface inside the box (moved, added, decimated or subdivided
+ * meshes) gets its indirect light from the grid without a new bake:
+ *   1. bakegi_grid_create (the layout: bounds and resolution);
+ *   2. bakegi_job_start_grid -> bakegi_job_wait -> bakegi_job_get_grid (the baked grid);
+ *   3. bakegi_grid_evaluate at any positions and normals (values in the output convention,
+ *      like a bake's), and/or bakegi_grid_write_file (.bgivg), bakegi_grid_read_file.
+ * Grid vertices sit at the centres of the box's cells. */
+typedef struct bakegi_grid bakegi_grid;
+
+typedef struct bakegi_grid_info {
+  float bounds_min[3], bounds_max[3];
+  uint32_t resolution[3];    /* vertices along x, y, z */
+  uint64_t vertex_count;
+  uint64_t invalid_vertices; /* inside geometry: filled from their neighbours */
+} bakegi_grid_info;
+
+/* A grid layout (not yet baked: all zero) over [bounds_min, bounds_max] (a flat axis is widened
+ * to one cell) with cells of about cell_size metres (0 = 32 cells on the longest axis), made
+ * coarser until it has at most max_vertices vertices (0 = 262144, i.e. 64^3; each vertex takes
+ * 217 bytes while baking). At least 2 and at most 1024 vertices per axis. */
+BAKEGI_API bakegi_status bakegi_grid_create(const float bounds_min[3], const float bounds_max[3],
+                                            float cell_size, uint64_t max_vertices,
+                                            bakegi_grid** out_grid);
+BAKEGI_API void bakegi_grid_destroy(bakegi_grid* grid);
+BAKEGI_API bakegi_status bakegi_grid_get_info(const bakegi_grid* grid, bakegi_grid_info* out_info);
+
+/* Bakes `scene` into a grid with `layout`'s bounds and resolution: the method of `settings`
+ * solves as for bakegi_job_start, then from every grid vertex rays_per_hemisphere rays
+ * (1..65536; 0 = 64) per hemisphere gather the light the surfaces reflect (the path tracer
+ * continues a path from each hit; other methods give direct light plus their indirect field
+ * there). Vertices whose rays hit back faces a quarter of the time or more are inside
+ * geometry and filled by push-pull from the others. Progress, stage, cancel, wait and the
+ * report work as for any job (report: grid_vertices, grid_invalid_vertices, grid_resolution,
+ * seconds.grid_gather); bakegi_job_get_result has no points to give. */
+BAKEGI_API bakegi_status bakegi_job_start_grid(const bakegi_scene* scene, const bakegi_grid* layout,
+                                               uint32_t rays_per_hemisphere,
+                                               const bakegi_settings* settings,
+                                               bakegi_job** out_job);
+/* After a grid job succeeded: its grid, as a new handle owned by the caller. */
+BAKEGI_API bakegi_status bakegi_job_get_grid(const bakegi_job* job, bakegi_grid** out_grid);
+
+typedef enum bakegi_grid_interpolation {
+  BAKEGI_GRID_TRILINEAR = 0, /* the default: 8 vertices */
+  BAKEGI_GRID_TRICUBIC = 1   /* cubic B-spline over 64 vertices: smoother, about 8x slower */
+} bakegi_grid_interpolation;
+
+/* The grid's indirect light at `count` points: positions and normals 3 floats each (normals
+ * need not be unit; a zero normal gives 0), out_rgb 3 floats each, in the output convention
+ * (the value a bake writes: outgoing diffuse radiance = albedo x value). Points outside the
+ * box take the nearest vertices' values. interpolation: a bakegi_grid_interpolation value. */
+BAKEGI_API bakegi_status bakegi_grid_evaluate(const bakegi_grid* grid, const float* positions,
+                                              const float* normals, uint64_t count,
+                                              int interpolation, float* out_rgb);
+
+/* The .bgivg file (format in native/src/grid/grid_file.h). quantized: 0 = float matrices (216
+ * bytes a vertex), 1 = the paper's quantization (a 24-bit direction and an R9G9B9E5 colour per
+ * hemisphere: 42 bytes a vertex). info_json (may be NULL): a JSON object stored with the grid
+ * (what made it). Written atomically; BAKEGI_ERROR_IO if it cannot be. */
+BAKEGI_API bakegi_status bakegi_grid_write_file(const bakegi_grid* grid, const char* path,
+                                                int quantized, const char* info_json);
+/* Reads a .bgivg file (a quantized one comes back dequantized). BAKEGI_ERROR_IO if unreadable,
+ * BAKEGI_ERROR_BAD_FILE naming what is wrong. */
+BAKEGI_API bakegi_status bakegi_grid_read_file(const char* path, bakegi_grid** out_grid);
+/* The JSON stored with a grid read from a file ("{}" otherwise), like bakegi_job_get_report:
+ * writes at most capacity bytes (NUL included) and the full length to *out_length (may be
+ * NULL). */
+BAKEGI_API bakegi_status bakegi_grid_get_info_json(const bakegi_grid* grid, char* buffer,
+                                                   size_t capacity, size_t* out_length);
 
 #ifdef __cplusplus
 }

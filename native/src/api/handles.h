@@ -2,9 +2,11 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "bake/bake_job.h"
 #include "bake/error_probes.h"
+#include "grid/irradiance_vector_grid.h"
 #include "scene/bake_points.h"
 #include "scene/scene.h"
 #include "settings/settings.h"
@@ -24,4 +26,9 @@ struct bakegi_settings {
 
 struct bakegi_job {
   std::unique_ptr<bakegi::BakeJob> job;
+};
+
+struct bakegi_grid {
+  std::shared_ptr<const bakegi::IrradianceVectorGrid> grid;
+  std::string info_json = "{}";  // stored with the grid in its file
 };

@@ -24,6 +24,7 @@ size_t bakegi_struct_size(const char* name) {
   if (n == "bakegi_mesh_desc") return sizeof(bakegi_mesh_desc);
   if (n == "bakegi_light_desc") return sizeof(bakegi_light_desc);
   if (n == "bakegi_lightmap_info") return sizeof(bakegi_lightmap_info);
+  if (n == "bakegi_grid_info") return sizeof(bakegi_grid_info);
   return 0;
 }
 

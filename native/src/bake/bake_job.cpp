@@ -13,6 +13,8 @@
 #include "bake/point_denoiser.h"
 #include "bake/point_sharing.h"
 #include "bake/solver_run.h"
+#include "grid/grid_hit_radiance.h"
+#include "grid/grid_push_pull.h"
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
@@ -80,6 +82,16 @@ BakeJob::BakeJob(SceneDescription description, BakePoints points, Settings setti
       display_probes_(std::move(display_probes)),
       settings_(std::move(settings)) {
   check_error_probes(display_probes_, points_.size());
+  start();
+}
+
+BakeJob::BakeJob(SceneDescription description, GridRequest grid, Settings settings)
+    : description_(std::move(description)),
+      settings_(std::move(settings)),
+      grid_request_(std::move(grid)) {
+  if (grid_request_->layout.vertex_count() == 0) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "the grid has no vertices");
+  }
   start();
 }
 
@@ -211,6 +223,10 @@ void BakeJob::execute() {
         previous_ ? solve_relight(report) : solve_full(report);
     if (!field) throw Error(BAKEGI_ERROR_INTERNAL, "solver '" + method_ + "' returned no field");
     context_.throw_if_cancelled();
+    if (grid_request_) {
+      gather_grid_from(*field, report);
+      return;
+    }
 
     // Whatever part of the solve range the solver did not report is skipped, so progress
     // runs on smoothly from where it stands.
@@ -290,6 +306,49 @@ class DenoiserOnDemand : public NoiseFilter {
 };
 
 }  // namespace
+
+void BakeJob::gather_grid_from(const IndirectField& field, Report& report) {
+  const GridLayout& layout = grid_request_->layout;
+  const size_t bytes = IrradianceVectorGrid::bytes_for(layout.vertex_count());
+  const MemoryBudget budget = solver_memory();
+  if (bytes > budget.remaining()) {
+    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                "the grid of " + std::to_string(layout.vertex_count()) + " vertices needs " +
+                    megabytes(bytes) + ", more than the " + megabytes(budget.remaining()) +
+                    " left of the budget of " + budget.describe() +
+                    "; use larger cells or fewer vertices");
+  }
+  context_.set_stage("gathering the grid", context_.progress(), 1.0);
+  const auto start = std::chrono::steady_clock::now();
+  GridGatherOptions options = grid_request_->gather;
+  options.seed = uint64_t(SettingReader(settings_, method_schema(method_)).get_int("seed"));
+  options.ray_epsilon = direct_->ray_epsilon();
+  const std::unique_ptr<HitRadiance> radiance = make_hit_radiance(*direct_, field);
+  GridGatherStatistics statistics;
+  auto grid = std::make_shared<IrradianceVectorGrid>(
+      gather_grid(layout, *scene_, *tracer_, *radiance, options, context_, statistics));
+  const size_t filled = fill_invalid_vertices(*grid);
+  report.add_count("rays", statistics.rays);
+  report.add_count("grid_vertices", layout.vertex_count());
+  report.add_count("grid_invalid_vertices", statistics.invalid_vertices);
+  report.add_count("grid_filled_vertices", filled);
+  report.add_count("grid_rays_per_hemisphere", options.rays_per_hemisphere);
+  report.set_json("grid_resolution", "[" + std::to_string(layout.resolution[0]) + ", " +
+                                         std::to_string(layout.resolution[1]) + ", " +
+                                         std::to_string(layout.resolution[2]) + "]");
+  report.add_seconds("grid_gather", seconds_since(start));
+  if (statistics.invalid_vertices == layout.vertex_count()) {
+    report.warn("grid: every vertex lies inside geometry (its rays hit back faces); the grid "
+                "is black. Check the grid's bounds against the scene");
+  }
+  std::lock_guard lock(mutex_);
+  grid_ = std::move(grid);
+}
+
+std::shared_ptr<const IrradianceVectorGrid> BakeJob::grid() const {
+  std::lock_guard lock(mutex_);
+  return grid_;
+}
 
 void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& points,
                              std::span<glm::vec3> out, Report& report) {

@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -14,6 +15,8 @@
 #include <glm/glm.hpp>
 
 #include "bake/error_probes.h"
+#include "grid/grid_gather.h"
+#include "grid/irradiance_vector_grid.h"
 #include "scene/bake_points.h"
 #include "field/indirect_field.h"
 #include "scene/scene.h"
@@ -39,6 +42,13 @@ struct JobPrecomputation {
   std::shared_ptr<const Precomputation> solver;
 };
 
+// A grid bake (grid/): the solver's light gathered into an Irradiance Vector Grid instead
+// of evaluated at bake points.
+struct GridRequest {
+  GridLayout layout;
+  GridGatherOptions gather;  // its seed and ray epsilon are the job's
+};
+
 class BakeJob {
  public:
   // Checks the settings against the method's schema (the method name, keys the method does
@@ -48,6 +58,9 @@ class BakeJob {
   // estimate of its own error (bake/error_estimate.h).
   BakeJob(SceneDescription description, BakePoints points, Settings settings,
           ErrorProbes display_probes = {});
+  // A grid bake: solves as above, then gathers the grid (grid/grid_gather.h) and fills its
+  // vertices inside geometry (grid/grid_push_pull.h); grid() holds it after success.
+  BakeJob(SceneDescription description, GridRequest grid, Settings settings);
   // A relight: bakes `description`, which must have the same geometry and materials as the
   // previous bake's scene (only lights and world may differ; checked when the job runs), at
   // `points` with the previous bake's settings, reusing its precomputation. `overrides` may
@@ -74,6 +87,8 @@ class BakeJob {
   std::string report_json() const;
   // After success, for methods that can relight: what a relight job reuses; else null.
   std::shared_ptr<const JobPrecomputation> precomputation() const;
+  // After a successful grid bake, the grid; else null.
+  std::shared_ptr<const IrradianceVectorGrid> grid() const;
   // The points the job bakes (a relight may reuse them).
   const BakePoints& points() const { return points_; }
 
@@ -94,6 +109,8 @@ class BakeJob {
   // (bake/point_denoiser.h).
   void evaluate_field(const IndirectField& field, const BakePoints& points,
                       std::span<glm::vec3> out, Report& report);
+  // Gathers the grid of grid_request_ from the field.
+  void gather_grid_from(const IndirectField& field, Report& report);
   std::unique_ptr<IndirectField> solve_relight(Report& report);
   // Path-traces probes and compares the results there (settings error_probes,
   // error_probe_samples); writes error_estimate, estimated_error and its interval.
@@ -131,6 +148,8 @@ class BakeJob {
 
   JobContext context_;
   std::vector<glm::vec3> results_;
+  std::optional<GridRequest> grid_request_;
+  std::shared_ptr<const IrradianceVectorGrid> grid_;  // set on success, guarded by mutex_
 
   mutable std::mutex mutex_;
   std::condition_variable done_changed_;

@@ -28,6 +28,7 @@ inline uint64_t fnv1a64(std::span<const uint8_t> bytes) {
 class ByteWriter {
  public:
   std::vector<uint8_t> bytes;
+  void u8(uint8_t v) { bytes.push_back(v); }
   void u32(uint32_t v) {
     for (int i = 0; i < 4; ++i) bytes.push_back(uint8_t(v >> (8 * i)));
   }
@@ -94,6 +95,10 @@ class ByteReader {
       fail(std::string("truncated or corrupt: ") + what + " needs " + std::to_string(count) +
            " x " + std::to_string(element_bytes) + " bytes, " + std::to_string(left()) + " left");
     }
+  }
+  uint8_t u8() {
+    need(1, 1, "a byte");
+    return bytes_[at_++];
   }
   uint32_t u32() {
     need(1, 4, "a 32-bit value");

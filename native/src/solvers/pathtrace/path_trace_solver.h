@@ -24,6 +24,9 @@ class PathTracedField : public SampledField {
   bool evaluate_with_variance(const BakePoints& points, std::span<glm::vec3> out,
                               std::span<float> variance_of_mean, const NoiseFilter* after,
                               JobContext& context) const override;
+  // What the grid gather (grid/grid_hit_radiance.h) continues paths with.
+  const PathTraceSettings& settings() const { return settings_; }
+  const DirectLight& direct() const { return direct_; }
 
  private:
   const DirectLight& direct_;

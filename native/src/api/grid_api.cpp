@@ -1,0 +1,187 @@
+// bakegi_grid_*: Irradiance Vector Grids (native/src/grid/) behind the C API.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <span>
+
+#include "api/api_guard.h"
+#include "api/handles.h"
+#include "grid/grid_file.h"
+#include "grid/grid_interpolation.h"
+#include "util/file_bytes.h"
+
+using bakegi::Error;
+using bakegi::guarded;
+using bakegi::require;
+
+namespace {
+
+constexpr uint64_t kDefaultMaxVertices = uint64_t(64) * 64 * 64;
+constexpr uint32_t kDefaultRaysPerHemisphere = 64;
+
+const bakegi::IrradianceVectorGrid& grid_of(const bakegi_grid* grid) {
+  require(grid, "grid");
+  require(grid->grid.get(), "grid");
+  return *grid->grid;
+}
+
+glm::vec3 vec3_from(const float* v) {
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+extern "C" {
+
+bakegi_status bakegi_grid_create(const float bounds_min[3], const float bounds_max[3],
+                                 float cell_size, uint64_t max_vertices, bakegi_grid** out_grid) {
+  return guarded(__func__, [&] {
+    require(out_grid, "out_grid");
+    *out_grid = nullptr;
+    require(bounds_min, "bounds_min");
+    require(bounds_max, "bounds_max");
+    const bakegi::GridLayout layout =
+        bakegi::choose_grid_layout(vec3_from(bounds_min), vec3_from(bounds_max), cell_size,
+                                   max_vertices == 0 ? kDefaultMaxVertices : max_vertices);
+    auto handle = std::make_unique<bakegi_grid>();
+    handle->grid = std::make_shared<const bakegi::IrradianceVectorGrid>(layout);
+    *out_grid = handle.release();
+  });
+}
+
+void bakegi_grid_destroy(bakegi_grid* grid) {
+  delete grid;
+}
+
+bakegi_status bakegi_grid_get_info(const bakegi_grid* grid, bakegi_grid_info* out_info) {
+  return guarded(__func__, [&] {
+    require(out_info, "out_info");
+    const bakegi::IrradianceVectorGrid& g = grid_of(grid);
+    bakegi_grid_info info{};
+    for (int a = 0; a < 3; ++a) {
+      info.bounds_min[a] = g.layout.bounds_min[a];
+      info.bounds_max[a] = g.layout.bounds_max[a];
+      info.resolution[a] = g.layout.resolution[a];
+    }
+    info.vertex_count = g.vertex_count();
+    info.invalid_vertices = uint64_t(std::count(g.valid.begin(), g.valid.end(), uint8_t(0)));
+    *out_info = info;
+  });
+}
+
+bakegi_status bakegi_job_start_grid(const bakegi_scene* scene, const bakegi_grid* layout,
+                                    uint32_t rays_per_hemisphere, const bakegi_settings* settings,
+                                    bakegi_job** out_job) {
+  return guarded(__func__, [&] {
+    require(out_job, "out_job");
+    *out_job = nullptr;
+    require(scene, "scene");
+    bakegi::GridRequest request;
+    request.layout = grid_of(layout).layout;
+    request.gather.rays_per_hemisphere =
+        rays_per_hemisphere == 0 ? kDefaultRaysPerHemisphere : rays_per_hemisphere;
+    if (request.gather.rays_per_hemisphere > 65536) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "rays_per_hemisphere must be in [1, 65536] (0 = 64), got " +
+                      std::to_string(rays_per_hemisphere));
+    }
+    auto handle = std::make_unique<bakegi_job>();
+    handle->job = std::make_unique<bakegi::BakeJob>(
+        scene->description, request, settings ? settings->settings : bakegi::Settings());
+    *out_job = handle.release();
+  });
+}
+
+bakegi_status bakegi_job_get_grid(const bakegi_job* job, bakegi_grid** out_grid) {
+  return guarded(__func__, [&] {
+    require(out_grid, "out_grid");
+    *out_grid = nullptr;
+    require(job, "job");
+    require(job->job.get(), "job");
+    if (!job->job->is_done()) throw Error(BAKEGI_ERROR_NOT_READY, "the job has not finished yet");
+    std::shared_ptr<const bakegi::IrradianceVectorGrid> grid = job->job->grid();
+    if (!grid) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "the job has no grid (not a grid bake, or it failed or was cancelled)");
+    }
+    auto handle = std::make_unique<bakegi_grid>();
+    handle->grid = std::move(grid);
+    *out_grid = handle.release();
+  });
+}
+
+bakegi_status bakegi_grid_evaluate(const bakegi_grid* grid, const float* positions,
+                                   const float* normals, uint64_t count, int interpolation,
+                                   float* out_rgb) {
+  return guarded(__func__, [&] {
+    const bakegi::IrradianceVectorGrid& g = grid_of(grid);
+    if (interpolation != BAKEGI_GRID_TRILINEAR && interpolation != BAKEGI_GRID_TRICUBIC) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "unknown interpolation " + std::to_string(interpolation));
+    }
+    if (count == 0) return;
+    require(positions, "positions");
+    require(normals, "normals");
+    require(out_rgb, "out_rgb");
+    if (count > (uint64_t(1) << 40)) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "count " + std::to_string(count) + " is absurd");
+    }
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+    const auto* p = reinterpret_cast<const glm::vec3*>(positions);
+    const auto* n = reinterpret_cast<const glm::vec3*>(normals);
+    auto* out = reinterpret_cast<glm::vec3*>(out_rgb);
+    bakegi::evaluate_grid(g, std::span<const glm::vec3>(p, count),
+                          std::span<const glm::vec3>(n, count), std::span<glm::vec3>(out, count),
+                          bakegi::GridInterpolation(interpolation));
+  });
+}
+
+bakegi_status bakegi_grid_write_file(const bakegi_grid* grid, const char* path, int quantized,
+                                     const char* info_json) {
+  return guarded(__func__, [&] {
+    const bakegi::IrradianceVectorGrid& g = grid_of(grid);
+    require(path, "path");
+    if (quantized != 0 && quantized != 1) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "quantized must be 0 or 1");
+    }
+    const std::vector<uint8_t> bytes = bakegi::encode_grid_file(
+        g, quantized ? bakegi::GridEncoding::kQuantized : bakegi::GridEncoding::kFloat,
+        info_json ? std::string(info_json) : grid->info_json);
+    bakegi::write_file_atomically(bakegi::utf8_path(path), bytes);
+  });
+}
+
+bakegi_status bakegi_grid_read_file(const char* path, bakegi_grid** out_grid) {
+  return guarded(__func__, [&] {
+    require(out_grid, "out_grid");
+    *out_grid = nullptr;
+    require(path, "path");
+    const std::vector<uint8_t> bytes =
+        bakegi::read_file_bytes(bakegi::utf8_path(path), bakegi::kMaxGridFileBytes);
+    bakegi::GridFile file = bakegi::decode_grid_file(bytes, path);
+    auto handle = std::make_unique<bakegi_grid>();
+    handle->grid = std::make_shared<const bakegi::IrradianceVectorGrid>(std::move(file.grid));
+    handle->info_json = std::move(file.info_json);
+    *out_grid = handle.release();
+  });
+}
+
+bakegi_status bakegi_grid_get_info_json(const bakegi_grid* grid, char* buffer, size_t capacity,
+                                        size_t* out_length) {
+  return guarded(__func__, [&] {
+    grid_of(grid);
+    if (capacity > 0) require(buffer, "buffer");
+    if (capacity == 0 && !out_length) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "capacity is 0 and out_length is NULL");
+    }
+    const std::string& json = grid->info_json;
+    if (out_length) *out_length = json.size();
+    if (capacity > 0) {
+      const size_t n = std::min(json.size(), capacity - 1);
+      std::memcpy(buffer, json.data(), n);
+      buffer[n] = '\0';
+    }
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,107 @@
+#include "grid/grid_file.h"
+
+#include <cmath>
+
+#include "grid/grid_quantization.h"
+#include "util/byte_stream.h"
+#include "util/error.h"
+#include "util/framed_file.h"
+
+namespace bakegi {
+
+namespace {
+
+constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'V'};
+constexpr uint32_t kGridFileVersion = 1;
+
+}  // namespace
+
+std::vector<uint8_t> encode_grid_file(const IrradianceVectorGrid& grid, GridEncoding encoding,
+                                      const std::string& info_json) {
+  ByteWriter w = begin_framed_file(kMagic, kGridFileVersion);
+  const GridLayout& layout = grid.layout;
+  w.vec3(layout.bounds_min);
+  w.vec3(layout.bounds_max);
+  for (uint32_t r : layout.resolution) w.u32(r);
+  w.u32(uint32_t(encoding));
+  const size_t count = grid.vertex_count();
+  w.bytes.reserve(w.bytes.size() + count * (1 + kGridHemispheres * kFloatHemisphereBytes));
+  for (size_t v = 0; v < count; ++v) w.u8(grid.valid[v] ? 1 : 0);
+  for (size_t v = 0; v < count; ++v) {
+    for (int h = 0; h < kGridHemispheres; ++h) {
+      const glm::mat3& m = grid.at(v, h);
+      if (encoding == GridEncoding::kFloat) {
+        for (int c = 0; c < 3; ++c) w.vec3(m[c]);
+      } else {
+        const QuantizedHemisphere q = quantize_hemisphere(m, h);
+        w.u8(q.direction.x);
+        w.u8(q.direction.y);
+        w.u8(q.direction.z);
+        w.u32(q.color);
+      }
+    }
+  }
+  w.string(info_json);
+  return finish_framed_file(w);
+}
+
+GridFile decode_grid_file(std::span<const uint8_t> bytes, const std::string& name) {
+  const FramedPayload framed =
+      open_framed_file(bytes, kMagic, 1, kGridFileVersion, "irradiance vector grid", name);
+  ByteReader r(framed.payload, name);
+  GridFile file;
+  const glm::vec3 lo = r.vec3(), hi = r.vec3();
+  std::array<uint32_t, 3> resolution{};
+  for (uint32_t& n : resolution) n = r.u32();
+  GridLayout layout;
+  try {
+    layout = make_grid_layout(lo, hi, resolution);
+  } catch (const Error& e) {
+    r.fail(std::string("corrupt: ") + e.what());
+  }
+  // make_grid_layout may widen a flat axis; a file stores the widened bounds already.
+  const uint32_t encoding = r.u32();
+  if (encoding > uint32_t(GridEncoding::kQuantized)) {
+    r.fail("unknown encoding " + std::to_string(encoding));
+  }
+  file.encoding = GridEncoding(encoding);
+  const size_t count = layout.vertex_count();
+  const size_t hemisphere_bytes =
+      file.encoding == GridEncoding::kFloat ? kFloatHemisphereBytes : kQuantizedHemisphereBytes;
+  // Check the sizes before allocating the grid.
+  r.need(count, 1 + kGridHemispheres * hemisphere_bytes, "grid vertices");
+  file.grid = IrradianceVectorGrid(layout);
+  for (size_t v = 0; v < count; ++v) {
+    const uint8_t flag = r.u8();
+    if (flag > 1)
+      r.fail("corrupt: vertex " + std::to_string(v) + " has validity " + std::to_string(flag));
+    file.grid.valid[v] = flag;
+  }
+  for (size_t v = 0; v < count; ++v) {
+    for (int h = 0; h < kGridHemispheres; ++h) {
+      glm::mat3& m = file.grid.at(v, h);
+      if (file.encoding == GridEncoding::kFloat) {
+        for (int c = 0; c < 3; ++c) m[c] = r.vec3();
+        for (int c = 0; c < 3; ++c) {
+          for (int e = 0; e < 3; ++e) {
+            if (!std::isfinite(m[c][e])) {
+              r.fail("corrupt: a non-finite value at vertex " + std::to_string(v));
+            }
+          }
+        }
+      } else {
+        QuantizedHemisphere q;
+        q.direction.x = r.u8();
+        q.direction.y = r.u8();
+        q.direction.z = r.u8();
+        q.color = r.u32();
+        m = dequantize_hemisphere(q);
+      }
+    }
+  }
+  file.info_json = r.string();
+  if (r.left() != 0) r.fail("unexpected bytes after the grid");
+  return file;
+}
+
+}  // namespace bakegi
