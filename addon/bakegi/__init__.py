@@ -6,8 +6,9 @@ In Blender (the add-on enabled, e.g. `blender -b file.blend --addons bakegi`):
     import bakegi
     report = bakegi.bake(method="pathtrace", samples=64, target="CORNER")
 
-Public API: bake, export_scene_file, remove_bake, live_update, live_stop, BakeGIError; operators
-bpy.ops.bakegi.bake_indirect and bpy.ops.bakegi.remove_bake; settings scene.bakegi.
+Public API: bake, apply_grid, export_scene_file, remove_bake, live_update, live_stop,
+BakeGIError; operators bpy.ops.bakegi.bake_indirect, remove_bake, add_grid_box and
+apply_grid; settings scene.bakegi.
 
 Without Blender (plain Python) only the bpy-free modules are importable:
 bakegi.light_units and bakegi.native.
@@ -34,11 +35,11 @@ except ImportError:  # plain Python: tests of the bpy-free modules
 
 __all__ = ["BakeGIError"]
 if bpy is not None:
-    from .api import (bake, export_scene_file, live_stop, live_update, remove_bake,  # noqa: E402
-                      subdivide_copy)
+    from .api import (apply_grid, bake, export_scene_file, live_stop, live_update,  # noqa: E402
+                      remove_bake, subdivide_copy)
 
-    __all__ += ["bake", "export_scene_file", "live_stop", "live_update", "remove_bake",
-                "subdivide_copy"]
+    __all__ += ["apply_grid", "bake", "export_scene_file", "live_stop", "live_update",
+                "remove_bake", "subdivide_copy"]
 
 _MODULES = ("ui.preferences", "ui.properties", "ui.operators", "ui.panels", "live")
 

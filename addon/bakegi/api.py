@@ -4,6 +4,8 @@
     import bakegi
     report = bakegi.bake(method="pathtrace", samples=64, target="CORNER", objects="VISIBLE")
     report = bakegi.bake(target="LIGHTMAP", texels_per_meter=40, objects="VISIBLE")
+    report = bakegi.bake(target="GRID", grid_object="BakeGI Grid")   # report["grid"]["path"]
+    bakegi.apply_grid(["Prop", "Character"])    # BakeGI_Indirect from the newest grid
     bakegi.export_scene_file("/tmp/scene.bgs", target="CORNER", objects="VISIBLE")
     bakegi.remove_bake()
 
@@ -18,9 +20,9 @@ import bpy
 from . import live, session
 from .export import scene as export_scene_module, targets as export_targets
 from .ui import operators, properties
-from .write import attributes
+from .write import attributes, grid_file
 from .native import BakeGIError
-from .request import BakeRequest, LightmapOptions
+from .request import BakeRequest, GridOptions, LightmapOptions
 
 
 def _context(context):
@@ -39,7 +41,8 @@ def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
          texels_per_meter=40.0, lightmap_max_size=1024, lightmap_uv_map="BakeGI",
          lightmap_uv_method="SMART", lightmap_padding=4, lightmap_folder="//bakegi_lightmaps",
          lightmap_full_float=False, lightmap_reject_inside=True, linked_duplicates="SHARED",
-         estimate_error=True):
+         estimate_error=True, grid_object=None, grid_cell_size=0.0, grid_max_vertices=0,
+         grid_rays=64, grid_quantized=True, grid_folder="//bakegi_grids"):
     """Bakes indirect light into the color attribute BakeGI_Indirect of the target meshes
     (target 'CORNER' or 'POINT'), or into a lightmap atlas (target 'LIGHTMAP').
 
@@ -76,6 +79,13 @@ def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
     error (report["estimated_error"], a fraction, and report["estimated_error_interval"],
     90%; report["error_check"] with the error between vertices, per object, and the likely
     causes, also as warnings when it is above 10%).
+    target 'GRID': an Irradiance Vector Grid (docs/ivg.md) over the box of grid_object (an
+    Empty, whose display cube is the box, or any object's bounding box; or its name), or the
+    visible scene's bounds when None; cells of about grid_cell_size metres (0: 32 on the
+    longest axis), at most grid_max_vertices (0: 64^3), grid_rays rays per vertex hemisphere.
+    Written to <grid_folder>/BakeGI_Grid_<scene>.bgivg (quantized: 42 bytes a vertex, else
+    216); report["grid"] holds its path, resolution, bounds and counts. objects and
+    hook_materials do not apply; apply_grid() lights meshes from it.
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
     scene is changed.
     threads: None = the add-on preferences' (0 there = every core); the preferences' memory
@@ -89,15 +99,64 @@ def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
                                uv_method=lightmap_uv_method,
                                reject_inside=bool(lightmap_reject_inside))
     folder = properties.lightmap_directory(lightmap_folder) if target == "LIGHTMAP" else ""
+    grid = GridOptions(bounds=_grid_bounds(context, grid_object), cell_size=grid_cell_size,
+                       max_vertices=grid_max_vertices, rays=grid_rays,
+                       quantized=bool(grid_quantized))
     request = BakeRequest(method=method, samples=samples, seed=seed, target=target,
                           objects=objects, threads=threads, hook_materials=hook_materials,
                           method_settings=method_settings, live=live, lightmap=lightmap,
                           lightmap_folder=folder, lightmap_full_float=lightmap_full_float,
-                          linked_duplicates=linked_duplicates)
+                          linked_duplicates=linked_duplicates, grid=grid,
+                          grid_folder=properties.grid_directory(grid_folder)
+                          if target == "GRID" else "")
     report = session.BakeSession(context, request).run()
     scene = context.scene
     if hasattr(scene, "bakegi"):
         operators.store_report(scene, report)
+    return report
+
+
+def _grid_bounds(context, grid_object):
+    """The world box of the grid object (an object or its name), or None."""
+    if grid_object is None:
+        return None
+    obj = (context.blend_data.objects.get(grid_object) if isinstance(grid_object, str)
+           else grid_object)
+    if obj is None:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {grid_object!r}")
+    return grid_file.object_bounds(obj)
+
+
+def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
+               hook_materials=True, context=None):
+    """Writes BakeGI_Indirect on `objects` ('SELECTED', 'VISIBLE', or a list of objects or
+    names) from a baked grid: the grid's indirect light at their face corners (target
+    'CORNER') or vertices ('POINT'), as they stand now (moved, added, decimated or
+    subdivided meshes all work; no bake runs). path None: the scene's newest grid (the last
+    GRID bake's file). interpolation 'TRILINEAR' or 'TRICUBIC'. hook_materials: Material
+    Preview shows the result as after a bake. Returns a report: objects, points, seconds
+    (read, evaluate, write, total), the grid's info, warnings. Raises BakeGIError with
+    nothing changed when the grid cannot be read."""
+    context = _context(context)
+    if path is None:
+        path = context.scene.get(grid_file.GRID_PATH_PROPERTY)
+        if not path:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              "the scene has no baked grid: bake one with target='GRID' or "
+                              "give the path of a .bgivg file")
+    if target not in ("CORNER", "POINT"):
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          f"target must be 'CORNER' or 'POINT', not {target!r}")
+    if isinstance(objects, str) and objects not in ("SELECTED", "VISIBLE"):
+        objects = [objects]
+    targets, skipped = export_targets.resolve_targets(context, objects)
+    if not targets:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                          "nothing to light: " + ("; ".join(skipped) or "no mesh object given"))
+    depsgraph = context.evaluated_depsgraph_get()
+    report = grid_file.apply_grid(context.blend_data, depsgraph, targets,
+                                  bpy.path.abspath(path), interpolation, target, hook_materials)
+    report["warnings"] = report["warnings"] + list(skipped)
     return report
 
 

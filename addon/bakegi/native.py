@@ -176,7 +176,20 @@ _SIGNATURES = {
                                          c_uint32, POINTER(c_float), c_uint64]),
     "bakegi_lightmaps_write_file": (c_int, [_P, c_char_p]),
     "bakegi_lightmaps_read_file": (c_int, [c_char_p, _PP]),
+    "bakegi_scene_get_bounds": (c_int, [_P, POINTER(c_float), POINTER(c_float)]),
+    "bakegi_grid_create": (c_int, [POINTER(c_float), POINTER(c_float), c_float, c_uint64, _PP]),
+    "bakegi_grid_destroy": (None, [_P]),
+    "bakegi_grid_get_info": (c_int, [_P, _P]),
+    "bakegi_job_start_grid": (c_int, [_P, _P, c_uint32, _P, _PP]),
+    "bakegi_job_get_grid": (c_int, [_P, _PP]),
+    "bakegi_grid_evaluate": (c_int, [_P, POINTER(c_float), POINTER(c_float), c_uint64, c_int,
+                                     POINTER(c_float)]),
+    "bakegi_grid_write_file": (c_int, [_P, c_char_p, c_int, c_char_p]),
+    "bakegi_grid_read_file": (c_int, [c_char_p, _PP]),
+    "bakegi_grid_get_info_json": (c_int, [_P, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
 }
+
+GRID_INTERPOLATION = {"TRILINEAR": 0, "TRICUBIC": 1}
 
 EXR_COMPRESSION = {"ZIP": 0, "PIZ": 1, "NONE": 2}
 
@@ -238,7 +251,8 @@ def _check_binary_interface(lib, path):
                           "carries the matching library")
     for name, struct in (("bakegi_material_desc", MaterialDesc), ("bakegi_mesh_desc", MeshDesc),
                          ("bakegi_light_desc", LightDesc),
-                         ("bakegi_lightmap_info", LightmapInfo)):
+                         ("bakegi_lightmap_info", LightmapInfo),
+                         ("bakegi_grid_info", GridInfo)):
         theirs, ours = int(lib.bakegi_struct_size(name.encode())), ctypes.sizeof(struct)
         if theirs != ours:
             raise BakeGIError("BAKEGI_ERROR_IO",
@@ -488,6 +502,13 @@ class Scene(_Handle):
     def light_count(self):
         return int(load_library().bakegi_scene_light_count(self.handle))
 
+    def bounds(self):
+        """((x, y, z) min, (x, y, z) max) around every mesh vertex."""
+        lo, hi = (c_float * 3)(), (c_float * 3)()
+        _check(load_library().bakegi_scene_get_bounds(self.handle, lo, hi),
+               "bakegi_scene_get_bounds")
+        return tuple(lo), tuple(hi)
+
     def write(self, path, points=None):
         """Writes a .bgs scene file (with the bake points if given)."""
         _check(load_library().bakegi_file_write(os.fsencode(path), self.handle,
@@ -687,6 +708,92 @@ class Lightmaps(_Handle):
         return cls(out.value)
 
 
+class GridInfo(Structure):
+    _fields_ = [
+        ("bounds_min", c_float * 3),
+        ("bounds_max", c_float * 3),
+        ("resolution", c_uint32 * 3),
+        ("vertex_count", c_uint64),
+        ("invalid_vertices", c_uint64),
+    ]
+
+
+class Grid(_Handle):
+    """An Irradiance Vector Grid (bakegi_grid; docs/ivg.md):
+
+        layout = Grid.create((x0, y0, z0), (x1, y1, z1), cell_size=0.1)
+        job = GridJob(scene, layout, settings, rays=64); job.wait(); grid = job.grid()
+        grid.write("/path/scene.bgivg", quantized=True)
+        rgb = Grid.read("/path/scene.bgivg").evaluate(positions, normals)
+    """
+
+    _destroy_name = "bakegi_grid_destroy"
+
+    @classmethod
+    def create(cls, bounds_min, bounds_max, cell_size=0.0, max_vertices=0):
+        """A layout (all zero) over the box with cells of about cell_size metres (0: 32 on
+        the longest axis), at most max_vertices vertices (0: 64^3)."""
+        lo, hi = _triple(bounds_min, "bounds_min"), _triple(bounds_max, "bounds_max")
+        out = c_void_p()
+        _check(load_library().bakegi_grid_create(lo, hi, float(cell_size), int(max_vertices),
+                                                 byref(out)), "bakegi_grid_create")
+        return cls(out.value)
+
+    @classmethod
+    def read(cls, path):
+        out = c_void_p()
+        _check(load_library().bakegi_grid_read_file(os.fsencode(path), byref(out)),
+               "reading the grid")
+        return cls(out.value)
+
+    def info(self):
+        info = GridInfo()
+        _check(load_library().bakegi_grid_get_info(self.handle, byref(info)),
+               "bakegi_grid_get_info")
+        return {"bounds_min": list(info.bounds_min), "bounds_max": list(info.bounds_max),
+                "resolution": list(info.resolution), "vertex_count": int(info.vertex_count),
+                "invalid_vertices": int(info.invalid_vertices)}
+
+    def info_json(self):
+        """The JSON stored with the grid (what made it), as a dict."""
+        lib = load_library()
+        length = c_size_t(0)
+        _check(lib.bakegi_grid_get_info_json(self.handle, None, 0, byref(length)),
+               "bakegi_grid_get_info_json")
+        buffer = ctypes.create_string_buffer(length.value + 1)
+        _check(lib.bakegi_grid_get_info_json(self.handle, buffer, len(buffer), byref(length)),
+               "bakegi_grid_get_info_json")
+        try:
+            value = json.loads(_decode(buffer.value))
+        except ValueError:
+            return {}
+        return value if isinstance(value, dict) else {}
+
+    def evaluate(self, positions, normals, interpolation="TRILINEAR"):
+        """(n, 3) float32 indirect light at the points (the bake's output convention)."""
+        if interpolation not in GRID_INTERPOLATION:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"interpolation must be one of {tuple(GRID_INTERPOLATION)}, not "
+                              f"{interpolation!r}")
+        p = _floats(positions, 3, "positions")
+        n = _floats(normals, 3, "normals")
+        if len(p) != len(n):
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"{len(p)} positions but {len(n)} normals")
+        out = np.empty((len(p), 3), np.float32)
+        _check(load_library().bakegi_grid_evaluate(self.handle, _fptr(p), _fptr(n), len(p),
+                                                   GRID_INTERPOLATION[interpolation], _fptr(out)),
+               "bakegi_grid_evaluate")
+        return out
+
+    def write(self, path, quantized=True, info=None):
+        """Writes the .bgivg file atomically; info: a dict stored with it."""
+        text = json.dumps(info).encode("utf-8") if info is not None else None
+        _check(load_library().bakegi_grid_write_file(self.handle, os.fsencode(path),
+                                                     1 if quantized else 0, text),
+               "writing the grid")
+
+
 class Settings(_Handle):
     """Key/value bake settings; Settings(method='pathtrace', samples=64, seed=0)."""
 
@@ -776,6 +883,8 @@ class Job(_Handle):
     def result(self):
         """(n, 3) float32 RGB per bake point, after success."""
         out = np.empty((self.point_count, 3), np.float32)
+        if self.point_count == 0:  # a grid job: its result is grid()
+            return out
         _check(load_library().bakegi_job_get_result(self.handle, _fptr(out), self.point_count),
                "bakegi_job_get_result")
         return out
@@ -790,6 +899,12 @@ class Job(_Handle):
                "bakegi_job_get_report")
         return _decode(buffer.value)
 
+    def grid(self):
+        """A grid job's grid (a new Grid), after success."""
+        out = c_void_p()
+        _check(load_library().bakegi_job_get_grid(self.handle, byref(out)), "bakegi_job_get_grid")
+        return Grid(out.value)
+
     def report(self):
         """The core's report as a dict (empty if it is not valid JSON)."""
         try:
@@ -797,3 +912,15 @@ class Job(_Handle):
         except ValueError:
             return {}
         return value if isinstance(value, dict) else {"core": value}
+
+
+class GridJob(Job):
+    """A grid bake (bakegi_job_start_grid): progress, cancel, wait and report as for a Job;
+    grid() gives the result."""
+
+    def __init__(self, scene, layout, settings, rays=0):
+        out = c_void_p()
+        _check(load_library().bakegi_job_start_grid(scene.handle, layout.handle, int(rays),
+                                                    settings.handle, byref(out)),
+               "bakegi_job_start_grid")
+        super().__init__(None, None, None, _handle=out.value, _point_count=0)

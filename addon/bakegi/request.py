@@ -8,7 +8,7 @@ counts, live and lightmap choices. No bpy: tested without Blender (python_tests/
 """
 
 from dataclasses import dataclass, field, replace
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Tuple
 
 from . import native
 from .native import BakeGIError
@@ -17,7 +17,7 @@ from .native import BakeGIError
 LIVE_METHODS = ("meshless",)
 # Paths per point of a named sampling method when the request gives none.
 FIXED_SAMPLES = 64
-TARGET_DOMAINS = ("CORNER", "POINT", "LIGHTMAP")
+TARGET_DOMAINS = ("CORNER", "POINT", "LIGHTMAP", "GRID")
 LINKED_DUPLICATES = ("SHARED", "SINGLE_USER")
 
 
@@ -32,6 +32,41 @@ class LightmapOptions:
     uv_method: str = "SMART"
     reject_inside: bool = True
     memory_budget_mb: int = 4096  # what the texel samples may take (the session sets the bake's)
+
+
+@dataclass(frozen=True)
+class GridOptions:
+    """What a GRID bake needs besides the scene (docs/ivg.md). bounds: ((x0, y0, z0),
+    (x1, y1, z1)) in world space, or None for the visible scene's bounds (the session takes a
+    grid object's box here). cell_size 0: 32 cells on the longest axis. max_vertices 0: 64^3.
+    rays: per vertex hemisphere. quantized: the paper's 24-bit direction and R9G9B9E5 colour
+    (42 bytes a vertex) instead of floats (216)."""
+
+    bounds: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]] = None
+    cell_size: float = 0.0
+    max_vertices: int = 0
+    rays: int = 64
+    quantized: bool = True
+
+    def validate(self):
+        def refuse(message):
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", message)
+
+        if (isinstance(self.cell_size, bool) or not isinstance(self.cell_size, (int, float)) or
+                not 0.0 <= self.cell_size < float("inf")):
+            refuse(f"grid_cell_size must be a number >= 0 (0: 32 cells on the longest axis), "
+                   f"not {self.cell_size!r}")
+        for name, value, low, high in (("grid_rays", self.rays, 1, 65536),
+                                       ("grid_max_vertices", self.max_vertices, 0, 1 << 30)):
+            if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+                refuse(f"{name} must be an integer in [{low}, {high}], not {value!r}")
+        if self.bounds is not None:
+            try:
+                lo, hi = ([float(x) for x in corner] for corner in self.bounds)
+            except (TypeError, ValueError):
+                refuse(f"grid bounds must be two (x, y, z) corners, not {self.bounds!r}")
+            if len(lo) != 3 or len(hi) != 3 or any(h < l for l, h in zip(lo, hi)):
+                refuse(f"grid bounds must be (min corner, max corner), not {self.bounds!r}")
 
 
 @dataclass(frozen=True)
@@ -61,6 +96,8 @@ class BakeRequest:
     lightmap_folder: str = ""
     lightmap_full_float: bool = False
     linked_duplicates: str = "SHARED"
+    grid: GridOptions = field(default_factory=GridOptions)
+    grid_folder: str = ""
 
     def with_core_default(self):
         """This request with its method and samples named: the core's default bake where the
@@ -89,6 +126,9 @@ class BakeRequest:
         if self.live and self.target == "LIGHTMAP":
             refuse("live indirect writes the color attribute; bake it to face corners or "
                    "vertices, not to lightmaps")
+        if self.live and self.target == "GRID":
+            refuse("live indirect writes the color attribute; a grid is applied with Apply "
+                   "Grid")
         if self.live and self.with_core_default().method not in LIVE_METHODS:
             refuse(f"live indirect needs a method that relights ({', '.join(LIVE_METHODS)}), "
                    f"not {self.method!r}")
@@ -105,6 +145,10 @@ class BakeRequest:
             refuse(f"method_settings must be a dict, not {type(self.method_settings).__name__}")
         if self.target == "LIGHTMAP" and not self.lightmap_folder:
             refuse("a lightmap bake needs a folder to write its EXR file to")
+        if self.target == "GRID":
+            if not self.grid_folder:
+                refuse("a grid bake needs a folder to write its .bgivg file to")
+            self.grid.validate()
 
     def core_settings(self):
         """The settings the core receives (method_settings may add or override)."""

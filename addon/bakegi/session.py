@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 from . import error_check, live, native
 from .export import points as export_points, scene as export_scene, targets as export_targets
 from .ui import preferences
-from .write import attributes, lightmap_image, material_hook, uv_maps
+from .write import attributes, grid_file, lightmap_image, material_hook, uv_maps
 from .native import BakeGIError
 
 
@@ -77,6 +77,8 @@ class BakeSession:
                          if isinstance(budget, int) and not isinstance(budget, bool) and budget >= 1
                          else request.lightmap)
         self.lightmap_folder = request.lightmap_folder
+        self.grid = request.grid
+        self.grid_folder = request.grid_folder
         self.lightmap_full_float = bool(request.lightmap_full_float)
         self.exported = None
         self.job = None
@@ -92,7 +94,8 @@ class BakeSession:
     def estimates_error(self):
         """Whether the core will check this bake (every full bake unless error_probes is 0;
         not the 'direct' method)."""
-        return self.method != "direct" and self.method_settings.get("error_probes", 1) != 0
+        return (self.method != "direct" and self.target != "GRID" and
+                self.method_settings.get("error_probes", 1) != 0)
 
     @property
     def settings(self):
@@ -120,7 +123,7 @@ class BakeSession:
         if self.exported is None:
             self.prepare()
         self._started_at = time.perf_counter()
-        if self.exported.points is None:
+        if self.exported.points is None and self.target == "LIGHTMAP":
             self._starter = threading.Thread(target=self._build_texels_and_start,
                                              name="bakegi-lightmap-texels", daemon=True)
             self._starter.start()
@@ -138,7 +141,14 @@ class BakeSession:
 
     def _start_job(self):
         with native.Settings(**self.settings) as settings:
-            self.job = native.Job(self.exported.scene, self.exported.points, settings)
+            if self.target == "GRID":
+                bounds = self.grid.bounds or self.exported.scene.bounds()
+                with native.Grid.create(bounds[0], bounds[1], self.grid.cell_size,
+                                        self.grid.max_vertices) as layout:
+                    self.job = native.GridJob(self.exported.scene, layout, settings,
+                                              self.grid.rays)
+            else:
+                self.job = native.Job(self.exported.scene, self.exported.points, settings)
 
     def _build_texels_and_start(self):
         """Worker thread: no bpy here, only the core (ctypes releases the GIL)."""
@@ -211,6 +221,7 @@ class BakeSession:
         adopted = False
         written = False
         lightmap_report = {}
+        grid_report = None
         try:
             try:
                 self._join_starter()
@@ -223,7 +234,9 @@ class BakeSession:
             t0 = time.perf_counter()
             data = data if data is not None else self.context.blend_data
             image = None
-            if self.target == "LIGHTMAP":
+            if self.target == "GRID":
+                grid_report = self._write_grid()
+            elif self.target == "LIGHTMAP":
                 lightmap_report = self._write_lightmap(data, rgb)
                 image = data.images.get(lightmap_report["image"])
             else:
@@ -232,7 +245,7 @@ class BakeSession:
             hooked = (material_hook.hook_materials(data, self.exported.materials,
                                                self.exported.targets, image,
                                                self.lightmap.uv_map)
-                      if self.hook_materials else [])
+                      if self.hook_materials and self.target != "GRID" else [])
             self.seconds["writeback"] = time.perf_counter() - t0
             if self.live:
                 # The job and the exported meshes now belong to live indirect.
@@ -258,7 +271,25 @@ class BakeSession:
         report = self._report(core_report, targets, hooked)
         if exported_lightmaps is not None:
             report["lightmap"] = {**lightmap_report, **self._lightmap_counts(exported_lightmaps)}
+        if grid_report is not None:
+            report["grid"] = grid_report
+            if data is not None and self.scene_name in data.scenes:
+                data.scenes[self.scene_name][grid_file.GRID_PATH_PROPERTY] = grid_report["path"]
         return report
+
+    def _write_grid(self):
+        """Writes the grid job's grid next to the .blend (atomically, by the core)."""
+        os.makedirs(self.grid_folder, exist_ok=True)
+        path = os.path.join(self.grid_folder, grid_file.grid_file_name(self.scene_name))
+        with self.job.grid() as grid:
+            info = grid.info()
+            grid.write(path, quantized=self.grid.quantized,
+                       info={"scene": self.scene_name, "method": self.method,
+                             "rays_per_hemisphere": self.grid.rays,
+                             "bake_seconds": self.seconds.get("bake", 0.0)})
+        return {**info, "path": path, "quantized": self.grid.quantized,
+                "rays_per_hemisphere": self.grid.rays, "file_bytes": os.path.getsize(path),
+                "description": grid_file.describe(info)}
 
     def _write_lightmap(self, data, rgb):
         import bpy  # the session runs inside Blender; the rest of this module does not need it

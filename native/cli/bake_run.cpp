@@ -69,7 +69,9 @@ BakeRun run_job(const std::function<bakegi_status(bakegi_job**)>& start_job, uin
     throw CoreError(status, "bake failed: " + message + " (" + bakegi_status_string(status) + ")");
   }
   run.values.resize(3 * count);
-  check(bakegi_job_get_result(job.get(), run.values.data(), count), "reading the result");
+  if (count > 0) {  // a grid bake has no points
+    check(bakegi_job_get_result(job.get(), run.values.data(), count), "reading the result");
+  }
   run.report_json = job_report(job.get());
   run.job = std::move(job);
   return run;

@@ -10,6 +10,7 @@
 
 namespace bakegi::cli {
 
+using bakegi::GridHandle;
 using bakegi::JobHandle;
 using bakegi::PointsHandle;
 using bakegi::SceneHandle;

@@ -56,6 +56,17 @@ commands:
            --out convergence.json [settings]
       Antiradiance Fig. 5: error after 1..K iterations of the symmetric and asymmetric
       schemes against an R-iteration solution (default 300), by relighting one bake.
+  grid bake scene.bgs --out grid.bgivg [--cell S] [--max-vertices N] [--rays R]
+            [--bounds x0,y0,z0,x1,y1,z1] [--quantized] [--report r.json] [settings]
+      Bakes an Irradiance Vector Grid over the bounds (default: the scene's) with cells of
+      about S metres (default: 32 on the longest axis), at most N vertices (default 64^3),
+      R rays per vertex hemisphere (default 64); --quantized stores 24-bit directions and
+      R9G9B9E5 colours (docs/ivg.md). Prints the report (JSON) on stdout.
+  grid apply grid.bgivg scene.bgs --out values.npy [--tricubic] [--repeat R]
+      Lights the scene file's bake points from the grid (no bake) and prints the seconds
+      (the fastest of R runs) and points as JSON.
+  grid info grid.bgivg
+      Bounds, resolution, vertices inside geometry and what made the grid.
   settings [METHOD] [--markdown | --json]
       The settings each method reads (all methods without METHOD): key, type, default,
       range or choices, role (shapes | lighting | execution) and meaning, from the core's
@@ -117,6 +128,7 @@ int main(int argc, char** argv) {
     if (command == "converge") return run_converge_command(args);
     if (command == "subset") return run_subset_command(args);
     if (command == "settings") return run_settings_command(args);
+    if (command == "grid") return run_grid_command(args);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "bakegi: %s\n(run 'bakegi --help' for usage)\n", e.what());

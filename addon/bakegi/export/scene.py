@@ -325,6 +325,8 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
                  defer_texels=False, display_probes=False):
     """Exports the evaluated scene and the bake points of the target objects.
 
+    target 'GRID': no bake points and no targets (objects is ignored): the whole visible
+    scene is exported for a grid bake (session.py).
     target 'LIGHTMAP': the bake points are the texels of the targets' lightmap UV maps
     (lightmap: LightmapOptions); a missing UV map is created first (the only change to the
     Blender data; ExportedLightmaps.created_uv_maps lists them, and export removes them
@@ -339,6 +341,9 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
     if target not in TARGET_DOMAINS:
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                           f"target must be one of {TARGET_DOMAINS}, not {target!r}")
+    if target == "GRID":
+        # A grid has no target objects: every visible object lights it.
+        return _export(context, target, [], [], depsgraph, lightmap, [], start)
     targets, skipped = resolve_targets(context, objects, shared_meshes=target == "LIGHTMAP")
     if not targets:
         why = "; ".join(skipped) if skipped else "no mesh object is " + (
@@ -417,6 +422,12 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             offset = len(points) if points is not None else 0
             return _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
                              exported_lightmaps)
+
+        if target == "GRID":
+            if exporter.scene.triangle_count == 0:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                                  "nothing to bake: no visible mesh object lights the grid")
+            return _exported(exporter, None, [], warnings, [], 0, start)
 
         positions, normals, ids, bake_targets, probes, candidates = [], [], [], [], [], []
         offset = 0

@@ -11,11 +11,12 @@ synchronously. Both paths, and bakegi.bake(), go through session.BakeSession.
 import json
 
 import bpy
+from mathutils import Vector
 
 from .. import session, subdivision
 from ..export import targets as export_targets
 from ..native import BakeGIError
-from ..write import attributes
+from ..write import attributes, grid_file
 from . import report_text
 
 # Runtime state shown by the panel (not saved, so a cancel or failure changes no data).
@@ -65,6 +66,8 @@ class BAKEGI_OT_bake_indirect(bpy.types.Operator):
             return False
         settings = getattr(context.scene, "bakegi", None)
         objects = settings.objects if settings is not None else "SELECTED"
+        if settings is not None and settings.target == "GRID":
+            objects = "VISIBLE"  # a grid has no targets: the visible scene lights it
         if not _has_mesh_target(context, objects):
             cls.poll_message_set("No mesh object is " +
                                  ("selected" if objects == "SELECTED" else "visible"))
@@ -245,7 +248,86 @@ class BAKEGI_OT_subdivide_copy(bpy.types.Operator):
         return {"FINISHED"}
 
 
-classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake, BAKEGI_OT_subdivide_copy)
+class BAKEGI_OT_add_grid_box(bpy.types.Operator):
+    """Add an Empty whose cube is the box an Irradiance Grid covers, around the visible
+    meshes, and make it the scene's Grid Box"""
+
+    bl_idname = "bakegi.add_grid_box"
+    bl_label = "Add Grid Box"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        if context.mode != "OBJECT":
+            cls.poll_message_set("Switch to Object Mode")
+            return False
+        return True
+
+    def execute(self, context):
+        view_layer = context.view_layer
+        corners = [obj.matrix_world @ Vector(corner) for obj in view_layer.objects
+                   if obj.type == "MESH" and obj.visible_get(view_layer=view_layer)
+                   for corner in obj.bound_box]
+        if corners:
+            lo = Vector([min(c[a] for c in corners) for a in range(3)])
+            hi = Vector([max(c[a] for c in corners) for a in range(3)])
+        else:
+            lo, hi = Vector((-1.0, -1.0, -1.0)), Vector((1.0, 1.0, 1.0))
+        half = (hi - lo) / 2.0
+        size = max(max(half), 1e-3)
+        box = context.blend_data.objects.new("BakeGI Grid", None)
+        box.empty_display_type = "CUBE"
+        box.empty_display_size = 1.0
+        box.location = (lo + hi) / 2.0
+        # The cube's half size is 1: scale it to the box (a flat axis keeps a thin slab).
+        box.scale = [max(h, size * 1e-3) for h in half]
+        context.collection.objects.link(box)
+        context.scene.bakegi.grid_object = box
+        self.report({"INFO"}, f"BakeGI: added '{box.name}' ({2 * half.x:.2f} x "
+                    f"{2 * half.y:.2f} x {2 * half.z:.2f} m); bake with Target Irradiance Grid")
+        return {"FINISHED"}
+
+
+class BAKEGI_OT_apply_grid(bpy.types.Operator):
+    """Light the objects (Selected or Visible, as the panel's Objects says) from the scene's
+    newest Irradiance Grid: writes BakeGI_Indirect without baking"""
+
+    bl_idname = "bakegi.apply_grid"
+    bl_label = "Apply Grid"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        if runtime["running"]:
+            cls.poll_message_set("A bake is running")
+            return False
+        if context.mode != "OBJECT":
+            cls.poll_message_set("Switch to Object Mode")
+            return False
+        if not context.scene.get(grid_file.GRID_PATH_PROPERTY):
+            cls.poll_message_set("Bake a grid first (Target: Irradiance Grid)")
+            return False
+        return True
+
+    def execute(self, context):
+        from .. import api
+        settings = context.scene.bakegi
+        try:
+            report = api.apply_grid(settings.objects, interpolation=settings.grid_interpolation,
+                                    hook_materials=settings.hook_materials, context=context)
+        except BakeGIError as error:
+            self.report({"ERROR"}, error.message)
+            return {"CANCELLED"}
+        for warning in report["warnings"][:20]:
+            self.report({"WARNING"}, str(warning))
+        self.report({"INFO"}, f"BakeGI: lit {len(report['objects'])} object(s), "
+                    f"{report['points']:,} points from the grid in "
+                    f"{report['seconds']['total'] * 1000:.0f} ms")
+        return {"FINISHED"}
+
+
+classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake, BAKEGI_OT_subdivide_copy,
+           BAKEGI_OT_add_grid_box, BAKEGI_OT_apply_grid)
 
 
 def register():

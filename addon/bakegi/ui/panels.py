@@ -56,8 +56,19 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             sub.prop(settings, "lightmap_reject_inside")
             sub.prop(settings, "lightmap_folder")
             sub.prop(settings, "lightmap_float")
+        if settings.target == "GRID":
+            sub = col.column()
+            row = sub.row(align=True)
+            row.prop(settings, "grid_object")
+            row.operator(operators.BAKEGI_OT_add_grid_box.bl_idname, text="", icon="ADD")
+            sub.prop(settings, "grid_cell_size")
+            sub.prop(settings, "grid_max_vertices")
+            sub.prop(settings, "grid_rays")
+            sub.prop(settings, "grid_quantized")
+            sub.prop(settings, "grid_folder")
+            sub.prop(settings, "grid_interpolation")
         col.prop(settings, "objects")
-        if settings.target != "LIGHTMAP":
+        if settings.target not in ("LIGHTMAP", "GRID"):
             col.prop(settings, "linked_duplicates")
             shared = len(export_targets.linked_duplicates(context, settings.objects))
             if shared and settings.linked_duplicates == "SHARED":
@@ -68,7 +79,11 @@ class RENDER_PT_bakegi(bpy.types.Panel):
 
         row = layout.row(align=True)
         row.scale_y = 1.4
-        row.operator(operators.BAKEGI_OT_bake_indirect.bl_idname, icon="RENDER_STILL")
+        row.operator(operators.BAKEGI_OT_bake_indirect.bl_idname, icon="RENDER_STILL",
+                     text="Bake Grid" if settings.target == "GRID" else "Bake Indirect")
+        if settings.target == "GRID":
+            row.operator(operators.BAKEGI_OT_apply_grid.bl_idname, icon="LIGHTPROBE_GRID"
+                         if "LIGHTPROBE_GRID" in _ICONS else "LIGHTPROBE_VOLUME")
         row.operator(operators.BAKEGI_OT_remove_bake.bl_idname, icon="TRASH", text="")
 
         box = layout.box()
@@ -77,7 +92,8 @@ class RENDER_PT_bakegi(bpy.types.Panel):
         elif settings.last_result:
             box.label(text="Last: " + settings.last_result, icon="CHECKMARK")
             report = _last_report(settings)
-            for line in report_text.meshless_details(report) + report_text.lightmap_details(report):
+            for line in (report_text.meshless_details(report) + report_text.lightmap_details(report) +
+                         report_text.grid_details(report)):
                 box.label(text=line)
             _draw_error_check(box, report.get("error_check"))
         else:
@@ -134,6 +150,9 @@ def _last_report(settings):
         return {}
     return report if isinstance(report, dict) else {}
 
+
+# Icon names of this Blender (4.1 renamed LIGHTPROBE_GRID to LIGHTPROBE_VOLUME).
+_ICONS = set(bpy.types.UILayout.bl_rna.functions["prop"].parameters["icon"].enum_items.keys())
 
 # Characters per label line before wrapping (a Properties editor of the default width).
 LABEL_WIDTH = 60

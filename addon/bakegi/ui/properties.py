@@ -8,7 +8,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 from .. import compat, native
-from ..request import BakeRequest, LightmapOptions
+from ..request import BakeRequest, GridOptions, LightmapOptions
 from . import preferences
 
 # The methods the panel offers, with their labels. The default is the core's (register() sets
@@ -32,7 +32,19 @@ TARGET_ITEMS = [
     ("POINT", "Vertices", "One value per vertex: smooth across edges, fewer points"),
     ("LIGHTMAP", "Lightmap Textures", "An OpenEXR lightmap atlas on a lightmap UV map: "
      "detail independent of the mesh, for export to game engines and the web"),
+    ("GRID", "Irradiance Grid", "An Irradiance Vector Grid over a box (a .bgivg file next to "
+     "the .blend): Apply Grid then lights any mesh inside it, moved, added or of another "
+     "level of detail, without a new bake"),
 ]
+
+GRID_INTERPOLATION_ITEMS = [
+    ("TRILINEAR", "Trilinear", "The 8 grid vertices around each point (fast)"),
+    ("TRICUBIC", "Tricubic", "A cubic B-spline over 64 grid vertices: smoother, slower"),
+]
+
+
+def _is_grid_box(self, obj):
+    return obj.type in ("EMPTY", "MESH")
 
 LIGHTMAP_UV_METHOD_ITEMS = [
     ("SMART", "Smart UV Project", "Charts split at sharp edges: few seams"),
@@ -156,6 +168,32 @@ class BakeGISettings(bpy.types.PropertyGroup):
         name="Full Float", default=False,
         description="Lightmaps: 32-bit floats instead of half floats (twice the size; half "
         "floats hold light to 0.1%)")
+    grid_object: bpy.props.PointerProperty(
+        name="Grid Box", type=bpy.types.Object, poll=_is_grid_box,
+        description="Grid: the box the grid covers (an Empty's display cube, or a mesh's "
+        "bounding box; Add Grid Box makes one); empty = every visible object")
+    grid_cell_size: FloatProperty(
+        name="Cell Size", default=0.0, min=0.0, soft_max=2.0, unit="LENGTH",
+        description="Grid: about how far apart the grid vertices are; 0 = 32 cells along "
+        "the box's longest side")
+    grid_max_vertices: IntProperty(
+        name="Max Vertices", default=262144, min=8, max=1 << 26,
+        description="Grid: the cells grow until the grid has at most this many vertices "
+        "(217 bytes each while baking)")
+    grid_rays: IntProperty(
+        name="Rays", default=64, min=1, max=65536,
+        description="Grid: rays per vertex and hemisphere (six hemispheres a vertex); more "
+        "is less noise, proportionally slower")
+    grid_quantized: BoolProperty(
+        name="Compress", default=True,
+        description="Grid: store each hemisphere in 7 bytes (a 24-bit direction and a "
+        "shared-exponent colour, as the paper does) instead of 36")
+    grid_folder: StringProperty(
+        name="Folder", default="//bakegi_grids", subtype="DIR_PATH",
+        description="Grid: where the .bgivg file is written (// = next to the .blend)")
+    grid_interpolation: EnumProperty(
+        name="Interpolation", items=GRID_INTERPOLATION_ITEMS, default="TRILINEAR",
+        description="Apply Grid: how the grid is read between its vertices")
     objects: EnumProperty(name="Objects", items=OBJECTS_ITEMS, default="SELECTED",
                           description="Which objects receive the bake (every visible object "
                           "always takes part in the light transport)")
@@ -219,7 +257,18 @@ class BakeGISettings(bpy.types.PropertyGroup):
                            lightmap=self.lightmap_options(),
                            lightmap_folder=self.lightmap_directory(),
                            lightmap_full_float=self.lightmap_float,
-                           linked_duplicates=self.linked_duplicates)
+                           linked_duplicates=self.linked_duplicates,
+                           grid=self.grid_options(), grid_folder=self.grid_directory())
+
+    def grid_options(self):
+        from ..write import grid_file
+        bounds = grid_file.object_bounds(self.grid_object) if self.grid_object else None
+        return GridOptions(bounds=bounds, cell_size=self.grid_cell_size,
+                           max_vertices=self.grid_max_vertices, rays=self.grid_rays,
+                           quantized=self.grid_quantized)
+
+    def grid_directory(self):
+        return grid_directory(self.grid_folder)
 
     def request_samples(self):
         """Samples per point: the fixed count, or a quality target's cap."""
@@ -239,7 +288,7 @@ class BakeGISettings(bpy.types.PropertyGroup):
 
     def live_requested(self):
         return (self.live_indirect and self.resolved_method() == "meshless" and
-                self.target != "LIGHTMAP")
+                self.target not in ("LIGHTMAP", "GRID"))
 
 
 def blend_relative_directory(folder, name):
@@ -254,6 +303,11 @@ def blend_relative_directory(folder, name):
 def lightmap_directory(folder):
     """The lightmap folder as an absolute path."""
     return blend_relative_directory(folder, "bakegi_lightmaps")
+
+
+def grid_directory(folder):
+    """The grid folder as an absolute path."""
+    return blend_relative_directory(folder, "bakegi_grids")
 
 
 # Panel properties that are core settings: (property, method, key). Their default and range

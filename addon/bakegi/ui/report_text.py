@@ -12,6 +12,10 @@ def summary(report):
     used = report.get("method_used")
     if used and used != method:  # the core handed the bake on (setting "fallback")
         method = f"{method} (baked by {used}: see the warnings)"
+    grid = report.get("grid")
+    if isinstance(grid, dict) and "vertex_count" in grid:
+        return (f"{method}: a grid of {grid['vertex_count']:,} vertices in "
+                f"{seconds:.2f} s{rays_text}")
     points = report.get("bake_points", 0)
     evaluated = report.get("evaluated_points")
     # Corners of one vertex in one light are baked once (export/point_sharing.py).
@@ -69,4 +73,17 @@ def lightmap_details(report):
              f"{lm.get('rejected_samples', 0):,} samples inside geometry"]
     if lm.get("path"):
         lines.append(f"File: {lm['path']}")
+    return lines
+
+
+def grid_details(report):
+    """Lines for the panel: the extent, cells and file of a grid bake."""
+    grid = report.get("grid")
+    if not isinstance(grid, dict) or "resolution" not in grid:
+        return []
+    lines = [f"Grid: {grid.get('description', '')}",
+             f"{grid.get('invalid_vertices', 0):,} vertices inside geometry (filled), "
+             f"{grid.get('file_bytes', 0) / 1e6:.2f} MB"]
+    if grid.get("path"):
+        lines.append(f"File: {grid['path']}")
     return lines

@@ -204,6 +204,10 @@ BAKEGI_API bakegi_status bakegi_scene_validate(const bakegi_scene* scene);
 /* Counts, for reports and tests. */
 BAKEGI_API uint64_t bakegi_scene_triangle_count(const bakegi_scene* scene);
 BAKEGI_API uint32_t bakegi_scene_light_count(const bakegi_scene* scene);
+/* The axis-aligned box around every mesh vertex of the scene (what a grid bake covers by
+ * default). BAKEGI_ERROR_INVALID_ARGUMENT for a scene without vertices. */
+BAKEGI_API bakegi_status bakegi_scene_get_bounds(const bakegi_scene* scene, float out_min[3],
+                                                 float out_max[3]);
 
 /* ---- bake points ------------------------------------------------------------------------ */
 

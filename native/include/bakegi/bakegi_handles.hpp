@@ -21,9 +21,14 @@ struct JobDeleter {
   void operator()(bakegi_job* j) const { bakegi_job_destroy(j); }
 };
 
+struct GridDeleter {
+  void operator()(bakegi_grid* g) const { bakegi_grid_destroy(g); }
+};
+
 using SceneHandle = std::unique_ptr<bakegi_scene, SceneDeleter>;
 using PointsHandle = std::unique_ptr<bakegi_points, PointsDeleter>;
 using SettingsHandle = std::unique_ptr<bakegi_settings, SettingsDeleter>;
 using JobHandle = std::unique_ptr<bakegi_job, JobDeleter>;
+using GridHandle = std::unique_ptr<bakegi_grid, GridDeleter>;
 
 }  // namespace bakegi

@@ -238,6 +238,27 @@ uint64_t bakegi_scene_triangle_count(const bakegi_scene* scene) {
   return count;
 }
 
+bakegi_status bakegi_scene_get_bounds(const bakegi_scene* scene, float out_min[3],
+                                      float out_max[3]) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(out_min, "out_min");
+    require(out_max, "out_max");
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+    for (const bakegi::Mesh& mesh : scene->description.meshes) {
+      for (const glm::vec3& p : mesh.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
+    }
+    if (!(lo.x <= hi.x)) throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "the scene has no vertices");
+    for (int a = 0; a < 3; ++a) {
+      out_min[a] = lo[a];
+      out_max[a] = hi[a];
+    }
+  });
+}
+
 uint32_t bakegi_scene_light_count(const bakegi_scene* scene) {
   return scene ? uint32_t(scene->description.lights.size()) : 0;
 }

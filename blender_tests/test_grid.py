@@ -1,0 +1,123 @@
+"""The Irradiance Vector Grid in Blender (issue 16): Bake Grid over a box or the scene,
+Apply Grid on meshes that were not baked (a moved and an added prop), the newest grid found
+by default, the operators, and a refused grid that changes nothing."""
+
+import os
+import shutil
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+import bpy  # noqa: E402
+import numpy  # noqa: E402
+
+import bakegi  # noqa: E402
+
+NAMES = ("Floor", "Ceiling", "BackWall", "LeftWall", "RightWall", "ShortBox", "TallBox")
+WALLS = ("Floor", "Ceiling", "BackWall", "LeftWall", "RightWall")
+
+
+def luminance(rgb):
+    return rgb @ numpy.array([0.2126, 0.7152, 0.0722])
+
+
+class GridCase(common.SmallCornellCase):
+
+    def setUp(self):
+        super().setUp()
+        # The scene object is reused between tests: forget the previous test's grid.
+        bpy.context.scene.pop(bakegi.write.grid_file.GRID_PATH_PROPERTY, None)
+        self.folder = tempfile.mkdtemp(prefix="bakegi_grid_test_")
+        self.addCleanup(shutil.rmtree, self.folder, ignore_errors=True)
+
+    def bake_grid(self, **kwargs):
+        settings = dict(target="GRID", method="pathtrace", grid_cell_size=0.25, grid_rays=32,
+                        grid_folder=self.folder)
+        settings.update(kwargs)
+        return bakegi.bake(**settings)
+
+    def test_grid_lights_the_walls_like_a_bake(self):
+        report = self.bake_grid()
+        grid = report["grid"]
+        self.assertTrue(os.path.isfile(grid["path"]), grid)
+        self.assertEqual(os.path.dirname(grid["path"]), self.folder)
+        self.assertEqual(grid["resolution"], [8, 8, 8])  # the 2 m box in 0.25 m cells
+        self.assertEqual(bpy.context.scene[bakegi.write.grid_file.GRID_PATH_PROPERTY],
+                         grid["path"])
+        # Nothing was written on the meshes by the grid bake itself.
+        self.assertIsNone(self.objects["Floor"].data.color_attributes.get(common.ATTRIBUTE))
+
+        applied = bakegi.apply_grid(list(NAMES))
+        self.assertEqual(applied["path"], grid["path"])
+        self.assertEqual(sorted(applied["objects"]), sorted(NAMES))
+        from_grid = common.read_color_attribute(WALLS)
+        bakegi.bake(method="pathtrace", samples=256, objects=list(NAMES), target="CORNER",
+                    estimate_error=False)
+        baked = common.read_color_attribute(WALLS)
+        y, r = luminance(from_grid), luminance(baked)
+        # The walls' mean light within 10% of the bake, point by point within 35% NRMSE (an
+        # 8^3 grid of 32 rays a hemisphere: the coarse end of the resolution sweep in
+        # docs/ivg.md; the bake has 256 paths a point).
+        self.assertLess(abs(y.mean() / r.mean() - 1.0), 0.10, (y.mean(), r.mean()))
+        nrmse = numpy.sqrt(numpy.mean((y - r) ** 2)) / r.mean()
+        self.assertLess(nrmse, 0.35, nrmse)
+
+    def test_a_moved_and_an_added_prop_are_lit_without_a_bake(self):
+        self.bake_grid(grid_object=None)
+        box = self.objects["ShortBox"]
+        box.location.x += 0.2
+        bpy.ops.mesh.primitive_ico_sphere_add(radius=0.2, location=(-0.4, 0.3, 1.2))
+        sphere = bpy.context.active_object
+        sphere.name = "Prop"
+        report = bakegi.apply_grid(["ShortBox", "Prop"], interpolation="TRICUBIC")
+        self.assertEqual(report["points"], len(box.data.loops) + len(sphere.data.loops))
+        self.assertEqual(report["warnings"], [])
+        lit = luminance(common.read_color_attribute(["Prop"]))
+        self.assertTrue(numpy.all(numpy.isfinite(lit)))
+        self.assertGreater(lit.mean(), 0.0)
+        # The red wall is at -x: the prop's side facing it reflects more red than green.
+        rgb = common.read_color_attribute(["Prop"])
+        normals = numpy.array([sphere.data.vertices[l.vertex_index].normal
+                               for l in sphere.data.loops])
+        facing_red = normals[:, 0] < -0.7
+        self.assertGreater(rgb[facing_red, 0].mean(), rgb[facing_red, 1].mean())
+
+    def test_a_grid_box_sets_the_bounds_and_far_points_are_named(self):
+        bpy.ops.bakegi.add_grid_box()
+        box = bpy.context.scene.bakegi.grid_object
+        self.assertIsNotNone(box)
+        box.scale = (0.5, 0.5, 0.5)
+        box.location = (0.0, 0.0, 1.0)
+        report = self.bake_grid(grid_object=box.name)
+        self.assertAlmostEqual(report["grid"]["bounds_min"][0], -0.5, places=4)
+        self.assertAlmostEqual(report["grid"]["bounds_max"][2], 1.5, places=4)
+        applied = bakegi.apply_grid(["Floor"])
+        self.assertTrue(any("outside the grid" in w for w in applied["warnings"]),
+                        applied["warnings"])
+
+    def test_operators_bake_and_apply(self):
+        settings = bpy.context.scene.bakegi
+        settings.target = "GRID"
+        settings.grid_cell_size = 0.5
+        settings.grid_rays = 8
+        settings.grid_folder = self.folder
+        settings.objects = "VISIBLE"
+        self.assertEqual(bpy.ops.bakegi.bake_indirect(), {"FINISHED"})
+        self.assertIn("grid of", settings.last_result)
+        self.assertEqual(bpy.ops.bakegi.apply_grid(), {"FINISHED"})
+        self.assertIsNotNone(self.objects["TallBox"].data.color_attributes.get(common.ATTRIBUTE))
+
+    def test_refused_grid_changes_nothing(self):
+        with self.assertRaises(bakegi.BakeGIError):
+            self.bake_grid(grid_max_vertices=4)
+        self.assertEqual(os.listdir(self.folder), [])
+        self.assertNotIn(bakegi.write.grid_file.GRID_PATH_PROPERTY, bpy.context.scene)
+        with self.assertRaises(bakegi.BakeGIError):
+            bakegi.apply_grid(["Floor"])  # no grid baked yet
+        self.assertIsNone(self.objects["Floor"].data.color_attributes.get(common.ATTRIBUTE))
+
+
+if __name__ == "__main__":
+    common.run_tests(__name__)
