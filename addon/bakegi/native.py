@@ -190,6 +190,7 @@ _SIGNATURES = {
 }
 
 GRID_INTERPOLATION = {"TRILINEAR": 0, "TRICUBIC": 1}
+GRID_ENCODING = {"FLOAT": 0, "QUANTIZED": 1, "FACTORED": 2}
 
 EXR_COMPRESSION = {"ZIP": 0, "PIZ": 1, "NONE": 2}
 
@@ -786,11 +787,17 @@ class Grid(_Handle):
                "bakegi_grid_evaluate")
         return out
 
-    def write(self, path, quantized=True, info=None):
-        """Writes the .bgivg file atomically; info: a dict stored with it."""
+    def write(self, path, quantized=True, info=None, encoding=None):
+        """Writes the .bgivg file atomically; info: a dict stored with it. encoding (overrides
+        quantized): 'FLOAT' (exact matrices), 'QUANTIZED' (the paper's 7 bytes a hemisphere)
+        or 'FACTORED' (its direction and colour in floats)."""
+        encoding = encoding or ("QUANTIZED" if quantized else "FLOAT")
+        if encoding not in GRID_ENCODING:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"encoding must be one of {tuple(GRID_ENCODING)}, not {encoding!r}")
         text = json.dumps(info).encode("utf-8") if info is not None else None
         _check(load_library().bakegi_grid_write_file(self.handle, os.fsencode(path),
-                                                     1 if quantized else 0, text),
+                                                     GRID_ENCODING[encoding], text),
                "writing the grid")
 
 

@@ -103,7 +103,8 @@ int run_grid_bake(const std::vector<std::string>& words) {
   const std::string info = "{\"method\": \"" + settings.method() +
                            "\", \"settings\": " + settings.to_json() +
                            ", \"seconds\": " + std::to_string(run.wall_seconds) + "}";
-  check(bakegi_grid_write_file(grid.get(), out_path.c_str(), args.has("quantized") ? 1 : 0,
+  check(bakegi_grid_write_file(grid.get(), out_path.c_str(),
+                               args.has("quantized") ? BAKEGI_GRID_QUANTIZED : BAKEGI_GRID_FLOAT,
                                info.c_str()),
         "writing " + out_path);
   if (const auto report_path = args.value("report")) {

@@ -554,13 +554,19 @@ BAKEGI_API bakegi_status bakegi_grid_evaluate(const bakegi_grid* grid, const flo
                                               const float* normals, uint64_t count,
                                               int interpolation, float* out_rgb);
 
-/* The .bgivg file (format in native/src/grid/grid_file.h). quantized: 0 = float matrices (216
- * bytes a vertex), 1 = the paper's quantization (a 24-bit direction and an R9G9B9E5 colour per
- * hemisphere: 42 bytes a vertex). info_json (may be NULL): a JSON object stored with the grid
- * (what made it). Written atomically; BAKEGI_ERROR_IO if it cannot be. */
+typedef enum bakegi_grid_encoding {
+  BAKEGI_GRID_FLOAT = 0,     /* the 3x3 float matrices: exact, 216 bytes a vertex */
+  BAKEGI_GRID_QUANTIZED = 1, /* the paper's compression (a direction and a colour per
+                              * hemisphere) quantized to 24 bits + R9G9B9E5: 42 bytes a vertex */
+  BAKEGI_GRID_FACTORED = 2   /* the same direction and colour in floats: 144 bytes a vertex */
+} bakegi_grid_encoding;
+
+/* The .bgivg file (format in native/src/grid/grid_file.h). encoding: a bakegi_grid_encoding
+ * value. info_json (may be NULL: the grid's own, "{}" unless read from a file): a JSON object
+ * stored with the grid (what made it). Written atomically; BAKEGI_ERROR_IO if it cannot be. */
 BAKEGI_API bakegi_status bakegi_grid_write_file(const bakegi_grid* grid, const char* path,
-                                                int quantized, const char* info_json);
-/* Reads a .bgivg file (a quantized one comes back dequantized). BAKEGI_ERROR_IO if unreadable,
+                                                int encoding, const char* info_json);
+/* Reads a .bgivg file (a quantized or factored one comes back expanded to matrices). BAKEGI_ERROR_IO if unreadable,
  * BAKEGI_ERROR_BAD_FILE naming what is wrong. */
 BAKEGI_API bakegi_status bakegi_grid_read_file(const char* path, bakegi_grid** out_grid);
 /* The JSON stored with a grid read from a file ("{}" otherwise), like bakegi_job_get_report:

@@ -136,17 +136,17 @@ bakegi_status bakegi_grid_evaluate(const bakegi_grid* grid, const float* positio
   });
 }
 
-bakegi_status bakegi_grid_write_file(const bakegi_grid* grid, const char* path, int quantized,
+bakegi_status bakegi_grid_write_file(const bakegi_grid* grid, const char* path, int encoding,
                                      const char* info_json) {
   return guarded(__func__, [&] {
     const bakegi::IrradianceVectorGrid& g = grid_of(grid);
     require(path, "path");
-    if (quantized != 0 && quantized != 1) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "quantized must be 0 or 1");
+    if (encoding != BAKEGI_GRID_FLOAT && encoding != BAKEGI_GRID_QUANTIZED &&
+        encoding != BAKEGI_GRID_FACTORED) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "unknown encoding " + std::to_string(encoding));
     }
     const std::vector<uint8_t> bytes = bakegi::encode_grid_file(
-        g, quantized ? bakegi::GridEncoding::kQuantized : bakegi::GridEncoding::kFloat,
-        info_json ? std::string(info_json) : grid->info_json);
+        g, bakegi::GridEncoding(encoding), info_json ? std::string(info_json) : grid->info_json);
     bakegi::write_file_atomically(bakegi::utf8_path(path), bytes);
   });
 }

@@ -25,13 +25,17 @@ std::vector<uint8_t> encode_grid_file(const IrradianceVectorGrid& grid, GridEnco
   for (uint32_t r : layout.resolution) w.u32(r);
   w.u32(uint32_t(encoding));
   const size_t count = grid.vertex_count();
-  w.bytes.reserve(w.bytes.size() + count * (1 + kGridHemispheres * kFloatHemisphereBytes));
+  w.bytes.reserve(w.bytes.size() + count * (1 + kGridHemispheres * hemisphere_bytes_of(encoding)));
   for (size_t v = 0; v < count; ++v) w.u8(grid.valid[v] ? 1 : 0);
   for (size_t v = 0; v < count; ++v) {
     for (int h = 0; h < kGridHemispheres; ++h) {
       const glm::mat3& m = grid.at(v, h);
       if (encoding == GridEncoding::kFloat) {
         for (int c = 0; c < 3; ++c) w.vec3(m[c]);
+      } else if (encoding == GridEncoding::kFactored) {
+        const FactoredHemisphere f = factor_hemisphere(m, h);
+        w.vec3(f.direction);
+        w.vec3(f.color);
       } else {
         const QuantizedHemisphere q = quantize_hemisphere(m, h);
         w.u8(q.direction.x);
@@ -61,13 +65,12 @@ GridFile decode_grid_file(std::span<const uint8_t> bytes, const std::string& nam
   }
   // make_grid_layout may widen a flat axis; a file stores the widened bounds already.
   const uint32_t encoding = r.u32();
-  if (encoding > uint32_t(GridEncoding::kQuantized)) {
+  if (encoding > uint32_t(GridEncoding::kFactored)) {
     r.fail("unknown encoding " + std::to_string(encoding));
   }
   file.encoding = GridEncoding(encoding);
   const size_t count = layout.vertex_count();
-  const size_t hemisphere_bytes =
-      file.encoding == GridEncoding::kFloat ? kFloatHemisphereBytes : kQuantizedHemisphereBytes;
+  const size_t hemisphere_bytes = hemisphere_bytes_of(file.encoding);
   // Check the sizes before allocating the grid.
   r.need(count, 1 + kGridHemispheres * hemisphere_bytes, "grid vertices");
   file.grid = IrradianceVectorGrid(layout);
@@ -89,6 +92,14 @@ GridFile decode_grid_file(std::span<const uint8_t> bytes, const std::string& nam
             }
           }
         }
+      } else if (file.encoding == GridEncoding::kFactored) {
+        const glm::vec3 direction = r.vec3(), color = r.vec3();
+        for (int a = 0; a < 3; ++a) {
+          if (!std::isfinite(direction[a]) || !std::isfinite(color[a])) {
+            r.fail("corrupt: a non-finite value at vertex " + std::to_string(v));
+          }
+        }
+        m = expand_hemisphere(direction, color);
       } else {
         QuantizedHemisphere q;
         q.direction.x = r.u8();

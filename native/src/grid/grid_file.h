@@ -5,6 +5,8 @@
 //   u32 encoding        0 = float: 6 hemispheres x 3x3 f32 per vertex (column per channel)
 //                       1 = quantized (§3.3): per hemisphere u8 direction[3] then u32
 //                           R9G9B9E5 colour, 7 bytes
+//                       2 = factored (§3.3 without quantization): per hemisphere f32
+//                           direction[3] then f32 colour[3], 24 bytes
 //   u8  valid[vertex count]   1 = gathered, 0 = filled by push-pull (inside geometry)
 //   the hemispheres, vertex by vertex (x fastest, then y, then z), +x -x +y -y +z -z
 //   u32 length, UTF-8 JSON: what made the grid (method, rays, seconds), for people
@@ -20,18 +22,20 @@
 
 namespace bakegi {
 
-enum class GridEncoding : uint32_t { kFloat = 0, kQuantized = 1 };
+// The values of bakegi_grid_encoding (bakegi.h).
+enum class GridEncoding : uint32_t { kFloat = 0, kQuantized = 1, kFactored = 2 };
 
 // Bytes per hemisphere in each encoding.
-inline constexpr size_t kFloatHemisphereBytes = 36;
-inline constexpr size_t kQuantizedHemisphereBytes = 7;
+inline constexpr size_t hemisphere_bytes_of(GridEncoding encoding) {
+  return encoding == GridEncoding::kFloat ? 36 : encoding == GridEncoding::kQuantized ? 7 : 24;
+}
 
 std::vector<uint8_t> encode_grid_file(const IrradianceVectorGrid& grid, GridEncoding encoding,
                                       const std::string& info_json);
 
 struct GridFile {
-  IrradianceVectorGrid grid;  // quantized grids come back dequantized
-  GridEncoding encoding = GridEncoding::kFloat;
+  IrradianceVectorGrid grid;
+  GridEncoding encoding = GridEncoding::kFloat;  // quantized and factored are expanded
   std::string info_json;
 };
 
