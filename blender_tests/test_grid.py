@@ -49,7 +49,17 @@ class GridCase(common.SmallCornellCase):
         # Nothing was written on the meshes by the grid bake itself.
         self.assertIsNone(self.objects["Floor"].data.color_attributes.get(common.ATTRIBUTE))
 
+        # Without the buried points' check the floor under the boxes gets the grid's light;
+        # with it (the default) none, as in a bake.
+        bare = bakegi.apply_grid(list(NAMES), darken_buried=False)
+        self.assertEqual(bare["buried_points"], 0)
+        floor_bare = luminance(common.read_color_attribute(["Floor"]))
         applied = bakegi.apply_grid(list(NAMES))
+        self.assertGreater(applied["buried_points"], 0)
+        floor = luminance(common.read_color_attribute(["Floor"]))
+        dark = floor == 0.0
+        self.assertEqual(int(dark.sum()), applied["buried_points"])  # all buried on the floor
+        self.assertTrue(numpy.all(floor_bare[dark] > 0.0))
         self.assertEqual(applied["path"], grid["path"])
         self.assertEqual(sorted(applied["objects"]), sorted(NAMES))
         from_grid = common.read_color_attribute(WALLS)

@@ -20,8 +20,10 @@ Steps, driven by an application timer (the window keeps drawing in between):
 Screenshots are saved in $BAKEGI_TEST_OUTPUT for the docs.
 """
 
+import json
 import os
 import sys
+import tempfile
 import time
 import traceback
 
@@ -269,6 +271,7 @@ class UiTest:
 
         yield from self.live_indirect(scene, objects)
         yield from self.lightmap(scene, objects, before, predicted, positions)
+        yield from self.grid(scene, before, predicted, positions)
         os.remove(os.path.join(self.output, "_probe.png"))
 
     def lightmap(self, scene, objects, before, predicted, positions):
@@ -305,6 +308,40 @@ class UiTest:
             failures.append(f"with the lightmap the ceiling rose by {increase:.4f}, predicted "
                             f"{predicted:.4f}")
         self.record("test_ui.lightmap_shows_in_material_preview", started, failures)
+
+    def grid(self, scene, before, predicted, positions):
+        """Bake Grid from the window (Target: Irradiance Grid), then Apply Grid: Material
+        Preview must show the grid's light on the room, raising the ceiling by about what the
+        bake predicts, as the attribute and lightmap bakes do."""
+        started = time.perf_counter()
+        failures = []
+        with self.override():
+            bpy.ops.bakegi.remove_bake()  # the lightmap and its hook go first
+        settings = scene.bakegi
+        settings.method = "pathtrace"
+        settings.target = "GRID"
+        settings.grid_cell_size = 0.125
+        settings.grid_rays = 32
+        settings.grid_folder = tempfile.mkdtemp(prefix="bakegi_ui_grid_")
+        settings.objects = "VISIBLE"
+        yield from self.bake_from_window(failures)
+        from bakegi.ui import report_text
+        if not report_text.grid_details(json.loads(settings.last_report or "{}")):
+            failures.append(f"the panel has no grid to show after Bake Grid: {settings.last_result}")
+        with self.override():
+            result = bpy.ops.bakegi.apply_grid()
+        if result != {"FINISHED"}:
+            failures.append(f"Apply Grid returned {result}")
+        yield from self.wait_for_viewport()
+        pixels = self.screenshot("ui_grid.png")
+        after, _ = self.mean_linear(pixels, positions)
+        increase = after - before
+        print(f"ui: grid, ceiling luminance {after:.4f} (before any bake {before:.4f}), "
+              f"predicted increase {predicted:.4f}; {settings.last_result}")
+        if not 0.5 * predicted <= increase <= 2.0 * predicted:
+            failures.append(f"with the grid the ceiling rose by {increase:.4f}, predicted "
+                            f"{predicted:.4f}")
+        self.record("test_ui.grid_shows_in_material_preview", started, failures)
 
     def live_indirect(self, scene, objects):
         """Live indirect from the window: a meshless bake with the toggle on, then a light

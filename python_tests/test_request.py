@@ -3,7 +3,7 @@
 import pytest
 
 from bakegi.native import BakeGIError
-from bakegi.request import BakeRequest, LightmapOptions
+from bakegi.request import BakeRequest, GridOptions, LightmapOptions
 
 
 def test_the_defaults_are_a_valid_request(native):
@@ -40,6 +40,17 @@ def test_the_methods_are_the_cores(native):
     ({"linked_duplicates": "COPY"}, "linked_duplicates must be one of"),
     ({"target": "LIGHTMAP"}, "needs a folder"),
     ({"method_settings": [("bins", 300)]}, "method_settings must be a dict"),
+    ({"target": "GRID"}, "a grid bake needs a folder"),
+    ({"target": "GRID", "grid_folder": "/tmp", "live": True, "method": "meshless"},
+     "a grid is applied with Apply Grid"),
+    ({"target": "GRID", "grid_folder": "/tmp", "grid": GridOptions(cell_size=-1.0)},
+     "grid_cell_size must be a number >= 0"),
+    ({"target": "GRID", "grid_folder": "/tmp", "grid": GridOptions(rays=0)},
+     r"grid_rays must be an integer in \[1, 65536\]"),
+    ({"target": "GRID", "grid_folder": "/tmp", "grid": GridOptions(max_vertices=2.5)},
+     "grid_max_vertices must be an integer"),
+    ({"target": "GRID", "grid_folder": "/tmp",
+      "grid": GridOptions(bounds=((0, 0, 0), (1, -1, 1)))}, "grid bounds must be"),
 ])
 def test_a_refused_choice_is_named(native, changes, message):
     with pytest.raises(BakeGIError, match=message) as caught:
@@ -59,3 +70,10 @@ def test_lightmap_options_default_to_the_panels():
     options = LightmapOptions()
     assert (options.uv_map, options.texels_per_meter, options.max_side, options.padding) == \
         ("BakeGI", 40.0, 1024, 4)
+
+
+def test_a_grid_request_is_valid_with_a_folder():
+    request = BakeRequest(target="GRID", grid_folder="/tmp",
+                          grid=GridOptions(bounds=((0, 0, 0), (1, 2, 3)), cell_size=0.1))
+    request.validate()
+    assert request.grid.rays == 64 and request.grid.quantized

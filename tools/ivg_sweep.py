@@ -16,8 +16,10 @@ another object, e.g. the floor under the Cornell boxes, which the reference sees
 the reference's own noise; the bake's seconds and rays; the file bytes of both encodings;
 the quantized grid's difference from the float one in CIELAB (mean Delta E 1976 of the
 lit points' colours, white = the brightest float value, as a percentage of L's range 100:
-the paper's measure, 0.008% on its scene) and in NRMSE; and Apply Grid's time on the full
-scene's bake points and on 100,000 random points.
+the paper's measure, 0.008% on its scene) and in NRMSE; Apply Grid's time on the full
+scene's bake points and on 100,000 random points; and the figures again with the points
+inside or under geometry at 0 (bakegi.apply_grid's darken_buried), and as Apply Grid reads
+it by default: each point from the grid vertices it sees (grid_visibility.h).
 """
 
 import argparse
@@ -109,6 +111,7 @@ def run_scene(work, name, cells_list, rays, method, threads):
     _, subset = native.Scene.read(os.path.join(folder, "subset.bgs"))
     reference, noise = reference_of(folder)
     positions, normals, _ = subset.get()
+    buried = subset.flag_inside(scene)
     full_positions, full_normals, _ = all_points.get()
     bounds = scene.bounds()
     rng = numpy.random.default_rng(0)
@@ -123,6 +126,25 @@ def run_scene(work, name, cells_list, rays, method, threads):
         for interpolation in ("TRILINEAR", "TRICUBIC"):
             values = grid.evaluate(positions, normals, interpolation).astype(numpy.float64)
             row[interpolation.lower()] = figures(values, reference, noise)
+            # As Apply Grid's darken_buried leaves them: points inside geometry at 0.
+            values[buried] = 0.0
+            row[interpolation.lower() + "_buried_dark"] = figures(values, reference, noise)
+        row["buried_points"] = int(buried.sum())
+        # The |n| directional weights instead of the paper's n^2 (grid_interpolation.h).
+        values = grid.evaluate(positions, normals, "TRILINEAR", "ABSOLUTE").astype(numpy.float64)
+        row["trilinear_absolute"] = figures(values, reference, noise)
+        values[buried] = 0.0
+        row["trilinear_absolute_buried_dark"] = figures(values, reference, noise)
+        # Where the scene is known (Apply Grid's default): each point reads the vertices it
+        # sees, buried points 0 (grid_visibility.h).
+        for directional in ("SQUARED", "ABSOLUTE"):
+            start = time.perf_counter()
+            values, codes = grid.evaluate_in_scene(scene, positions, normals, "TRILINEAR",
+                                                   directional)
+            key = "visibility" + ("_absolute" if directional == "ABSOLUTE" else "")
+            row[key] = figures(values.astype(numpy.float64), reference, noise)
+            row[key]["unsure_points"] = int(numpy.count_nonzero(codes == 1))
+            row[key]["seconds"] = time.perf_counter() - start
         f_values = grid.evaluate(positions, normals).astype(numpy.float64)
         lit = metrics.luminance(reference) > 0.01 * numpy.mean(metrics.luminance(reference))
         row["file_bytes"] = {}
@@ -136,11 +158,11 @@ def run_scene(work, name, cells_list, rays, method, threads):
                     encoded[encoding] = read.evaluate(positions, normals).astype(numpy.float64)
         # The paper's compression in two steps: the factorization (FACTORED against the exact
         # matrices), then the quantization (QUANTIZED against FACTORED); and both.
-        for name, values, base in (("factored", encoded["FACTORED"], f_values),
+        for step, values, base in (("factored", encoded["FACTORED"], f_values),
                                    ("quantized_against_factored", encoded["QUANTIZED"],
                                     encoded["FACTORED"]),
                                    ("quantized", encoded["QUANTIZED"], f_values)):
-            row[name] = {"lab_difference_percent": lab_difference_percent(values[lit], base[lit]),
+            row[step] = {"lab_difference_percent": lab_difference_percent(values[lit], base[lit]),
                          "nrmse_against_base": metrics.nrmse(values, base),
                          "against_reference": figures(values, reference, noise)}
         row["apply_seconds"] = {

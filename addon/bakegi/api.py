@@ -128,15 +128,23 @@ def _grid_bounds(context, grid_object):
 
 
 def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
-               hook_materials=True, context=None):
+               hook_materials=True, visibility=True, darken_buried=True, directional="ABSOLUTE",
+               context=None):
     """Writes BakeGI_Indirect on `objects` ('SELECTED', 'VISIBLE', or a list of objects or
     names) from a baked grid: the grid's indirect light at their face corners (target
     'CORNER') or vertices ('POINT'), as they stand now (moved, added, decimated or
     subdivided meshes all work; no bake runs). path None: the scene's newest grid (the last
-    GRID bake's file). interpolation 'TRILINEAR' or 'TRICUBIC'. hook_materials: Material
-    Preview shows the result as after a bake. Returns a report: objects, points, seconds
-    (read, evaluate, write, total), the grid's info, warnings. Raises BakeGIError with
-    nothing changed when the grid cannot be read."""
+    GRID bake's file). interpolation 'TRILINEAR' or 'TRICUBIC'. directional: 'ABSOLUTE' (|n|
+    weights between the axis hemispheres: exact under uniform light for any normal; never a
+    higher error than the paper's on the scenes measured, docs/ivg.md) or 'SQUARED' (the paper's
+    n^2). hook_materials: Material
+    Preview shows the result as after a bake. visibility: each point reads only the grid
+    vertices it sees (a ray to each), so light does not leak through walls thinner than a
+    cell; darken_buried: points inside or under other geometry (a floor under a box) read 0,
+    as in a bake. Either exports the visible scene and traces rays (8 a point, and 32 for
+    the buried test); both False: the paper's reading, fastest. Returns a report: objects,
+    points, buried_points, unsure_points, seconds (read, evaluate, write, total), the
+    grid's info, warnings. Raises BakeGIError with nothing changed when the grid cannot be read."""
     context = _context(context)
     if path is None:
         path = context.scene.get(grid_file.GRID_PATH_PROPERTY)
@@ -154,8 +162,16 @@ def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                           "nothing to light: " + ("; ".join(skipped) or "no mesh object given"))
     depsgraph = context.evaluated_depsgraph_get()
-    report = grid_file.apply_grid(context.blend_data, depsgraph, targets,
-                                  bpy.path.abspath(path), interpolation, target, hook_materials)
+    exported = (export_scene_module.export_scene(context, "GRID", depsgraph=depsgraph)
+                if visibility or darken_buried else None)
+    try:
+        report = grid_file.apply_grid(context.blend_data, depsgraph, targets,
+                                      bpy.path.abspath(path), interpolation, target,
+                                      hook_materials, exported.scene if exported else None,
+                                      directional, visibility, darken_buried)
+    finally:
+        if exported is not None:
+            exported.close()
     report["warnings"] = report["warnings"] + list(skipped)
     return report
 

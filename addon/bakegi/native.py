@@ -177,19 +177,25 @@ _SIGNATURES = {
     "bakegi_lightmaps_write_file": (c_int, [_P, c_char_p]),
     "bakegi_lightmaps_read_file": (c_int, [c_char_p, _PP]),
     "bakegi_scene_get_bounds": (c_int, [_P, POINTER(c_float), POINTER(c_float)]),
+    "bakegi_points_flag_inside": (c_int, [_P, _P, c_uint32, c_float, c_float,
+                                          POINTER(ctypes.c_uint8)]),
     "bakegi_grid_create": (c_int, [POINTER(c_float), POINTER(c_float), c_float, c_uint64, _PP]),
     "bakegi_grid_destroy": (None, [_P]),
     "bakegi_grid_get_info": (c_int, [_P, _P]),
     "bakegi_job_start_grid": (c_int, [_P, _P, c_uint32, _P, _PP]),
     "bakegi_job_get_grid": (c_int, [_P, _PP]),
     "bakegi_grid_evaluate": (c_int, [_P, POINTER(c_float), POINTER(c_float), c_uint64, c_int,
-                                     POINTER(c_float)]),
+                                     c_int, POINTER(c_float)]),
+    "bakegi_grid_evaluate_in_scene": (c_int, [_P, _P, POINTER(c_float), POINTER(c_float),
+                                              c_uint64, c_int, c_int, c_uint32,
+                                              POINTER(c_float), POINTER(ctypes.c_uint8)]),
     "bakegi_grid_write_file": (c_int, [_P, c_char_p, c_int, c_char_p]),
     "bakegi_grid_read_file": (c_int, [c_char_p, _PP]),
     "bakegi_grid_get_info_json": (c_int, [_P, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
 }
 
 GRID_INTERPOLATION = {"TRILINEAR": 0, "TRICUBIC": 1}
+GRID_DIRECTIONAL = {"SQUARED": 0, "ABSOLUTE": 1}
 GRID_ENCODING = {"FLOAT": 0, "QUANTIZED": 1, "FACTORED": 2}
 
 EXR_COMPRESSION = {"ZIP": 0, "PIZ": 1, "NONE": 2}
@@ -566,6 +572,15 @@ class Points(_Handle):
                "bakegi_points_get")
         return p, nn, ids
 
+    def flag_inside(self, scene, rays=0, backface_fraction=0.0, max_distance=0.0):
+        """(n,) bool: the points inside or under geometry of `scene` (their rays meet back
+        faces; bakegi_points_flag_inside)."""
+        flags = np.zeros(len(self), np.uint8)
+        _check(load_library().bakegi_points_flag_inside(
+            self.handle, scene.handle, int(rays), float(backface_fraction), float(max_distance),
+            flags.ctypes.data_as(POINTER(ctypes.c_uint8))), "bakegi_points_flag_inside")
+        return flags.astype(bool)
+
     def set_share_candidates(self, candidates):
         """Per point, an earlier point (or itself) at the same place with the same normal
         whose value it may share; the core checks each pair before it shares
@@ -770,12 +785,10 @@ class Grid(_Handle):
             return {}
         return value if isinstance(value, dict) else {}
 
-    def evaluate(self, positions, normals, interpolation="TRILINEAR"):
-        """(n, 3) float32 indirect light at the points (the bake's output convention)."""
-        if interpolation not in GRID_INTERPOLATION:
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                              f"interpolation must be one of {tuple(GRID_INTERPOLATION)}, not "
-                              f"{interpolation!r}")
+    def evaluate(self, positions, normals, interpolation="TRILINEAR", directional="SQUARED"):
+        """(n, 3) float32 indirect light at the points (the bake's output convention).
+        directional: 'SQUARED' (the paper's n^2 weights) or 'ABSOLUTE' (|n|; docs/ivg.md)."""
+        self._check_lookup(interpolation, directional)
         p = _floats(positions, 3, "positions")
         n = _floats(normals, 3, "normals")
         if len(p) != len(n):
@@ -783,9 +796,41 @@ class Grid(_Handle):
                               f"{len(p)} positions but {len(n)} normals")
         out = np.empty((len(p), 3), np.float32)
         _check(load_library().bakegi_grid_evaluate(self.handle, _fptr(p), _fptr(n), len(p),
-                                                   GRID_INTERPOLATION[interpolation], _fptr(out)),
+                                                   GRID_INTERPOLATION[interpolation],
+                                                   GRID_DIRECTIONAL[directional], _fptr(out)),
                "bakegi_grid_evaluate")
         return out
+
+    def evaluate_in_scene(self, scene, positions, normals, interpolation="TRILINEAR",
+                          directional="SQUARED", visibility=True, darken_buried=True):
+        """evaluate() where `scene` is known: each point reads only the grid vertices it sees
+        (visibility) and points inside or under geometry read 0 (darken_buried). Returns
+        ((n, 3) float32, (n,) uint8 codes: 0 read, 1 unsure (saw no vertex), 2 buried)."""
+        self._check_lookup(interpolation, directional)
+        p = _floats(positions, 3, "positions")
+        n = _floats(normals, 3, "normals")
+        if len(p) != len(n):
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"{len(p)} positions but {len(n)} normals")
+        out = np.empty((len(p), 3), np.float32)
+        codes = np.zeros(len(p), np.uint8)
+        flags = (1 if visibility else 0) | (2 if darken_buried else 0)
+        _check(load_library().bakegi_grid_evaluate_in_scene(
+            self.handle, scene.handle, _fptr(p), _fptr(n), len(p),
+            GRID_INTERPOLATION[interpolation], GRID_DIRECTIONAL[directional], flags, _fptr(out),
+            codes.ctypes.data_as(POINTER(ctypes.c_uint8))), "bakegi_grid_evaluate_in_scene")
+        return out, codes
+
+    @staticmethod
+    def _check_lookup(interpolation, directional):
+        if interpolation not in GRID_INTERPOLATION:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"interpolation must be one of {tuple(GRID_INTERPOLATION)}, not "
+                              f"{interpolation!r}")
+        if directional not in GRID_DIRECTIONAL:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"directional must be one of {tuple(GRID_DIRECTIONAL)}, not "
+                              f"{directional!r}")
 
     def write(self, path, quantized=True, info=None, encoding=None):
         """Writes the .bgivg file atomically; info: a dict stored with it. encoding (overrides

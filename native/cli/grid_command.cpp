@@ -1,7 +1,7 @@
 // bakegi grid bake|apply|info: Irradiance Vector Grids from the command line (docs/ivg.md).
 //   grid bake scene.bgs --out grid.bgivg [--cell S] [--max-vertices N] [--rays R]
 //             [--bounds x0,y0,z0,x1,y1,z1] [--quantized] [--report r.json] [settings]
-//   grid apply grid.bgivg scene.bgs --out values.npy [--tricubic] [--repeat R]
+//   grid apply grid.bgivg scene.bgs --out values.npy [--tricubic] [--absolute] [--repeat R]
 //   grid info grid.bgivg
 #include <algorithm>
 #include <chrono>
@@ -124,7 +124,7 @@ int run_grid_bake(const std::vector<std::string>& words) {
 }
 
 int run_grid_apply(const std::vector<std::string>& words) {
-  const Arguments args(words, {{"out"}, {"tricubic", false}, {"repeat"}});
+  const Arguments args(words, {{"out"}, {"tricubic", false}, {"absolute", false}, {"repeat"}});
   if (args.positional().size() != 2) throw UsageError("grid apply expects a grid and a scene file");
   const std::string out_path = args.require("out");
   check_output_folder(out_path);
@@ -136,19 +136,23 @@ int run_grid_apply(const std::vector<std::string>& words) {
   check(bakegi_points_get(file.points.get(), positions.data(), normals.data(), nullptr),
         "reading the bake points");
   const int interpolation = args.has("tricubic") ? BAKEGI_GRID_TRICUBIC : BAKEGI_GRID_TRILINEAR;
+  const int directional = args.has("absolute") ? BAKEGI_GRID_ABSOLUTE : BAKEGI_GRID_SQUARED;
   double fastest = std::numeric_limits<double>::infinity();
   for (int64_t r = 0; r < repeat; ++r) {
     const auto start = std::chrono::steady_clock::now();
     check(bakegi_grid_evaluate(grid.get(), positions.data(), normals.data(), count, interpolation,
-                               values.data()),
+                               directional, values.data()),
           "evaluating the grid");
     fastest = std::min(
         fastest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   write_npy_float32(out_path, values.data(), {count, 3});
-  std::printf("{\"points\": %llu, \"seconds\": %.6f, \"interpolation\": \"%s\"}\n",
-              static_cast<unsigned long long>(count), fastest,
-              interpolation == BAKEGI_GRID_TRICUBIC ? "tricubic" : "trilinear");
+  std::printf(
+      "{\"points\": %llu, \"seconds\": %.6f, \"interpolation\": \"%s\", \"directional\": "
+      "\"%s\"}\n",
+      static_cast<unsigned long long>(count), fastest,
+      interpolation == BAKEGI_GRID_TRICUBIC ? "tricubic" : "trilinear",
+      directional == BAKEGI_GRID_ABSOLUTE ? "absolute" : "squared");
   return kExitOk;
 }
 

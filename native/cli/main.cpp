@@ -62,9 +62,10 @@ commands:
       about S metres (default: 32 on the longest axis), at most N vertices (default 64^3),
       R rays per vertex hemisphere (default 64); --quantized stores 24-bit directions and
       R9G9B9E5 colours (docs/ivg.md). Prints the report (JSON) on stdout.
-  grid apply grid.bgivg scene.bgs --out values.npy [--tricubic] [--repeat R]
+  grid apply grid.bgivg scene.bgs --out values.npy [--tricubic] [--absolute] [--repeat R]
       Lights the scene file's bake points from the grid (no bake) and prints the seconds
-      (the fastest of R runs) and points as JSON.
+      (the fastest of R runs) and points as JSON. --absolute: |n| directional weights
+      instead of the paper's n^2 (docs/ivg.md).
   grid info grid.bgivg
       Bounds, resolution, vertices inside geometry and what made the grid.
   settings [METHOD] [--markdown | --json]

@@ -109,9 +109,14 @@ TEST(GridGather, FurnaceGivesTheClosedForm) {
       evaluate_grid(g.grid, {0.1f, -0.2f, 0.3f}, {0, 0, -1}, GridInterpolation::kTrilinear);
   const glm::vec3 diagonal =
       evaluate_grid(g.grid, {0.1f, -0.2f, 0.3f}, {1, 1, 0}, GridInterpolation::kTricubic);
+  // |n| weights: exact under uniform light whatever the normal.
+  const glm::vec3 absolute =
+      evaluate_grid(g.grid, {0.1f, -0.2f, 0.3f}, {1, -1, 1}, GridInterpolation::kTrilinear,
+                    GridDirectionalWeights::kAbsolute);
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(axis_value[c], expected[c], 0.03f * expected[c]) << c;
     EXPECT_NEAR(diagonal[c], expected[c] / std::sqrt(2.0f), 0.03f * expected[c]) << c;
+    EXPECT_NEAR(absolute[c], expected[c], 0.03f * expected[c]) << c;
   }
   std::printf("furnace grid: expected %.4f %.4f %.4f, on an axis %.4f %.4f %.4f\n", expected.x,
               expected.y, expected.z, axis_value.x, axis_value.y, axis_value.z);

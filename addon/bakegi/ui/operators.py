@@ -314,7 +314,10 @@ class BAKEGI_OT_apply_grid(bpy.types.Operator):
         settings = context.scene.bakegi
         try:
             report = api.apply_grid(settings.objects, interpolation=settings.grid_interpolation,
-                                    hook_materials=settings.hook_materials, context=context)
+                                    hook_materials=settings.hook_materials,
+                                    visibility=settings.grid_visibility,
+                                    darken_buried=settings.grid_darken_buried,
+                                    directional=settings.grid_directional, context=context)
         except BakeGIError as error:
             self.report({"ERROR"}, error.message)
             return {"CANCELLED"}

@@ -67,6 +67,9 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             sub.prop(settings, "grid_quantized")
             sub.prop(settings, "grid_folder")
             sub.prop(settings, "grid_interpolation")
+            sub.prop(settings, "grid_directional")
+            sub.prop(settings, "grid_visibility")
+            sub.prop(settings, "grid_darken_buried")
         col.prop(settings, "objects")
         if settings.target not in ("LIGHTMAP", "GRID"):
             col.prop(settings, "linked_duplicates")
@@ -92,8 +95,9 @@ class RENDER_PT_bakegi(bpy.types.Panel):
         elif settings.last_result:
             box.label(text="Last: " + settings.last_result, icon="CHECKMARK")
             report = _last_report(settings)
-            for line in (report_text.meshless_details(report) + report_text.lightmap_details(report) +
-                         report_text.grid_details(report)):
+            lines = (report_text.meshless_details(report) +
+                     report_text.lightmap_details(report) + report_text.grid_details(report))
+            for line in lines:
                 box.label(text=line)
             _draw_error_check(box, report.get("error_check"))
         else:

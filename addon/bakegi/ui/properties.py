@@ -37,6 +37,13 @@ TARGET_ITEMS = [
      "level of detail, without a new bake"),
 ]
 
+GRID_DIRECTIONAL_ITEMS = [
+    ("ABSOLUTE", "Uniform-Exact (|n|)", "Weights |n| per axis: exact along the axes and under "
+     "evenly spread light for any normal; never worse than the paper's on the scenes measured"),
+    ("SQUARED", "Paper (n\u00b2)", "Pacanowski et al.'s weights: exact for normals along the "
+     "axes, darker between them"),
+]
+
 GRID_INTERPOLATION_ITEMS = [
     ("TRILINEAR", "Trilinear", "The 8 grid vertices around each point (fast)"),
     ("TRICUBIC", "Tricubic", "A cubic B-spline over 64 grid vertices: smoother, slower"),
@@ -194,6 +201,19 @@ class BakeGISettings(bpy.types.PropertyGroup):
     grid_interpolation: EnumProperty(
         name="Interpolation", items=GRID_INTERPOLATION_ITEMS, default="TRILINEAR",
         description="Apply Grid: how the grid is read between its vertices")
+    grid_directional: EnumProperty(
+        name="Directional", items=GRID_DIRECTIONAL_ITEMS, default="ABSOLUTE",
+        description="Apply Grid: how the six hemispheres are blended for a normal between "
+        "the axes")
+    grid_visibility: BoolProperty(
+        name="Visibility", default=True,
+        description="Apply Grid: each point reads only the grid vertices it sees, so light "
+        "does not leak through walls thinner than a cell (a ray to each vertex)")
+    grid_darken_buried: BoolProperty(
+        name="Darken Buried", default=True,
+        description="Apply Grid: points inside or under other geometry (a floor under a box) "
+        "get no light, as in a bake; the grid alone cannot know them. Costs an export of the "
+        "scene and a few rays a point")
     objects: EnumProperty(name="Objects", items=OBJECTS_ITEMS, default="SELECTED",
                           description="Which objects receive the bake (every visible object "
                           "always takes part in the light transport)")

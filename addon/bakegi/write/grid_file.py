@@ -48,11 +48,16 @@ def describe(info):
 
 
 def apply_grid(data, depsgraph, objects, path, interpolation="TRILINEAR", domain="CORNER",
-               hook_materials=True):
+               hook_materials=True, scene=None, directional="ABSOLUTE", visibility=True,
+               darken_buried=True):
     """Writes BakeGI_Indirect on `objects` (mesh objects) from the grid file at `path`: the
     grid's light at each face corner (or vertex), in world space as the objects stand now.
     Everything is read and evaluated before anything is written; hook_materials: their
-    materials show it in Material Preview as after a bake. Returns a report dict."""
+    materials show it in Material Preview as after a bake. scene (a native.Scene of the
+    visible objects as they stand): each point reads only the grid vertices it sees
+    (visibility: no light through walls thinner than a cell), and points buried inside or
+    under geometry (a floor under a box) read 0 (darken_buried), as a bake sees them; None:
+    the grid's light as the paper reads it. Returns a report dict."""
     start = time.perf_counter()
     with native.Grid.read(path) as grid:
         info = grid.info()
@@ -65,23 +70,36 @@ def apply_grid(data, depsgraph, objects, path, interpolation="TRILINEAR", domain
             normals.append(n)
             offset += len(p)
         read = time.perf_counter()
-        if offset:
-            rgb = grid.evaluate(np.concatenate(positions), np.concatenate(normals),
-                                interpolation)
-        else:
+        codes = np.zeros(offset, np.uint8)
+        if not offset:
             rgb = np.zeros((0, 3), np.float32)
+        elif scene is not None and (visibility or darken_buried):
+            rgb, codes = grid.evaluate_in_scene(scene, np.concatenate(positions),
+                                                np.concatenate(normals), interpolation,
+                                                directional, visibility, darken_buried)
+        else:
+            rgb = grid.evaluate(np.concatenate(positions), np.concatenate(normals),
+                                interpolation, directional)
         evaluated = time.perf_counter()
     attributes.write_results(data, targets, rgb)
     hooked = material_hook.hook_materials(data, _material_infos(objects), targets) \
         if hook_materials else []
     done = time.perf_counter()
+    unsure = int(np.count_nonzero(codes == 1))
+    if unsure:
+        warnings.append(f"{unsure:,} of {offset:,} points see none of the grid vertices around "
+                        "them and read them anyway: their light is unsure (a finer grid, or a "
+                        "bake, holds it)")
     outside = _points_outside(np.concatenate(positions) if offset else np.zeros((0, 3)), info)
     if outside:
         warnings.append(f"{outside:,} of {offset:,} points lie outside the grid's box and take "
                         "the nearest grid vertices' light; bake a grid that covers them")
     return {"path": os.fspath(path), "objects": [t.object_name for t in targets],
-            "points": offset, "interpolation": interpolation, "grid": info,
+            "points": offset, "interpolation": interpolation, "directional": directional,
+            "grid": info,
             "warnings": warnings, "hooked_materials": hooked,
+            "buried_points": int(np.count_nonzero(codes == 2)),
+            "unsure_points": int(np.count_nonzero(codes == 1)),
             "seconds": {"read": read - start, "evaluate": evaluated - read,
                         "write": done - evaluated, "total": done - start}}
 

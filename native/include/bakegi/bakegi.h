@@ -245,6 +245,17 @@ BAKEGI_API bakegi_status bakegi_points_set_display_probes(bakegi_points* points,
                                                           const uint32_t* indices,
                                                           const float* weights, uint64_t count);
 
+/* Which points lie inside or under geometry of `scene` (the test lightmaps' reject_inside
+ * uses: from each point `rays` (1..4096; 0 = 32) fixed rays over the hemisphere of its normal;
+ * flagged when at least backface_fraction (in (0,1]; 0 = 0.25) hit back faces closer than
+ * max_distance metres (0 = any)). out_flags: one byte per point, 1 = inside. A grid's light
+ * cannot know that a face lies buried (a floor under a box): Apply Grid darkens these. The
+ * scene is validated and traced as by a bake. */
+BAKEGI_API bakegi_status bakegi_points_flag_inside(const bakegi_points* points,
+                                                   const bakegi_scene* scene, uint32_t rays,
+                                                   float backface_fraction, float max_distance,
+                                                   uint8_t* out_flags);
+
 /* ---- scene files ------------------------------------------------------------------------ */
 
 /* A .bgs file holds exactly what the API received: the scene and, optionally, a set of
@@ -546,13 +557,21 @@ typedef enum bakegi_grid_interpolation {
   BAKEGI_GRID_TRICUBIC = 1   /* cubic B-spline over 64 vertices: smoother, about 8x slower */
 } bakegi_grid_interpolation;
 
+typedef enum bakegi_grid_directional {
+  BAKEGI_GRID_SQUARED = 0, /* the paper's n_a^2 weights: exact along the axes, dark between
+                            * them (uniform light at 45 degrees reads 71%) */
+  BAKEGI_GRID_ABSOLUTE = 1 /* |n_a| weights: exact along the axes and under uniform light */
+} bakegi_grid_directional;
+
 /* The grid's indirect light at `count` points: positions and normals 3 floats each (normals
  * need not be unit; a zero normal gives 0), out_rgb 3 floats each, in the output convention
  * (the value a bake writes: outgoing diffuse radiance = albedo x value). Points outside the
- * box take the nearest vertices' values. interpolation: a bakegi_grid_interpolation value. */
+ * box take the nearest vertices' values. interpolation: a bakegi_grid_interpolation value;
+ * directional: a bakegi_grid_directional value (docs/ivg.md measures both). */
 BAKEGI_API bakegi_status bakegi_grid_evaluate(const bakegi_grid* grid, const float* positions,
                                               const float* normals, uint64_t count,
-                                              int interpolation, float* out_rgb);
+                                              int interpolation, int directional,
+                                              float* out_rgb);
 
 typedef enum bakegi_grid_encoding {
   BAKEGI_GRID_FLOAT = 0,     /* the 3x3 float matrices: exact, 216 bytes a vertex */
@@ -560,6 +579,26 @@ typedef enum bakegi_grid_encoding {
                               * hemisphere) quantized to 24 bits + R9G9B9E5: 42 bytes a vertex */
   BAKEGI_GRID_FACTORED = 2   /* the same direction and colour in floats: 144 bytes a vertex */
 } bakegi_grid_encoding;
+
+/* bakegi_grid_evaluate where the scene is known (native/src/grid/grid_visibility.h): with
+ * BAKEGI_GRID_VISIBILITY each point reads only the grid vertices it sees (a shadow ray to
+ * each vertex of its interpolation), so light does not leak through walls thinner than a
+ * cell (a point that sees none of its 8 vertices reads those of the 4^3 around it that it
+ * sees); with BAKEGI_GRID_DARKEN_BURIED points inside or under geometry (as
+ * bakegi_points_flag_inside finds them, 32 rays) read 0, as a bake sees them. out_codes (may
+ * be NULL): per point 0 = read, 1 = unsure (it saw no grid vertex near it: 0 written; a face
+ * outside the grid's rooms, or a grid too coarse for the place), 2 = buried. The scene is validated and its BVH built (the cost of a bake's first step). */
+typedef enum bakegi_grid_scene_flags {
+  BAKEGI_GRID_VISIBILITY = 1,
+  BAKEGI_GRID_DARKEN_BURIED = 2
+} bakegi_grid_scene_flags;
+BAKEGI_API bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid,
+                                                       const bakegi_scene* scene,
+                                                       const float* positions,
+                                                       const float* normals, uint64_t count,
+                                                       int interpolation, int directional,
+                                                       uint32_t flags, float* out_rgb,
+                                                       uint8_t* out_codes);
 
 /* The .bgivg file (format in native/src/grid/grid_file.h). encoding: a bakegi_grid_encoding
  * value. info_json (may be NULL: the grid's own, "{}" unless read from a file): a JSON object

@@ -8,6 +8,9 @@
 #include "api/handles.h"
 #include "grid/grid_file.h"
 #include "grid/grid_interpolation.h"
+#include "grid/grid_visibility.h"
+#include "scene/ray_tracer.h"
+#include "scene/scene_validation.h"
 #include "util/file_bytes.h"
 
 using bakegi::Error;
@@ -27,6 +30,28 @@ const bakegi::IrradianceVectorGrid& grid_of(const bakegi_grid* grid) {
 
 glm::vec3 vec3_from(const float* v) {
   return {v[0], v[1], v[2]};
+}
+
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+const glm::vec3* as_vec3(const float* xyz) {
+  return reinterpret_cast<const glm::vec3*>(xyz);
+}
+
+void check_lookup(int interpolation, int directional) {
+  if (interpolation != BAKEGI_GRID_TRILINEAR && interpolation != BAKEGI_GRID_TRICUBIC) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "unknown interpolation " + std::to_string(interpolation));
+  }
+  if (directional != BAKEGI_GRID_SQUARED && directional != BAKEGI_GRID_ABSOLUTE) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "unknown directional weights " + std::to_string(directional));
+  }
+}
+
+void check_count(uint64_t count) {
+  if (count > (uint64_t(1) << 40)) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "count " + std::to_string(count) + " is absurd");
+  }
 }
 
 }  // namespace
@@ -112,27 +137,52 @@ bakegi_status bakegi_job_get_grid(const bakegi_job* job, bakegi_grid** out_grid)
 
 bakegi_status bakegi_grid_evaluate(const bakegi_grid* grid, const float* positions,
                                    const float* normals, uint64_t count, int interpolation,
-                                   float* out_rgb) {
+                                   int directional, float* out_rgb) {
   return guarded(__func__, [&] {
     const bakegi::IrradianceVectorGrid& g = grid_of(grid);
-    if (interpolation != BAKEGI_GRID_TRILINEAR && interpolation != BAKEGI_GRID_TRICUBIC) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "unknown interpolation " + std::to_string(interpolation));
+    check_lookup(interpolation, directional);
+    if (count == 0) return;
+    require(positions, "positions");
+    require(normals, "normals");
+    require(out_rgb, "out_rgb");
+    check_count(count);
+    auto* out = reinterpret_cast<glm::vec3*>(out_rgb);
+    bakegi::evaluate_grid(
+        g, std::span<const glm::vec3>(as_vec3(positions), count),
+        std::span<const glm::vec3>(as_vec3(normals), count), std::span<glm::vec3>(out, count),
+        bakegi::GridInterpolation(interpolation), bakegi::GridDirectionalWeights(directional));
+  });
+}
+
+bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid, const bakegi_scene* scene,
+                                            const float* positions, const float* normals,
+                                            uint64_t count, int interpolation, int directional,
+                                            uint32_t flags, float* out_rgb, uint8_t* out_codes) {
+  return guarded(__func__, [&] {
+    const bakegi::IrradianceVectorGrid& g = grid_of(grid);
+    require(scene, "scene");
+    check_lookup(interpolation, directional);
+    if (flags & ~uint32_t(BAKEGI_GRID_VISIBILITY | BAKEGI_GRID_DARKEN_BURIED)) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "unknown flags " + std::to_string(flags));
     }
     if (count == 0) return;
     require(positions, "positions");
     require(normals, "normals");
     require(out_rgb, "out_rgb");
-    if (count > (uint64_t(1) << 40)) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "count " + std::to_string(count) + " is absurd");
-    }
-    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-    const auto* p = reinterpret_cast<const glm::vec3*>(positions);
-    const auto* n = reinterpret_cast<const glm::vec3*>(normals);
-    auto* out = reinterpret_cast<glm::vec3*>(out_rgb);
-    bakegi::evaluate_grid(g, std::span<const glm::vec3>(p, count),
-                          std::span<const glm::vec3>(n, count), std::span<glm::vec3>(out, count),
-                          bakegi::GridInterpolation(interpolation));
+    check_count(count);
+    const bakegi::Scene built = bakegi::build_scene(scene->description);
+    const bakegi::RayTracer tracer(built);
+    bakegi::GridSceneLookup lookup;
+    lookup.interpolation = bakegi::GridInterpolation(interpolation);
+    lookup.weights = bakegi::GridDirectionalWeights(directional);
+    lookup.visibility = (flags & BAKEGI_GRID_VISIBILITY) != 0;
+    lookup.darken_buried = (flags & BAKEGI_GRID_DARKEN_BURIED) != 0;
+    bakegi::GridSceneStatistics statistics;
+    bakegi::evaluate_grid_in_scene(
+        g, built, tracer, std::span<const glm::vec3>(as_vec3(positions), count),
+        std::span<const glm::vec3>(as_vec3(normals), count), lookup,
+        std::span<glm::vec3>(reinterpret_cast<glm::vec3*>(out_rgb), count),
+        out_codes ? std::span<uint8_t>(out_codes, count) : std::span<uint8_t>(), statistics);
   });
 }
 

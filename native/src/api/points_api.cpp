@@ -1,4 +1,5 @@
 // bakegi_points_*: bake points enter the core here, checked and with unit normals.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -6,6 +7,8 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
+#include "lightmap/backface_rejection.h"
+#include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 
 using bakegi::Error;
@@ -134,6 +137,28 @@ bakegi_status bakegi_points_get(const bakegi_points* points, float* positions, f
       }
       if (object_ids) object_ids[i] = p.object_ids[i];
     }
+  });
+}
+
+bakegi_status bakegi_points_flag_inside(const bakegi_points* points, const bakegi_scene* scene,
+                                       uint32_t rays, float backface_fraction,
+                                       float max_distance, uint8_t* out_flags) {
+  return guarded(__func__, [&] {
+    require(points, "points");
+    require(scene, "scene");
+    const bakegi::BakePoints& p = points->points;
+    if (p.size() > 0) require(out_flags, "out_flags");
+    bakegi::BackfaceRejectionOptions options;
+    if (rays != 0) options.rays = rays;
+    if (backface_fraction != 0) options.backface_fraction = backface_fraction;
+    options.max_distance = max_distance;
+    if (p.size() == 0) return;
+    const bakegi::Scene built = bakegi::build_scene(scene->description);
+    const bakegi::RayTracer tracer(built);
+    // Bake points carry one normal: it stands for the surface's side too.
+    const std::vector<uint8_t> flags = bakegi::flag_samples_inside_geometry(
+        built, tracer, p.positions, p.normals, p.normals, options);
+    std::copy(flags.begin(), flags.end(), out_flags);
   });
 }
 

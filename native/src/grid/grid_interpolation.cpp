@@ -51,7 +51,10 @@ Taps cubic_taps(float x, uint32_t n) {
 }  // namespace
 
 glm::vec3 evaluate_grid(const IrradianceVectorGrid& grid, const glm::vec3& position,
-                        const glm::vec3& normal, GridInterpolation interpolation) {
+                        const glm::vec3& normal, GridInterpolation interpolation,
+                        GridDirectionalWeights weights, const VertexFilter* filter,
+                        bool* all_refused) {
+  if (all_refused) *all_refused = false;
   const float length = glm::length(normal);
   if (!(length > 0.0f) || !std::isfinite(length)) return glm::vec3(0.0f);
   const glm::vec3 n = normal / length;
@@ -66,22 +69,56 @@ glm::vec3 evaluate_grid(const IrradianceVectorGrid& grid, const glm::vec3& posit
                   ? cubic_taps(g[a], layout.resolution[a])
                   : linear_taps(g[a], layout.resolution[a]);
   }
-  // I_n = sum over axes of n_a^2 * (spatially interpolated hemisphere on n's side of a).
-  glm::mat3 blended(0.0f);
+  // The spatial taps (at most 4^3) and their weights, which sum to 1.
+  size_t vertex[64];
+  float weight[64];
+  int count = 0;
   for (int tk = 0; tk < taps[2].count; ++tk) {
     for (int tj = 0; tj < taps[1].count; ++tj) {
       for (int ti = 0; ti < taps[0].count; ++ti) {
         const float w = taps[0].weight[ti] * taps[1].weight[tj] * taps[2].weight[tk];
         if (w == 0.0f) continue;
-        const size_t v =
+        vertex[count] =
             layout.vertex_index(taps[0].index[ti], taps[1].index[tj], taps[2].index[tk]);
-        for (int a = 0; a < 3; ++a) {
-          const float directional = n[a] * n[a];
-          if (directional == 0.0f) continue;
-          const int h = 2 * a + (n[a] >= 0.0f ? 0 : 1);
-          blended += (w * directional) * grid.at(v, h);
-        }
+        weight[count++] = w;
       }
+    }
+  }
+  if (filter) {
+    // Refused vertices drop out and the others share their weight; when every one is
+    // refused the point reads them all (and says so).
+    float kept[64], kept_total = 0.0f;
+    for (int i = 0; i < count; ++i) {
+      const size_t v = vertex[i];
+      const uint32_t x = uint32_t(v % layout.resolution[0]);
+      const uint32_t y = uint32_t((v / layout.resolution[0]) % layout.resolution[1]);
+      const uint32_t z = uint32_t(v / (size_t(layout.resolution[0]) * layout.resolution[1]));
+      kept[i] = (*filter)(v, layout.vertex_position(x, y, z)) ? weight[i] : 0.0f;
+      kept_total += kept[i];
+    }
+    if (kept_total > 1e-6f) {
+      for (int i = 0; i < count; ++i) weight[i] = kept[i] / kept_total;
+    } else if (all_refused) {
+      *all_refused = true;
+    }
+  }
+  return blend_vertices(grid, n, std::span<const size_t>(vertex, count),
+                        std::span<const float>(weight, count), weights);
+}
+
+glm::vec3 blend_vertices(const IrradianceVectorGrid& grid, const glm::vec3& n,
+                         std::span<const size_t> vertices, std::span<const float> spatial,
+                         GridDirectionalWeights weights) {
+  // I_n = sum over axes of (directional weight) * (spatially interpolated hemisphere on n's
+  // side of the axis).
+  glm::mat3 blended(0.0f);
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const float directional =
+          weights == GridDirectionalWeights::kSquared ? n[a] * n[a] : std::abs(n[a]);
+      if (directional == 0.0f) continue;
+      const int h = 2 * a + (n[a] >= 0.0f ? 0 : 1);
+      blended += (spatial[i] * directional) * grid.at(vertices[i], h);
     }
   }
   return glm::max(
@@ -91,7 +128,7 @@ glm::vec3 evaluate_grid(const IrradianceVectorGrid& grid, const glm::vec3& posit
 
 void evaluate_grid(const IrradianceVectorGrid& grid, std::span<const glm::vec3> positions,
                    std::span<const glm::vec3> normals, std::span<glm::vec3> out,
-                   GridInterpolation interpolation) {
+                   GridInterpolation interpolation, GridDirectionalWeights weights) {
   if (positions.size() != normals.size() || out.size() != positions.size()) {
     throw Error(BAKEGI_ERROR_INTERNAL,
                 "grid evaluation: sizes of positions, normals and output differ");
@@ -99,7 +136,8 @@ void evaluate_grid(const IrradianceVectorGrid& grid, std::span<const glm::vec3> 
   tbb::parallel_for(tbb::blocked_range<size_t>(0, positions.size(), 4096),
                     [&](const tbb::blocked_range<size_t>& block) {
                       for (size_t i = block.begin(); i != block.end(); ++i) {
-                        out[i] = evaluate_grid(grid, positions[i], normals[i], interpolation);
+                        out[i] =
+                            evaluate_grid(grid, positions[i], normals[i], interpolation, weights);
                       }
                     });
 }
@@ -107,7 +145,7 @@ void evaluate_grid(const IrradianceVectorGrid& grid, std::span<const glm::vec3> 
 void GridField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
                          JobContext& context) const {
   context.throw_if_cancelled();
-  evaluate_grid(*grid_, points.positions, points.normals, out, interpolation_);
+  evaluate_grid(*grid_, points.positions, points.normals, out, interpolation_, weights_);
   context.set_stage_progress(1.0);
 }
 
