@@ -135,8 +135,8 @@ def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
     'CORNER') or vertices ('POINT'), as they stand now (moved, added, decimated or
     subdivided meshes all work; no bake runs). path None: the scene's newest grid (the last
     GRID bake's file). interpolation 'TRILINEAR' or 'TRICUBIC'. directional: 'ABSOLUTE' (|n|
-    weights between the axis hemispheres: exact under uniform light for any normal; never a
-    higher error than the paper's on the scenes measured, docs/ivg.md) or 'SQUARED' (the paper's
+    weights between the axis hemispheres: exact under uniform light for any normal; a lower
+    or equal error than the paper's in 19 of the 20 suite runs of docs/ivg.md) or 'SQUARED' (the paper's
     n^2). hook_materials: Material
     Preview shows the result as after a bake. visibility: each point reads only the grid
     vertices it sees (a ray to each), so light does not leak through walls thinner than a

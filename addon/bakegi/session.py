@@ -105,7 +105,7 @@ class BakeSession:
     def prepare(self):
         """Exports the scene. The context is used only here (and by finish() when no data
         is given): a modal operator's context does not outlive the call that passed it."""
-        if self.linked_duplicates == "SINGLE_USER" and self.target != "LIGHTMAP":
+        if self.linked_duplicates == "SINGLE_USER" and self.target in ("CORNER", "POINT"):
             self._single_users = export_targets.make_single_users(self.context, self.objects)
         try:
             self.exported = export_scene.export_scene(self.context, self.target, self.objects,
