@@ -267,16 +267,21 @@ def _check_binary_interface(lib, path):
                               f"{name} is {theirs} bytes there and {ours} here")
 
 
+def _read_text(function, arguments, what):
+    """The text of a core call ending in (buffer, capacity, out_length): its length first,
+    then the text."""
+    length = c_size_t(0)
+    _check(function(*arguments, None, 0, byref(length)), what)
+    buffer = ctypes.create_string_buffer(length.value + 1)
+    _check(function(*arguments, buffer, len(buffer), byref(length)), what)
+    return _decode(buffer.value)
+
+
 def describe_settings(method=""):
     """The settings schema of a method as a dict (bakegi_settings_describe; docs/settings.md),
     or {"methods": [...], "default": name} for method ""."""
-    lib = load_library()
-    key = method.encode("utf-8")
-    length = c_size_t(0)
-    _check(lib.bakegi_settings_describe(key, None, 0, byref(length)), "describing settings")
-    buffer = ctypes.create_string_buffer(length.value + 1)
-    _check(lib.bakegi_settings_describe(key, buffer, len(buffer), None), "describing settings")
-    return json.loads(buffer.value.decode("utf-8"))
+    return json.loads(_read_text(load_library().bakegi_settings_describe,
+                                 (method.encode("utf-8"),), "describing settings"))
 
 
 def method_names():
@@ -772,15 +777,10 @@ class Grid(_Handle):
 
     def info_json(self):
         """The JSON stored with the grid (what made it), as a dict."""
-        lib = load_library()
-        length = c_size_t(0)
-        _check(lib.bakegi_grid_get_info_json(self.handle, None, 0, byref(length)),
-               "bakegi_grid_get_info_json")
-        buffer = ctypes.create_string_buffer(length.value + 1)
-        _check(lib.bakegi_grid_get_info_json(self.handle, buffer, len(buffer), byref(length)),
-               "bakegi_grid_get_info_json")
+        text = _read_text(load_library().bakegi_grid_get_info_json, (self.handle,),
+                          "bakegi_grid_get_info_json")
         try:
-            value = json.loads(_decode(buffer.value))
+            value = json.loads(text)
         except ValueError:
             return {}
         return value if isinstance(value, dict) else {}
@@ -942,14 +942,8 @@ class Job(_Handle):
         return out
 
     def report_json(self):
-        lib = load_library()
-        length = c_size_t(0)
-        _check(lib.bakegi_job_get_report(self.handle, None, 0, byref(length)),
-               "bakegi_job_get_report")
-        buffer = ctypes.create_string_buffer(length.value + 1)
-        _check(lib.bakegi_job_get_report(self.handle, buffer, len(buffer), byref(length)),
-               "bakegi_job_get_report")
-        return _decode(buffer.value)
+        return _read_text(load_library().bakegi_job_get_report, (self.handle,),
+                          "bakegi_job_get_report")
 
     def grid(self):
         """A grid job's grid (a new Grid), after success."""

@@ -37,6 +37,17 @@ def _has_mesh_target(context, objects):
                for o in view_layer.objects)
 
 
+def _idle_in_object_mode(cls, context):
+    """The poll of operators that change meshes: no bake running, Object Mode."""
+    if runtime["running"]:
+        cls.poll_message_set("A bake is running")
+        return False
+    if context.mode != "OBJECT":
+        cls.poll_message_set("Switch to Object Mode")
+        return False
+    return True
+
+
 def _session_from_scene(context):
     return session.BakeSession(context, context.scene.bakegi.request())
 
@@ -191,13 +202,7 @@ class BAKEGI_OT_remove_bake(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if runtime["running"]:
-            cls.poll_message_set("A bake is running")
-            return False
-        if context.mode != "OBJECT":
-            cls.poll_message_set("Switch to Object Mode")
-            return False
-        return True
+        return _idle_in_object_mode(cls, context)
 
     def execute(self, context):
         objects = context.scene.bakegi.objects
@@ -224,13 +229,7 @@ class BAKEGI_OT_subdivide_copy(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if runtime["running"]:
-            cls.poll_message_set("A bake is running")
-            return False
-        if context.mode != "OBJECT":
-            cls.poll_message_set("Switch to Object Mode")
-            return False
-        return True
+        return _idle_in_object_mode(cls, context)
 
     def execute(self, context):
         obj = context.blend_data.objects.get(self.object_name)
@@ -258,10 +257,7 @@ class BAKEGI_OT_add_grid_box(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if context.mode != "OBJECT":
-            cls.poll_message_set("Switch to Object Mode")
-            return False
-        return True
+        return _idle_in_object_mode(cls, context)
 
     def execute(self, context):
         view_layer = context.view_layer
@@ -298,11 +294,7 @@ class BAKEGI_OT_apply_grid(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if runtime["running"]:
-            cls.poll_message_set("A bake is running")
-            return False
-        if context.mode != "OBJECT":
-            cls.poll_message_set("Switch to Object Mode")
+        if not _idle_in_object_mode(cls, context):
             return False
         if not context.scene.get(grid_file.GRID_PATH_PROPERTY):
             cls.poll_message_set("Bake a grid first (Target: Irradiance Grid)")

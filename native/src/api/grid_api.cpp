@@ -6,6 +6,7 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
+#include "api/text_output.h"
 #include "grid/grid_file.h"
 #include "grid/grid_interpolation.h"
 #include "grid/grid_visibility.h"
@@ -220,17 +221,8 @@ bakegi_status bakegi_grid_get_info_json(const bakegi_grid* grid, char* buffer, s
                                         size_t* out_length) {
   return guarded(__func__, [&] {
     grid_of(grid);
-    if (capacity > 0) require(buffer, "buffer");
-    if (capacity == 0 && !out_length) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "capacity is 0 and out_length is NULL");
-    }
-    const std::string& json = grid->info_json;
-    if (out_length) *out_length = json.size();
-    if (capacity > 0) {
-      const size_t n = std::min(json.size(), capacity - 1);
-      std::memcpy(buffer, json.data(), n);
-      buffer[n] = '\0';
-    }
+    bakegi::check_text_output(buffer, capacity, out_length);
+    bakegi::write_text_output(grid->info_json, buffer, capacity, out_length);
   });
 }
 

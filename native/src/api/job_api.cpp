@@ -4,6 +4,7 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
+#include "api/text_output.h"
 
 using bakegi::Error;
 using bakegi::guarded;
@@ -104,18 +105,9 @@ bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buffer, size_t 
                                     size_t* out_length) {
   return guarded(__func__, [&] {
     const bakegi::BakeJob& j = job_of(job);
-    if (capacity > 0) require(buffer, "buffer");
-    if (capacity == 0 && !out_length) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "capacity is 0 and out_length is NULL");
-    }
+    bakegi::check_text_output(buffer, capacity, out_length);
     if (!j.is_done()) throw Error(BAKEGI_ERROR_NOT_READY, "the job has not finished yet");
-    const std::string json = j.report_json();
-    if (out_length) *out_length = json.size();
-    if (capacity > 0) {
-      const size_t n = std::min(json.size(), capacity - 1);
-      std::memcpy(buffer, json.data(), n);
-      buffer[n] = '\0';
-    }
+    bakegi::write_text_output(j.report_json(), buffer, capacity, out_length);
   });
 }
 

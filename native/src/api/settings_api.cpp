@@ -7,6 +7,7 @@
 
 #include "api/api_guard.h"
 #include "api/handles.h"
+#include "api/text_output.h"
 #include "settings/setting_schema.h"
 #include "solvers/solver.h"
 #include "util/report.h"
@@ -71,10 +72,7 @@ bakegi_status bakegi_settings_set_string(bakegi_settings* settings, const char* 
 bakegi_status bakegi_settings_describe(const char* method, char* buffer, size_t capacity,
                                        size_t* out_length) {
   return guarded(__func__, [&] {
-    if (capacity > 0) require(buffer, "buffer");
-    if (capacity == 0 && !out_length) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "capacity is 0 and out_length is NULL");
-    }
+    bakegi::check_text_output(buffer, capacity, out_length);
     std::string json;
     if (!method || method[0] == '\0') {
       json = "{\"methods\": [";
@@ -91,12 +89,7 @@ bakegi_status bakegi_settings_describe(const char* method, char* buffer, size_t 
     } else {
       json = bakegi::schema_json(bakegi::method_schema(method));
     }
-    if (out_length) *out_length = json.size();
-    if (capacity > 0) {
-      const size_t n = std::min(json.size(), capacity - 1);
-      std::memcpy(buffer, json.data(), n);
-      buffer[n] = '\0';
-    }
+    bakegi::write_text_output(json, buffer, capacity, out_length);
   });
 }
 
