@@ -274,7 +274,11 @@ class BakeSession:
         if grid_report is not None:
             report["grid"] = grid_report
             if data is not None and self.scene_name in data.scenes:
-                data.scenes[self.scene_name][grid_file.GRID_PATH_PROPERTY] = grid_report["path"]
+                import bpy
+                # Relative to a saved .blend (//...), so the pair can move together.
+                path = grid_report["path"]
+                remembered = bpy.path.relpath(path) if bpy.data.filepath else path
+                data.scenes[self.scene_name][grid_file.GRID_PATH_PROPERTY] = remembered
         return report
 
     def _write_grid(self):
