@@ -81,10 +81,7 @@ IrradianceVectorGrid gather_grid(const GridLayout& layout, const Scene& scene,
         [&](const tbb::blocked_range<size_t>& block) {
           context.throw_if_cancelled();
           for (size_t v = block.begin(); v != block.end(); ++v) {
-            const uint32_t i = uint32_t(v % layout.resolution[0]);
-            const uint32_t j = uint32_t((v / layout.resolution[0]) % layout.resolution[1]);
-            const uint32_t k = uint32_t(v / (size_t(layout.resolution[0]) * layout.resolution[1]));
-            const glm::vec3 origin = layout.vertex_position(i, j, k);
+            const glm::vec3 origin = layout.vertex_position(v);
             size_t backfaces = 0;
             for (int h = 0; h < kGridHemispheres; ++h) {
               const Frame frame(hemisphere_axis(h));

@@ -28,6 +28,21 @@ glm::vec3 finite_or_zero(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) ? v : glm::vec3(0.0f);
 }
 
+// Runs trace(i, rays) for every hit in parallel blocks, honouring cancel; adds the rays
+// traced to `rays`.
+template <typename Trace>
+void for_each_hit(size_t count, JobContext& context, uint64_t& rays, Trace trace) {
+  std::atomic<uint64_t> traced{0};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, kHitsPerBlock),
+                    [&](const tbb::blocked_range<size_t>& block) {
+                      context.throw_if_cancelled();
+                      uint64_t block_rays = 0;
+                      for (size_t i = block.begin(); i != block.end(); ++i) trace(i, block_rays);
+                      traced.fetch_add(block_rays, std::memory_order_relaxed);
+                    });
+  rays += traced.load();
+}
+
 class PathTracedHitRadiance : public HitRadiance {
  public:
   PathTracedHitRadiance(const DirectLight& direct, int max_bounces)
@@ -35,21 +50,12 @@ class PathTracedHitRadiance : public HitRadiance {
 
   void evaluate(std::span<const GridRayHit> hits, std::span<glm::vec3> out, uint64_t seed,
                 JobContext& context, uint64_t& rays) const override {
-    std::atomic<uint64_t> traced{0};
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, hits.size(), kHitsPerBlock),
-                      [&](const tbb::blocked_range<size_t>& block) {
-                        context.throw_if_cancelled();
-                        uint64_t block_rays = 0;
-                        for (size_t i = block.begin(); i != block.end(); ++i) {
-                          RandomStream rng = sample_stream(seed, hits[i].key, 0);
-                          const PathRadiance path =
-                              trace_from_first_hit(direct_, hits[i].hit, hits[i].direction, rng,
-                                                   max_bounces_, block_rays);
-                          out[i] = finite_or_zero(path.first_light + path.rest);
-                        }
-                        traced.fetch_add(block_rays, std::memory_order_relaxed);
-                      });
-    rays += traced.load();
+    for_each_hit(hits.size(), context, rays, [&](size_t i, uint64_t& traced) {
+      RandomStream rng = sample_stream(seed, hits[i].key, 0);
+      const PathRadiance path =
+          trace_from_first_hit(direct_, hits[i].hit, hits[i].direction, rng, max_bounces_, traced);
+      out[i] = finite_or_zero(path.first_light + path.rest);
+    });
   }
 
  private:
@@ -70,24 +76,16 @@ class FieldHitRadiance : public HitRadiance {
     points.normals.resize(hits.size());
     points.object_ids.resize(hits.size());
     std::vector<glm::vec3> direct_light(hits.size());
-    std::atomic<uint64_t> traced{0};
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, hits.size(), kHitsPerBlock),
-                      [&](const tbb::blocked_range<size_t>& block) {
-                        context.throw_if_cancelled();
-                        uint64_t block_rays = 0;
-                        for (size_t i = block.begin(); i != block.end(); ++i) {
-                          const Hit& hit = hits[i].hit;
-                          const SurfacePoint x = surface_at_hit(scene, hit, hits[i].direction);
-                          const Triangle& triangle = scene.triangles[hit.triangle];
-                          points.positions[i] = x.position;
-                          points.normals[i] = x.shading_normal;
-                          points.object_ids[i] = scene.description.meshes[triangle.mesh].object_id;
-                          RandomStream rng = sample_stream(seed, hits[i].key, 0);
-                          direct_light[i] = direct_.irradiance_sample(x, rng, block_rays);
-                        }
-                        traced.fetch_add(block_rays, std::memory_order_relaxed);
-                      });
-    rays += traced.load();
+    for_each_hit(hits.size(), context, rays, [&](size_t i, uint64_t& traced) {
+      const Hit& hit = hits[i].hit;
+      const SurfacePoint x = surface_at_hit(scene, hit, hits[i].direction);
+      const Triangle& triangle = scene.triangles[hit.triangle];
+      points.positions[i] = x.position;
+      points.normals[i] = x.shading_normal;
+      points.object_ids[i] = scene.description.meshes[triangle.mesh].object_id;
+      RandomStream rng = sample_stream(seed, hits[i].key, 0);
+      direct_light[i] = direct_.irradiance_sample(x, rng, traced);
+    });
     std::vector<glm::vec3> indirect(hits.size(), glm::vec3(0.0f));
     field_.evaluate(points, indirect, context);
     for (size_t i = 0; i < hits.size(); ++i) {

@@ -89,11 +89,7 @@ glm::vec3 evaluate_grid(const IrradianceVectorGrid& grid, const glm::vec3& posit
     // refused the point reads them all (and says so).
     float kept[64], kept_total = 0.0f;
     for (int i = 0; i < count; ++i) {
-      const size_t v = vertex[i];
-      const uint32_t x = uint32_t(v % layout.resolution[0]);
-      const uint32_t y = uint32_t((v / layout.resolution[0]) % layout.resolution[1]);
-      const uint32_t z = uint32_t(v / (size_t(layout.resolution[0]) * layout.resolution[1]));
-      kept[i] = (*filter)(v, layout.vertex_position(x, y, z)) ? weight[i] : 0.0f;
+      kept[i] = (*filter)(vertex[i], layout.vertex_position(vertex[i])) ? weight[i] : 0.0f;
       kept_total += kept[i];
     }
     if (kept_total > 1e-6f) {

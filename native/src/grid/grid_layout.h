@@ -28,6 +28,12 @@ struct GridLayout {
   glm::vec3 vertex_position(uint32_t i, uint32_t j, uint32_t k) const {
     return bounds_min + (glm::vec3(float(i), float(j), float(k)) + 0.5f) * cell_size();
   }
+  // The position of the vertex with index vertex_index(i, j, k).
+  glm::vec3 vertex_position(size_t index) const {
+    const size_t row = index / resolution[0];
+    return vertex_position(uint32_t(index % resolution[0]), uint32_t(row % resolution[1]),
+                           uint32_t(row / resolution[1]));
+  }
   // Continuous vertex coordinates of a point: vertex (i, j, k) is at (i, j, k).
   glm::vec3 grid_coordinates(const glm::vec3& p) const {
     return (p - bounds_min) / cell_size() - 0.5f;
