@@ -46,6 +46,9 @@ class GridCase(common.SmallCornellCase):
         self.assertEqual(grid["resolution"], [8, 8, 8])  # the 2 m box in 0.25 m cells
         self.assertEqual(bpy.context.scene[bakegi.write.grid_file.GRID_PATH_PROPERTY],
                          grid["path"])
+        # The grid checked itself against the path tracer at probes in its box.
+        self.assertGreater(report["estimated_error"], 0.0)
+        self.assertLess(report["estimated_error"], 1.0)
         # Nothing was written on the meshes by the grid bake itself.
         self.assertIsNone(self.objects["Floor"].data.color_attributes.get(common.ATTRIBUTE))
 

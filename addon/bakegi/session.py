@@ -388,6 +388,8 @@ class BakeSession:
         warnings added to the report's."""
         if self.exported is None or "error_estimate" not in report:
             return
+        if self.target == "GRID":  # no meshes were baked: the core's warning says it all
+            return
         # The bake points' object ids: the target's index for attributes, the exported
         # object's index for lightmap texels.
         by_id = (list(self.exported.object_names) if self.target == "LIGHTMAP"

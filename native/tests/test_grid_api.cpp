@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <vector>
 
 #include "capi_test_scene.h"
@@ -84,6 +85,41 @@ TEST(GridApi, GridJobAgreesWithABakeAtTheSamePoints) {
   ASSERT_EQ(bakegi_job_wait(plain.get()), BAKEGI_OK);
   EXPECT_EQ(bakegi_job_get_grid(plain.get(), &none), BAKEGI_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(none, nullptr);
+}
+
+// The report's "estimated_error" of a grid job (a number in the JSON).
+double estimated_error(const bakegi_job* job) {
+  size_t length = 0;
+  EXPECT_EQ(bakegi_job_get_report(job, nullptr, 0, &length), BAKEGI_OK);
+  std::string report(length + 1, '\0');
+  EXPECT_EQ(bakegi_job_get_report(job, report.data(), report.size(), &length), BAKEGI_OK);
+  const size_t at = report.find("\"estimated_error\": ");
+  EXPECT_NE(at, std::string::npos) << report;
+  return at == std::string::npos ? -1.0 : std::stod(report.substr(at + 19));
+}
+
+double grid_job_estimate(float cell, uint32_t rays) {
+  const auto scene = new_box_scene();
+  const GridHandle layout = grid_layout(0.0f, 1.0f, cell);
+  const auto settings = new_settings();
+  bakegi_job* raw = nullptr;
+  EXPECT_EQ(bakegi_job_start_grid(scene.get(), layout.get(), rays, settings.get(), &raw),
+            BAKEGI_OK);
+  const JobHandle job(raw);
+  EXPECT_EQ(bakegi_job_wait(job.get()), BAKEGI_OK) << bakegi_last_error();
+  return estimated_error(job.get());
+}
+
+// A grid bake checks itself against the path tracer at probes on the surfaces in its box: a
+// 4^3 grid of 128 rays a hemisphere estimates a small error in the lit box, a 2^3 grid of one
+// ray a hemisphere (noise of the order of the light itself) a much larger one.
+TEST(GridApi, AGridEstimatesItsOwnError) {
+  const double good = grid_job_estimate(0.25f, 128);
+  const double poor = grid_job_estimate(0.5f, 1);
+  std::printf("grid estimated error: 4^3 x 128 rays %.4f, 2^3 x 1 ray %.4f\n", good, poor);
+  EXPECT_GE(good, 0.0);
+  EXPECT_LT(good, 0.15);
+  EXPECT_GT(poor, 2.0 * good);
 }
 
 TEST(GridApi, FilesRoundTripAndBadInputIsRefused) {

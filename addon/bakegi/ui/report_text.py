@@ -84,6 +84,10 @@ def grid_details(report):
     lines = [f"Grid: {grid.get('description', '')}",
              f"{grid.get('invalid_vertices', 0):,} vertices inside geometry (filled), "
              f"{grid.get('file_bytes', 0) / 1e6:.2f} MB"]
+    estimated = report.get("estimated_error")
+    if isinstance(estimated, (int, float)):
+        lines.append(f"Estimated error of Apply Grid's light: {estimated * 100:.1f}% "
+                     "(path-traced probes in the box)")
     if grid.get("path"):
         lines.append(f"File: {grid['path']}")
     return lines

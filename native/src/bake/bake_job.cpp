@@ -13,7 +13,9 @@
 #include "bake/point_denoiser.h"
 #include "bake/point_sharing.h"
 #include "bake/solver_run.h"
+#include "grid/grid_error_probes.h"
 #include "grid/grid_hit_radiance.h"
+#include "grid/grid_visibility.h"
 #include "grid/grid_push_pull.h"
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
@@ -39,6 +41,10 @@ constexpr int64_t kFallbackSamples = 128;
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// Above this estimated NRMSE a grid bake warns (the add-on's error check flags bakes at the
+// same 10%: error_check.THRESHOLD).
+constexpr double kGridErrorWarning = 0.10;
 
 std::string megabytes(size_t bytes) { return MemoryBudget::megabytes(bytes); }
 
@@ -337,12 +343,48 @@ void BakeJob::gather_grid_from(const IndirectField& field, Report& report) {
                                          std::to_string(layout.resolution[1]) + ", " +
                                          std::to_string(layout.resolution[2]) + "]");
   report.add_seconds("grid_gather", seconds_since(start));
+  if (error_probes_ > 0) estimate_grid_error(*grid, options.seed, report);
   if (statistics.invalid_vertices == layout.vertex_count()) {
     report.warn("grid: every vertex lies inside geometry (its rays hit back faces); the grid "
                 "is black. Check the grid's bounds against the scene");
   }
   std::lock_guard lock(mutex_);
   grid_ = std::move(grid);
+}
+
+void BakeJob::estimate_grid_error(const IrradianceVectorGrid& grid, uint64_t seed,
+                                  Report& report) {
+  context_.set_stage("estimating the error", context_.progress(), 1.0);
+  const auto start = std::chrono::steady_clock::now();
+  ErrorEstimateSettings settings;
+  settings.samples = error_probe_samples_;
+  settings.seed = seed;
+  const ErrorProbes probes =
+      grid_surface_probes(*scene_, grid.layout, size_t(error_probes_), settings.seed);
+  if (probes.size() == 0) {
+    report.warn("grid: no surface lies inside its box, so its error could not be estimated");
+    return;
+  }
+  // The grid as Apply Grid reads it by default (grid_visibility.h, |n| weights).
+  GridSceneLookup lookup;
+  lookup.weights = GridDirectionalWeights::kAbsolute;
+  std::vector<glm::vec3> values(probes.size());
+  GridSceneStatistics statistics;
+  evaluate_grid_in_scene(grid, *scene_, *tracer_, probes.points.positions, probes.points.normals,
+                         lookup, values, {}, statistics);
+  report.add_count("error_probe_rays", statistics.rays);
+  const ErrorEstimate estimate =
+      bakegi::estimate_error(*direct_, probes, ErrorProbes{}, values, settings, context_);
+  report_error_estimate(estimate, report, start);
+  const ProbeErrorStatistics& e = estimate.at_points;
+  if (e.nrmse > kGridErrorWarning) {
+    report.warn("grid: Apply Grid's light is about " + percent(e.nrmse) + " (90%: " +
+                percent(e.low) + " to " + percent(e.high) + ") off the path tracer's at " +
+                std::to_string(e.probes) +
+                " points on the surfaces in its box. Smaller cells and more rays lower it; "
+                "light that changes within a cell (sun patches, corners, contact shadows) the "
+                "grid cannot hold: bake those surfaces directly");
+  }
 }
 
 std::shared_ptr<const IrradianceVectorGrid> BakeJob::grid() const {
@@ -552,6 +594,11 @@ void BakeJob::estimate_error(Report& report) {
       probes_weighted_by_light(points_, results_, size_t(error_probes_), settings.seed);
   const ErrorEstimate estimate =
       bakegi::estimate_error(*direct_, at_points, display_probes_, results_, settings, context_);
+  report_error_estimate(estimate, report, start);
+}
+
+void BakeJob::report_error_estimate(const ErrorEstimate& estimate, Report& report,
+                                    std::chrono::steady_clock::time_point start) {
   report.set_json("error_estimate", error_estimate_json(estimate));
   report.set_number("estimated_error", estimate.at_points.nrmse);
   std::string interval = "[";

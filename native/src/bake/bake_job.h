@@ -28,6 +28,7 @@ namespace bakegi {
 
 class Solver;
 class Precomputation;
+struct ErrorEstimate;
 class RayTracer;
 class DirectLight;
 struct Scene;
@@ -111,6 +112,12 @@ class BakeJob {
                       std::span<glm::vec3> out, Report& report);
   // Gathers the grid of grid_request_ from the field.
   void gather_grid_from(const IndirectField& field, Report& report);
+  // Path-traces probes on the surfaces in the grid's box and compares the grid's reading
+  // there (bake/error_estimate.h); warns above 10%.
+  void estimate_grid_error(const IrradianceVectorGrid& grid, uint64_t seed, Report& report);
+  // The report's error_estimate, estimated_error, its interval and seconds.
+  void report_error_estimate(const ErrorEstimate& estimate, Report& report,
+                             std::chrono::steady_clock::time_point start);
   std::unique_ptr<IndirectField> solve_relight(Report& report);
   // Path-traces probes and compares the results there (settings error_probes,
   // error_probe_samples); writes error_estimate, estimated_error and its interval.
