@@ -1,6 +1,7 @@
 """The Irradiance Vector Grid in Blender (issue 16): Bake Grid over a box or the scene,
-Apply Grid on meshes that were not baked (a moved and an added prop), the newest grid found
-by default, the operators, and a refused grid that changes nothing."""
+Apply Grid on meshes that were not baked (a moved and an added prop, a level of detail made
+with Simplify a Copy), the newest grid found by default, the operators, and a refused grid
+that changes nothing."""
 
 import os
 import shutil
@@ -97,6 +98,45 @@ class GridCase(common.SmallCornellCase):
                                for l in sphere.data.loops])
         facing_red = normals[:, 0] < -0.7
         self.assertGreater(rgb[facing_red, 0].mean(), rgb[facing_red, 1].mean())
+
+    def test_a_level_of_detail_is_lit_like_the_full_mesh(self):
+        self.bake_grid(grid_object=None)
+        bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=4, radius=0.3, location=(0, 0, 1.2))
+        prop = bpy.context.active_object
+        prop.name = "Prop"
+        for name in ("PropA", "PropB"):
+            prop.data.materials.append(bpy.data.materials.new(name))
+        indices = numpy.arange(len(prop.data.polygons)) % 2
+        prop.data.polygons.foreach_set("material_index", indices.astype(numpy.int32))
+        full_triangles = len(prop.data.polygons)  # 1,280: an icosphere is all triangles
+        bakegi.apply_grid(["Prop"])
+        full = luminance(common.read_color_attribute(["Prop"]))
+
+        lod, info = bakegi.simplify_copy("Prop", 0.1)
+        self.assertEqual(lod.name, "Prop_LOD10")
+        self.assertEqual(info["triangles"], full_triangles)
+        self.assertEqual(info["lod_triangles"], len(lod.data.polygons))
+        # A closed sphere has no borders to hold collapses back: the ratio is reached (the
+        # interleaved materials do not hold it back either), and both materials are kept.
+        self.assertLessEqual(len(lod.data.polygons), 0.1 * full_triangles + 2)
+        self.assertEqual([m.name for m in lod.data.materials], ["PropA", "PropB"])
+        kept = numpy.zeros(len(lod.data.polygons), numpy.int32)
+        lod.data.polygons.foreach_get("material_index", kept)
+        self.assertEqual(sorted(set(kept.tolist())), [0, 1])
+        self.assertTrue(prop.hide_get())
+        self.assertGreater(info["deviation"], 0.0)
+
+        bakegi.apply_grid(["Prop_LOD10"])
+        coarse = luminance(common.read_color_attribute(["Prop_LOD10"]))
+        self.assertTrue(numpy.all(numpy.isfinite(coarse)))
+        # The coarse sphere's corners face the same room: its mean light within 15% of the
+        # full sphere's (the corners' normals are their faces', which coarsening tilts).
+        self.assertLess(abs(coarse.mean() / full.mean() - 1.0), 0.15,
+                        (coarse.mean(), full.mean()))
+        with self.assertRaises(bakegi.BakeGIError):
+            bakegi.simplify_copy("Prop", 0.0)
+        with self.assertRaises(bakegi.BakeGIError):
+            bakegi.simplify_copy("NoSuchObject", 0.5)
 
     def test_a_grid_box_sets_the_bounds_and_far_points_are_named(self):
         bpy.ops.bakegi.add_grid_box()

@@ -136,3 +136,21 @@ def test_a_grid_bakes_evaluates_and_round_trips(native, tmp_path):
             grid.evaluate(floor, up, "NEAREST")
         grid.close()
         job.close()
+
+
+def test_a_level_of_detail_keeps_a_plane_and_refuses_bad_indices(native):
+    n = 10  # a 10 x 10 grid of squares: 200 triangles on the unit square
+    positions = np.array([[i / n, j / n, 0.0] for j in range(n + 1) for i in range(n + 1)],
+                         np.float32)
+    quads = [(j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+              (j + 1) * (n + 1) + i) for j in range(n) for i in range(n)]
+    triangles = np.array([t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))], np.uint32)
+    lod, deviation = native.simplify_mesh(positions, triangles, 0.1)
+    assert 2 <= len(lod) <= 20 and lod.shape[1] == 3
+    corners = positions[lod]
+    area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
+                                         corners[:, 2] - corners[:, 0]), axis=1).sum()
+    assert abs(area - 1.0) < 1e-4  # collapses on a plane keep it whole
+    assert 0.0 <= deviation < 1e-4
+    with pytest.raises(native.BakeGIError, match="past the"):
+        native.simplify_mesh(positions, triangles + len(positions), 0.5)

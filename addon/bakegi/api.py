@@ -235,6 +235,23 @@ def subdivide_copy(obj, vertices=4000, context=None):
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", str(error)) from None
 
 
+def simplify_copy(obj, ratio=0.1, context=None):
+    """Makes '<name>_LOD<percent>', a level of detail of the mesh object `obj` (or its name)
+    with about `ratio` (0, 1] of its triangles (meshoptimizer's simplifier in the core), to
+    light from a grid (apply_grid) without a re-bake; hides `obj`. Returns (the copy,
+    {"triangles", "lod_triangles", "deviation"}: the deviation reached over the mesh's
+    extent)."""
+    from . import simplification
+    context = _context(context)
+    target = context.blend_data.objects.get(obj) if isinstance(obj, str) else obj
+    if target is None:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {obj!r}")
+    try:
+        return simplification.simplify_copy(target, ratio)
+    except ValueError as error:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", str(error)) from None
+
+
 def remove_bake(objects=None, context=None):
     """Removes BakeGI_Indirect and restores hooked materials. objects: None (every mesh in
     the file), 'SELECTED', 'VISIBLE', or a list of objects or names.

@@ -179,6 +179,9 @@ _SIGNATURES = {
     "bakegi_scene_get_bounds": (c_int, [_P, POINTER(c_float), POINTER(c_float)]),
     "bakegi_points_flag_inside": (c_int, [_P, _P, c_uint32, c_float, c_float,
                                           POINTER(ctypes.c_uint8)]),
+    "bakegi_mesh_simplify": (c_int, [POINTER(c_float), c_uint64, POINTER(c_uint32), c_uint64,
+                                     c_float, c_float, POINTER(c_uint32),
+                                     POINTER(c_uint64), POINTER(c_float)]),
     "bakegi_grid_create": (c_int, [POINTER(c_float), POINTER(c_float), c_float, c_uint64, _PP]),
     "bakegi_grid_destroy": (None, [_P]),
     "bakegi_grid_get_info": (c_int, [_P, _P]),
@@ -362,6 +365,21 @@ def _triple(values, what):
     if len(v) != 3:
         raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"{what} needs 3 values, got {len(v)}")
     return (c_float * 3)(*v)
+
+
+def simplify_mesh(positions, indices, ratio, max_error=1.0):
+    """A level of detail (bakegi_mesh_simplify, meshoptimizer's edge collapses): the
+    triangles of `indices` ((n, 3) into (v, 3) `positions`) reduced towards `ratio` (0, 1] of
+    them within max_error of the mesh's extent. Returns ((m, 3) uint32 triangles into the
+    same vertices, the deviation reached over the extent)."""
+    xyz = _floats(positions, 3, "positions")
+    tris = _uints(indices, "indices")
+    out = np.zeros(len(tris), np.uint32)
+    written, error = c_uint64(0), c_float(0.0)
+    _check(load_library().bakegi_mesh_simplify(
+        _fptr(xyz), len(xyz), _uptr(tris), len(tris), float(ratio), float(max_error),
+        _uptr(out), byref(written), byref(error)), "bakegi_mesh_simplify")
+    return out[:written.value].reshape(-1, 3), float(error.value)
 
 
 class _Handle:

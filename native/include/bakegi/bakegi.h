@@ -256,6 +256,21 @@ BAKEGI_API bakegi_status bakegi_points_flag_inside(const bakegi_points* points,
                                                    float backface_fraction, float max_distance,
                                                    uint8_t* out_flags);
 
+/* ---- meshes ----------------------------------------------------------------------------- */
+
+/* A level of detail: the triangles of `indices` (three per triangle, into vertex_count xyz
+ * positions) simplified by meshoptimizer's edge collapses towards target_ratio (0, 1] of
+ * them, keeping the surface within max_error of the mesh's extent (1 = let the count decide;
+ * the topology is kept, so it may stop above the target). out_indices has room for
+ * index_count; *out_index_count gets the indices written, into the same vertices;
+ * out_error (may be NULL) the deviation reached over the extent (NaN where the library
+ * cannot say: meshoptimizer before 0.16). */
+BAKEGI_API bakegi_status bakegi_mesh_simplify(const float* positions, uint64_t vertex_count,
+                                              const uint32_t* indices, uint64_t index_count,
+                                              float target_ratio, float max_error,
+                                              uint32_t* out_indices, uint64_t* out_index_count,
+                                              float* out_error);
+
 /* ---- scene files ------------------------------------------------------------------------ */
 
 /* A .bgs file holds exactly what the API received: the scene and, optionally, a set of
