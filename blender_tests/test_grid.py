@@ -162,6 +162,13 @@ class GridCase(common.SmallCornellCase):
         self.assertIn("grid of", settings.last_result)
         self.assertEqual(bpy.ops.bakegi.apply_grid(), {"FINISHED"})
         self.assertIsNotNone(self.objects["TallBox"].data.color_attributes.get(common.ATTRIBUTE))
+        floor = self.objects["Floor"]  # a grid of quads: its inside collapses freely
+        bpy.context.view_layer.objects.active = floor
+        self.assertEqual(bpy.ops.bakegi.simplify_copy(ratio=0.5), {"FINISHED"})
+        lod = bpy.context.blend_data.objects["Floor_LOD50"]
+        triangles = sum(len(p.vertices) - 2 for p in floor.data.polygons)
+        self.assertLess(len(lod.data.polygons), triangles)
+        self.assertIs(bpy.context.view_layer.objects.active, lod)
 
     def test_refused_grid_changes_nothing(self):
         with self.assertRaises(bakegi.BakeGIError):

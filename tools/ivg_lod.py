@@ -14,8 +14,9 @@ mesh with its level of detail and exports the face corners (bakegi.export_scene_
 CLI draws 2,000 of them (seed 1) and bakes the reference on them in chunks of 512 paths
 until its own noise, NRMSE(odd chunks' mean, even chunks' mean) / 2, is at most 2%; the grid
 (baked on the full-detail scene, 64 rays per hemisphere) lights the same points with the
-level's geometry for visibility (bakegi_grid_evaluate_in_scene). Both metrics of the project
-come with the reference's noise.
+level's geometry for visibility (bakegi_grid_evaluate_in_scene). For scale, a direct bake
+of the same points with the path tracer at its defaults is compared too. Both metrics of the
+project come with the reference's noise. tools/plot_ivg_lod.py draws docs/ivg_lod.png.
 """
 
 import argparse
@@ -132,6 +133,12 @@ def main():
         if not os.path.exists(subset):
             run([cli, "subset", bgs, "--count", str(SUBSET), "--seed", "1", "--out", subset])
         ref, noise, samples = reference(cli, subset, folder)
+        # A direct bake of the same points at the path tracer's defaults, for scale.
+        baked_path = os.path.join(folder, "direct_bake.npy")
+        if not os.path.exists(baked_path):
+            run([cli, "bake", subset, "--method", "pathtrace", "--seed", "1000",
+                 "--out", baked_path])
+        info["direct_bake"] = figures(numpy.load(baked_path).astype(numpy.float64), ref, noise)
         levels[ratio] = (bgs, subset, info, ref, noise, samples)
         triangles = sum(level["lod_triangles"] for level in info["levels"]) or None
         log(f"level {ratio:g}: {info['counts']}, reference noise {noise:.2%} ({samples} paths)"
@@ -156,6 +163,7 @@ def main():
                    "reference_samples": samples, "points": int(len(positions)),
                    "deviation": max([lv["deviation"] for lv in info["levels"]] or [0.0]),
                    "apply_grid": figures(values.astype(numpy.float64), ref, noise),
+                   "direct_bake_at_defaults": info["direct_bake"],
                    "unsure_points": int(numpy.count_nonzero(codes == 1)),
                    "buried_points": int(numpy.count_nonzero(codes == 2))}
             rows.append(row)

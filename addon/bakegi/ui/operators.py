@@ -13,7 +13,7 @@ import json
 import bpy
 from mathutils import Vector
 
-from .. import session, subdivision
+from .. import session, simplification, subdivision
 from ..export import targets as export_targets
 from ..native import BakeGIError
 from ..write import attributes, grid_file
@@ -247,6 +247,43 @@ class BAKEGI_OT_subdivide_copy(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class BAKEGI_OT_simplify_copy(bpy.types.Operator):
+    """Make a level of detail of the active mesh with fewer triangles (meshoptimizer's
+    simplifier; the original is hidden, not changed), to light from the grid without a
+    re-bake"""
+
+    bl_idname = "bakegi.simplify_copy"
+    bl_label = "Simplify a Copy"
+    bl_options = {"REGISTER", "UNDO"}
+
+    ratio: bpy.props.FloatProperty(
+        name="Triangles Kept", default=0.1, min=0.001, max=1.0, subtype="FACTOR",
+        description="The share of the mesh's triangles the copy keeps (it may keep more where "
+                    "borders hold collapses back)")
+
+    @classmethod
+    def poll(cls, context):
+        if not _idle_in_object_mode(cls, context):
+            return False
+        obj = context.active_object
+        if obj is None or obj.type != "MESH":
+            cls.poll_message_set("Select a mesh object")
+            return False
+        return True
+
+    def execute(self, context):
+        obj = context.active_object
+        try:
+            copy, info = simplification.simplify_copy(obj, self.ratio)
+        except (ValueError, BakeGIError) as error:
+            self.report({"ERROR"}, f"BakeGI: {error}")
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"BakeGI: made '{copy.name}' ({info['lod_triangles']:,} of "
+                    f"{info['triangles']:,} triangles) from '{obj.name}', which is now hidden; "
+                    "Apply Grid lights it")
+        return {"FINISHED"}
+
+
 class BAKEGI_OT_add_grid_box(bpy.types.Operator):
     """Add an Empty whose cube is the box an Irradiance Grid covers, around the visible
     meshes, and make it the scene's Grid Box"""
@@ -322,7 +359,7 @@ class BAKEGI_OT_apply_grid(bpy.types.Operator):
 
 
 classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake, BAKEGI_OT_subdivide_copy,
-           BAKEGI_OT_add_grid_box, BAKEGI_OT_apply_grid)
+           BAKEGI_OT_simplify_copy, BAKEGI_OT_add_grid_box, BAKEGI_OT_apply_grid)
 
 
 def register():

@@ -88,6 +88,8 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             row.operator(operators.BAKEGI_OT_apply_grid.bl_idname, icon="LIGHTPROBE_GRID"
                          if "LIGHTPROBE_GRID" in _ICONS else "LIGHTPROBE_VOLUME")
         row.operator(operators.BAKEGI_OT_remove_bake.bl_idname, icon="TRASH", text="")
+        if settings.target == "GRID":
+            layout.operator(operators.BAKEGI_OT_simplify_copy.bl_idname, icon="MOD_DECIM")
 
         box = layout.box()
         if operators.runtime["running"]:
