@@ -182,6 +182,10 @@ _SIGNATURES = {
     "bakegi_mesh_simplify": (c_int, [POINTER(c_float), c_uint64, POINTER(c_uint32), c_uint64,
                                      c_float, c_float, POINTER(c_uint32),
                                      POINTER(c_uint64), POINTER(c_float)]),
+    "bakegi_web_export": (c_int, [_P, _P, c_char_p, POINTER(c_float)]),
+    "bakegi_grid_stream_order": (c_int, [_P, c_uint64, POINTER(c_uint32)]),
+    "bakegi_grid_encode_vertices": (c_int, [_P, POINTER(c_uint32), c_uint64, c_int,
+                                            POINTER(ctypes.c_uint8)]),
     "bakegi_grid_create": (c_int, [POINTER(c_float), POINTER(c_float), c_float, c_uint64, _PP]),
     "bakegi_grid_destroy": (None, [_P]),
     "bakegi_grid_get_info": (c_int, [_P, _P]),
@@ -380,6 +384,22 @@ def simplify_mesh(positions, indices, ratio, max_error=1.0):
         _fptr(xyz), len(xyz), _uptr(tris), len(tris), float(ratio), float(max_error),
         _uptr(out), byref(written), byref(error)), "bakegi_mesh_simplify")
     return out[:written.value].reshape(-1, 3), float(error.value)
+
+
+def web_export(scene, folder, grid=None, camera=None):
+    """Writes the scene for the web page into `folder` (bakegi_web_export): scene.gltf +
+    scene.bin (progressive meshes) and, with a Grid, grid.bgivg. camera: None or nine
+    numbers (position xyz, rotation quaternion xyzw looking down -Z, vertical field of view
+    in radians, aspect ratio)."""
+    values = None
+    if camera is not None:
+        numbers = [float(v) for v in camera]
+        if len(numbers) != 9:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"camera needs 9 numbers, got {len(numbers)}")
+        values = (c_float * 9)(*numbers)
+    _check(load_library().bakegi_web_export(scene.handle, grid.handle if grid else None,
+                                            os.fsencode(folder), values), "bakegi_web_export")
 
 
 class _Handle:

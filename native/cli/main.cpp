@@ -68,6 +68,15 @@ commands:
       instead of the paper's n^2 (docs/ivg.md).
   grid info grid.bgivg
       Bounds, resolution, vertices inside geometry and what made the grid.
+  web export scene.bgs --out FOLDER [--grid grid.bgivg] [--camera x,y,z,qx,qy,qz,qw,yfov,aspect]
+             [--client DIR]
+      Writes the scene for the web page: scene.gltf + scene.bin (glTF 2.0, progressive
+      meshes), grid.bgivg, and the page's files from DIR (the add-on's web/ folder).
+  serve FOLDER [--port P] [--vectors V] [--vertices N] [--float]
+      Serves a web export on 127.0.0.1:P (default 8080; 0 picks a free port): its files,
+      and its grid and geometry as interleaved packets of V grid vectors (default 512,
+      after the 8 corners) and N vertices (default 4096); --float sends the grid's vectors
+      as floats instead of quantized (docs/ivg.md).
   settings [METHOD] [--markdown | --json]
       The settings each method reads (all methods without METHOD): key, type, default,
       range or choices, role (shapes | lighting | execution) and meaning, from the core's
@@ -130,6 +139,8 @@ int main(int argc, char** argv) {
     if (command == "subset") return run_subset_command(args);
     if (command == "settings") return run_settings_command(args);
     if (command == "grid") return run_grid_command(args);
+    if (command == "web") return run_web_command(args);
+    if (command == "serve") return run_serve_command(args);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "bakegi: %s\n(run 'bakegi --help' for usage)\n", e.what());

@@ -6,12 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 #include <set>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "capi_test_scene.h"
 #include "util/error.h"
 #include "web/grid_stream_order.h"
 #include "web/progressive_mesh.h"
@@ -31,18 +35,15 @@ TEST(GridStreamOrder, CornersFirstThenCoarseToFineSpreadOverSlices) {
   EXPECT_EQ(std::set<size_t>(order.begin(), order.begin() + 8), corners);
   // Coarse to fine: a vertex on the stride-2 lattice never follows one that is only on the
   // stride-1 lattice.
-  auto coords = [&](uint32_t v) {
-    return glm::uvec3(v % 17, (v / 17) % 9, v / (17 * 9));
-  };
+  auto coords = [&](uint32_t v) { return glm::uvec3(v % 17, (v / 17) % 9, v / (17 * 9)); };
   auto on_even_lattice = [&](uint32_t v) {
     const glm::uvec3 c = coords(v);
     return c.x % 2 == 0 && c.y % 2 == 0 && c.z % 2 == 0;
   };
-  const auto first_odd = std::find_if(order.begin() + 8, order.end(),
-                                      [&](uint32_t v) { return !on_even_lattice(v); });
-  EXPECT_TRUE(std::all_of(first_odd, order.end(), [&](uint32_t v) {
-    return !on_even_lattice(v) || corners.count(v);
-  }));
+  const auto first_odd =
+      std::find_if(order.begin() + 8, order.end(), [&](uint32_t v) { return !on_even_lattice(v); });
+  EXPECT_TRUE(std::all_of(first_odd, order.end(),
+                          [&](uint32_t v) { return !on_even_lattice(v) || corners.count(v); }));
   // Stratified: the finest level's first 3 x 17 vertices put 3 in each x slice.
   std::vector<int> per_slice(17, 0);
   for (auto it = first_odd; it != first_odd + 3 * 17; ++it) ++per_slice[coords(*it).x];
@@ -162,6 +163,54 @@ TEST(ProgressiveMesh, BadIndicesAreRefused) {
   EXPECT_THROW(build_progressive_mesh(positions, std::vector<uint32_t>{0, 1, 3}), Error);
   EXPECT_THROW(build_progressive_mesh(positions, std::vector<uint32_t>{0, 1}), Error);
   EXPECT_TRUE(build_progressive_mesh(positions, std::vector<uint32_t>{}).faces.empty());
+}
+
+TEST(WebExport, WritesAGltfWithItsBufferAndTheGrid) {
+  const test::ScenePtr scene = test::new_box_scene();
+  const float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {1, 1, 1};
+  bakegi_grid* raw = nullptr;
+  ASSERT_EQ(bakegi_grid_create(bounds_min, bounds_max, 0.25f, 0, &raw), BAKEGI_OK);
+  const GridHandle grid(raw);
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / "bakegi_web_export_test";
+  std::filesystem::remove_all(folder);
+  const float camera[9] = {0.5f, -2.0f, 0.5f, 0.7071f, 0.0f, 0.0f, 0.7071f, 0.7f, 1.5f};
+  ASSERT_EQ(bakegi_web_export(scene.get(), grid.get(), folder.string().c_str(), camera), BAKEGI_OK)
+      << bakegi_last_error();
+  std::ifstream json_file(folder / "scene.gltf");
+  const std::string json((std::istreambuf_iterator<char>(json_file)), {});
+  EXPECT_EQ(json.rfind("{\"asset\":{\"version\":\"2.0\"", 0), 0u);
+  const uintmax_t bin = std::filesystem::file_size(folder / "scene.bin");
+  EXPECT_NE(json.find("\"byteLength\":" + std::to_string(bin) + "}]"), std::string::npos);
+  EXPECT_NE(json.find("\"bakegi_progressive\""), std::string::npos);
+  EXPECT_NE(json.find("\"cameras\""), std::string::npos);
+  EXPECT_NE(json.find("\"grid\":\"grid.bgivg\""), std::string::npos);
+  bakegi_grid* read = nullptr;
+  ASSERT_EQ(bakegi_grid_read_file((folder / "grid.bgivg").string().c_str(), &read), BAKEGI_OK);
+  bakegi_grid_destroy(read);
+
+  // The stream helpers: a permutation, and vertices encoded as the file holds them.
+  std::vector<uint32_t> order(4 * 4 * 4);
+  ASSERT_EQ(bakegi_grid_stream_order(grid.get(), 1, order.data()), BAKEGI_OK);
+  EXPECT_EQ(std::set<uint32_t>(order.begin(), order.end()).size(), order.size());
+  std::vector<uint8_t> quantized(2 * 42), factored(2 * 144);
+  EXPECT_EQ(bakegi_grid_encode_vertices(grid.get(), order.data(), 2, BAKEGI_GRID_QUANTIZED,
+                                        quantized.data()),
+            BAKEGI_OK);
+  EXPECT_EQ(bakegi_grid_encode_vertices(grid.get(), order.data(), 2, BAKEGI_GRID_FACTORED,
+                                        factored.data()),
+            BAKEGI_OK);
+  const uint32_t outside = 64;
+  EXPECT_EQ(
+      bakegi_grid_encode_vertices(grid.get(), &outside, 1, BAKEGI_GRID_QUANTIZED, quantized.data()),
+      BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(
+      bakegi_grid_encode_vertices(grid.get(), order.data(), 1, BAKEGI_GRID_FLOAT, quantized.data()),
+      BAKEGI_ERROR_INVALID_ARGUMENT);
+  const float bad_camera[9] = {0, 0, 0, 0, 0, 0, 1, 0.0f, 1.0f};
+  EXPECT_EQ(bakegi_web_export(scene.get(), nullptr, folder.string().c_str(), bad_camera),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

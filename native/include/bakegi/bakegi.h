@@ -629,6 +629,28 @@ BAKEGI_API bakegi_status bakegi_grid_read_file(const char* path, bakegi_grid** o
 BAKEGI_API bakegi_status bakegi_grid_get_info_json(const bakegi_grid* grid, char* buffer,
                                                    size_t capacity, size_t* out_length);
 
+/* ---- the web page (issue 16, section 4 of the grid's paper; native/src/web/) --------- */
+
+/* Writes a scene for the web page into `folder` (made if missing): scene.gltf + scene.bin
+ * (glTF 2.0; every mesh a progressive mesh: see native/src/web/gltf_export.h) and, when
+ * `grid` is given, grid.bgivg (quantized). camera (may be NULL): 9 floats, position xyz, the
+ * rotation quaternion xyzw (looking down -Z), vertical field of view (radians), aspect
+ * ratio. Files are written atomically; BAKEGI_ERROR_IO names what could not be written. */
+BAKEGI_API bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* grid,
+                                           const char* folder, const float* camera);
+/* The order a server streams the grid's vertices in: the eight corners, then coarse to fine,
+ * stratified over slices of the longest axis (random within a slice, fixed by seed).
+ * out_order: room for every vertex (bakegi_grid_info's vertex count). */
+BAKEGI_API bakegi_status bakegi_grid_stream_order(const bakegi_grid* grid, uint64_t seed,
+                                                  uint32_t* out_order);
+/* The vertices' hemispheres as sent: encoding BAKEGI_GRID_QUANTIZED (per hemisphere u8
+ * direction[3] + u32 R9G9B9E5 colour: 42 bytes a vertex) or BAKEGI_GRID_FACTORED (f32
+ * direction[3] + f32 colour[3]: 144 bytes), hemispheres +x -x +y -y +z -z, vertex by vertex
+ * in the order given: the .bgivg file's bytes for them. */
+BAKEGI_API bakegi_status bakegi_grid_encode_vertices(const bakegi_grid* grid,
+                                                     const uint32_t* vertices, uint64_t count,
+                                                     int encoding, uint8_t* out_bytes);
+
 #ifdef __cplusplus
 }
 #endif

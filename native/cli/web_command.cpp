@@ -1,0 +1,86 @@
+// `bakegi web export`: a scene folder for the web page (issue 16, §4): scene.gltf +
+// scene.bin (progressive meshes), grid.bgivg, and the page itself (index.html, viewer.js)
+// from the client folder, so that `bakegi serve` or a browser opening the folder shows it.
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "arguments.h"
+#include "commands.h"
+#include "core_handles.h"
+#include "exit_codes.h"
+#include "file_error.h"
+#include "scene_file.h"
+#include "usage_error.h"
+
+namespace bakegi::cli {
+
+namespace {
+
+std::vector<float> parse_camera(const std::string& text) {
+  std::vector<float> values;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, ',')) {
+    size_t used = 0;
+    float value = 0.0f;
+    try {
+      value = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size()) throw UsageError("--camera: '" + part + "' is not a number");
+    values.push_back(value);
+  }
+  if (values.size() != 9) {
+    throw UsageError("--camera expects nine numbers: x,y,z, quaternion x,y,z,w, yfov, aspect");
+  }
+  return values;
+}
+
+// Copies the page's files (every file of the client folder) into the scene folder.
+size_t copy_client(const std::filesystem::path& client, const std::filesystem::path& folder) {
+  size_t copied = 0;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(client, error)) {
+    if (!entry.is_regular_file()) continue;
+    std::filesystem::copy_file(entry.path(), folder / entry.path().filename(),
+                               std::filesystem::copy_options::overwrite_existing, error);
+    if (error) throw FileError("copying the page: " + error.message());
+    ++copied;
+  }
+  if (error) throw FileError(client.string() + ": " + error.message());
+  return copied;
+}
+
+}  // namespace
+
+int run_web_command(const std::vector<std::string>& words) {
+  if (words.empty() || words[0] != "export") {
+    throw UsageError("web expects 'export'");
+  }
+  const Arguments args({words.begin() + 1, words.end()},
+                       {{"out"}, {"grid"}, {"camera"}, {"client"}});
+  if (args.positional().size() != 1) throw UsageError("web export expects one scene file");
+  const std::string out = args.require("out");
+  const SceneFile file = load_scene_file(args.positional()[0]);
+  GridHandle grid;
+  if (const auto grid_path = args.value("grid")) {
+    bakegi_grid* raw = nullptr;
+    check(bakegi_grid_read_file(grid_path->c_str(), &raw), "reading " + *grid_path);
+    grid = GridHandle(raw);
+  }
+  std::vector<float> camera;
+  if (const auto text = args.value("camera")) camera = parse_camera(*text);
+  check(bakegi_web_export(file.scene.get(), grid.get(), out.c_str(),
+                          camera.empty() ? nullptr : camera.data()),
+        "writing the web scene to " + out);
+  size_t page_files = 0;
+  if (const auto client = args.value("client")) page_files = copy_client(*client, out);
+  std::fprintf(
+      stderr, "wrote %s/scene.gltf, scene.bin%s%s\n", out.c_str(), grid ? ", grid.bgivg" : "",
+      page_files ? (" and the page (" + std::to_string(page_files) + " files)").c_str() : "");
+  return kExitOk;
+}
+
+}  // namespace bakegi::cli

@@ -1,0 +1,269 @@
+#include "web/gltf_export.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <sstream>
+
+#include "bakegi/bakegi.h"
+#include "json_text.h"
+#include "util/error.h"
+#include "web/progressive_mesh.h"
+
+namespace bakegi {
+
+namespace {
+
+constexpr int kFloat = 5126, kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+std::string vec(const float* v, int n) {
+  std::string s = "[";
+  for (int i = 0; i < n; ++i) {
+    if (i) s += ',';
+    s += json_number(v[i]);
+  }
+  return s + "]";
+}
+std::string vec3(const glm::vec3& v) {
+  return vec(&v.x, 3);
+}
+
+// Accumulates the binary buffer, its views and accessors.
+class BufferBuilder {
+ public:
+  // A view + accessor of `count` elements of `type` ("VEC3", "SCALAR"); returns the accessor.
+  int add(const void* data, size_t bytes, size_t count, int component, const char* type, int target,
+          const std::string& bounds = "") {
+    while (bin.size() % 4) bin.push_back(0);
+    const size_t offset = bin.size();
+    bin.resize(offset + bytes);
+    if (bytes) std::memcpy(bin.data() + offset, data, bytes);
+    views.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
+                    ",\"byteLength\":" + std::to_string(bytes) +
+                    (target ? ",\"target\":" + std::to_string(target) : "") + "}");
+    accessors.push_back("{\"bufferView\":" + std::to_string(views.size() - 1) +
+                        ",\"componentType\":" + std::to_string(component) + ",\"count\":" +
+                        std::to_string(count) + ",\"type\":\"" + type + "\"" + bounds + "}");
+    return int(accessors.size() - 1);
+  }
+  std::vector<uint8_t> bin;
+  std::vector<std::string> views, accessors;
+};
+
+// A quaternion turning -Z onto `direction` (glTF lights and cameras look down -Z).
+glm::vec4 rotation_to(const glm::vec3& direction) {
+  const glm::vec3 from(0.0f, 0.0f, -1.0f);
+  const glm::vec3 to = glm::normalize(direction);
+  const float d = glm::dot(from, to);
+  if (d < -0.999999f) return {1.0f, 0.0f, 0.0f, 0.0f};  // half a turn about x
+  const glm::vec3 axis = glm::cross(from, to);
+  const glm::vec4 q(axis.x, axis.y, axis.z, 1.0f + d);
+  return q / glm::length(q);
+}
+
+struct Primitive {
+  uint32_t mesh = 0, material = 0;
+  std::vector<uint32_t> triangles;  // of the mesh
+};
+
+std::string join(const std::vector<std::string>& items) {
+  std::string s;
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (i) s += ',';
+    s += items[i];
+  }
+  return s;
+}
+
+}  // namespace
+
+WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& options) {
+  WebGltf out;
+  BufferBuilder buffer;
+  std::vector<std::string> nodes, meshes, scene_nodes;
+
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    std::map<uint32_t, Primitive> by_material;
+    for (uint32_t t = 0; t < mesh.indices.size() / 3; ++t) {
+      const uint32_t material =
+          mesh.triangle_materials.empty() ? mesh.material : mesh.triangle_materials[t];
+      Primitive& p = by_material[material];
+      p.mesh = m, p.material = material;
+      p.triangles.push_back(t);
+    }
+    std::vector<std::string> primitives;
+    for (const auto& [material, primitive] : by_material) {
+      // The primitive's own vertices, and whether its shading is flat.
+      std::vector<uint32_t> local(mesh.positions.size(), UINT32_MAX), indices;
+      std::vector<glm::vec3> positions, normal_sums;
+      bool flat = true;
+      for (const uint32_t t : primitive.triangles) {
+        glm::vec3 p[3];
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t v = mesh.indices[3 * t + c];
+          if (v >= mesh.positions.size()) {
+            throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                        "mesh " + std::to_string(m) + " indexes past its vertices");
+          }
+          if (local[v] == UINT32_MAX) {
+            local[v] = uint32_t(positions.size());
+            positions.push_back(mesh.positions[v]);
+            normal_sums.push_back(glm::vec3(0.0f));
+          }
+          indices.push_back(local[v]);
+          p[c] = mesh.positions[v];
+        }
+        const glm::vec3 face = glm::cross(p[1] - p[0], p[2] - p[0]);
+        const float length = glm::length(face);
+        for (int c = 0; c < 3; ++c) {
+          const glm::vec3 n = mesh.corner_normals.empty() ? face : mesh.corner_normals[3 * t + c];
+          normal_sums[indices[indices.size() - 3 + c]] += n;
+          if (!mesh.corner_normals.empty() && length > 0.0f &&
+              glm::dot(glm::normalize(n), face / length) < 0.999f) {
+            flat = false;
+          }
+        }
+      }
+      const ProgressiveMesh pm = build_progressive_mesh(positions, indices);
+      const size_t count = pm.original_vertex.size();
+      std::vector<glm::vec3> streamed(count), normals(count);
+      glm::vec3 lo(INFINITY), hi(-INFINITY);
+      for (size_t v = 0; v < count; ++v) {
+        streamed[v] = positions[pm.original_vertex[v]];
+        const glm::vec3 sum = normal_sums[pm.original_vertex[v]];
+        const float length = glm::length(sum);
+        normals[v] = length > 0.0f ? sum / length : glm::vec3(0.0f, 0.0f, 1.0f);
+        lo = glm::min(lo, streamed[v]);
+        hi = glm::max(hi, streamed[v]);
+      }
+      if (pm.faces.empty()) continue;  // nothing but degenerate triangles
+      const int position =
+          buffer.add(streamed.data(), count * 12, count, kFloat, "VEC3", kArrayBuffer,
+                     ",\"min\":" + vec3(lo) + ",\"max\":" + vec3(hi));
+      std::string attributes = "\"POSITION\":" + std::to_string(position);
+      if (!flat) {  // without NORMAL a glTF viewer shades flat, as the spec asks
+        attributes += ",\"NORMAL\":" + std::to_string(buffer.add(normals.data(), count * 12, count,
+                                                                 kFloat, "VEC3", kArrayBuffer));
+      }
+      const int faces = buffer.add(pm.faces.data(), pm.faces.size() * 4, pm.faces.size(),
+                                   kUnsignedInt, "SCALAR", kElementArrayBuffer);
+      const int parent = buffer.add(pm.parent.data(), count * 4, count, kUnsignedInt, "SCALAR", 0);
+      const int valid_at = buffer.add(pm.valid_at.data(), pm.valid_at.size() * 4,
+                                      pm.valid_at.size(), kUnsignedInt, "SCALAR", 0);
+      std::string levels;
+      for (const uint32_t n : pm.level_vertices) {
+        if (!levels.empty()) levels += ',';
+        levels += std::to_string(n);
+      }
+      primitives.push_back(
+          "{\"attributes\":{" + attributes + "},\"indices\":" + std::to_string(faces) +
+          ",\"material\":" + std::to_string(material) +
+          ",\"mode\":4,\"extras\":{\"bakegi_progressive\":{\"parent\":" + std::to_string(parent) +
+          ",\"valid_at\":" + std::to_string(valid_at) + ",\"level_vertices\":[" + levels + "]}}}");
+      ++out.primitives;
+      out.vertices += count;
+      out.faces += pm.valid_at.size();
+    }
+    if (primitives.empty()) continue;
+    meshes.push_back("{\"name\":" + json_quote("mesh " + std::to_string(m)) + ",\"primitives\":[" +
+                     join(primitives) + "]}");
+    scene_nodes.push_back(std::to_string(nodes.size()));
+    nodes.push_back("{\"mesh\":" + std::to_string(meshes.size() - 1) +
+                    ",\"extras\":{\"object_id\":" + std::to_string(mesh.object_id) + "}}");
+  }
+
+  std::vector<std::string> materials;
+  for (const Material& material : scene.materials) {
+    const glm::vec3 base = glm::clamp(material.albedo, 0.0f, 1.0f);
+    const float peak = std::max({material.emission.x, material.emission.y, material.emission.z});
+    const glm::vec3 emissive = peak > 0.0f ? material.emission / peak : glm::vec3(0.0f);
+    materials.push_back(
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[" + json_number(base.x) + "," +
+        json_number(base.y) + "," + json_number(base.z) +
+        ",1],\"metallicFactor\":0,\"roughnessFactor\":1},\"emissiveFactor\":" + vec3(emissive) +
+        ",\"extras\":{\"emission_radiance\":" + vec3(material.emission) + "}}");
+  }
+
+  std::vector<std::string> lights, area_lights;
+  for (const Light& light : scene.lights) {
+    const float peak = std::max({light.color.x, light.color.y, light.color.z});
+    const glm::vec3 color = peak > 0.0f ? light.color / peak : glm::vec3(0.0f);
+    std::string node = "{";
+    if (light.type == BAKEGI_LIGHT_AREA) {
+      area_lights.push_back(
+          "{\"position\":" + vec3(light.position) + ",\"direction\":" + vec3(light.direction) +
+          ",\"axis_u\":" + vec3(light.axis_u) + ",\"size_x\":" + json_number(light.size_x) +
+          ",\"size_y\":" +
+          json_number(light.shape == BAKEGI_AREA_SQUARE || light.shape == BAKEGI_AREA_DISK
+                          ? light.size_x
+                          : light.size_y) +
+          ",\"shape\":" + std::to_string(int(light.shape)) + ",\"radiance\":" + vec3(light.color) +
+          "}");
+      continue;
+    }
+    std::string description = "{\"color\":" + vec3(color) + ",\"intensity\":" + json_number(peak);
+    if (light.type == BAKEGI_LIGHT_POINT) {
+      description += ",\"type\":\"point\"}";
+      node += "\"translation\":" + vec3(light.position);
+    } else if (light.type == BAKEGI_LIGHT_SPOT) {
+      const float outer = 0.5f * light.spot_size;
+      description += ",\"type\":\"spot\",\"spot\":{\"innerConeAngle\":" +
+                     json_number(outer * (1.0f - std::clamp(light.spot_blend, 0.0f, 1.0f))) +
+                     ",\"outerConeAngle\":" + json_number(outer) + "}}";
+      const glm::vec4 q = rotation_to(light.direction);
+      node += "\"translation\":" + vec3(light.position) + ",\"rotation\":" + vec(&q.x, 4);
+    } else {
+      description += ",\"type\":\"directional\"}";
+      const glm::vec4 q = rotation_to(light.direction);
+      node += "\"rotation\":" + vec(&q.x, 4);
+    }
+    lights.push_back(description);
+    scene_nodes.push_back(std::to_string(nodes.size()));
+    nodes.push_back(node + ",\"extensions\":{\"KHR_lights_punctual\":{\"light\":" +
+                    std::to_string(lights.size() - 1) + "}}}");
+  }
+
+  std::string cameras;
+  if (options.has_camera) {
+    const WebCamera& c = options.camera;
+    cameras =
+        ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":" + json_number(c.yfov) +
+        ",\"aspectRatio\":" + json_number(c.aspect) + ",\"znear\":0.01}}]";
+    scene_nodes.push_back(std::to_string(nodes.size()));
+    nodes.push_back("{\"camera\":0,\"translation\":" + vec3(c.position) +
+                    ",\"rotation\":" + vec(&c.rotation.x, 4) + "}");
+  }
+
+  std::ostringstream json;
+  json << "{\"asset\":{\"version\":\"2.0\",\"generator\":"
+       << json_quote(std::string("bakegi ") + bakegi_version_string() + " web export") << "}";
+  if (!lights.empty()) {
+    json << ",\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{"
+         << "\"KHR_lights_punctual\":{\"lights\":[" << join(lights) << "]}}";
+  }
+  // glTF arrays, where present, hold at least one item.
+  auto field = [](const char* name, const std::vector<std::string>& items) {
+    return items.empty() ? std::string() : ",\"" + std::string(name) + "\":[" + join(items) + "]";
+  };
+  const std::string roots = field("nodes", scene_nodes);
+  json << ",\"scene\":0,\"scenes\":[{" << (roots.empty() ? roots : roots.substr(1)) << "}]"
+       << field("nodes", nodes) << field("meshes", meshes) << field("materials", materials)
+       << cameras << field("accessors", buffer.accessors) << field("bufferViews", buffer.views);
+  if (!buffer.bin.empty()) {
+    json << ",\"buffers\":[{\"uri\":\"scene.bin\",\"byteLength\":" << buffer.bin.size() << "}]";
+  }
+  json << ",\"extras\":{\"bakegi\":{\"grid\":"
+       << (options.grid_file.empty() ? std::string("null") : json_quote(options.grid_file))
+       << ",\"area_lights\":[" << join(area_lights)
+       << "],\"world_radiance\":" << vec3(scene.world_radiance)
+       << ",\"units\":\"radiance W/(m^2 sr); point and spot "
+       << "intensity W/sr; sun irradiance W/m^2\"}}}";
+  out.json = json.str();
+  out.bin = std::move(buffer.bin);
+  return out;
+}
+
+}  // namespace bakegi

@@ -1,0 +1,46 @@
+// The scene as glTF 2.0 for the web page (issue 16, §4): one primitive per mesh and
+// material, world space, each a progressive mesh (web/progressive_mesh.h) stored in plain
+// glTF terms (its vertices coarse first, its faces in stream order: any glTF viewer shows
+// the full mesh) plus, in the primitive's extras, what a streaming client needs on top:
+//   "bakegi_progressive": {"parent": accessor (the vertex lookup table),
+//                          "valid_at": accessor (per face), "level_vertices": [...]}.
+// Lights: point, spot and sun as KHR_lights_punctual (intensity in the core's units: W/sr,
+// sun W/m^2, which three.js' physically based lights read as such), area lights (not in
+// glTF) in the scene's extras with their radiance; materials as unlit-free metallic 0,
+// roughness 1 base colours, emission in extras (radiance W/(m^2 sr)). Textures are not
+// written yet: a textured material gets its albedo factor.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace bakegi {
+
+struct WebCamera {
+  glm::vec3 position{0.0f};
+  glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // quaternion x, y, z, w: the camera looks down -Z
+  float yfov = 0.6911f;                        // radians (Blender's 50 mm on a 36 mm sensor)
+  float aspect = 1.0f;
+};
+
+struct WebExportOptions {
+  bool has_camera = false;
+  WebCamera camera;
+  std::string grid_file;  // the grid's file name beside scene.gltf ("" = none)
+};
+
+struct WebGltf {
+  std::string json;          // scene.gltf
+  std::vector<uint8_t> bin;  // scene.bin, which the JSON names
+  size_t primitives = 0, vertices = 0, faces = 0;
+};
+
+// Throws Error(INVALID_ARGUMENT) for a scene whose meshes index past their vertices.
+WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& options);
+
+}  // namespace bakegi
