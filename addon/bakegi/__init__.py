@@ -35,11 +35,11 @@ except ImportError:  # plain Python: tests of the bpy-free modules
 
 __all__ = ["BakeGIError"]
 if bpy is not None:
-    from .api import (apply_grid, bake, export_scene_file, live_stop, live_update,  # noqa: E402
-                      remove_bake, simplify_copy, subdivide_copy)
+    from .api import (apply_grid, bake, export_scene_file, export_web, live_stop,  # noqa: E402
+                      live_update, remove_bake, simplify_copy, subdivide_copy)
 
-    __all__ += ["apply_grid", "bake", "export_scene_file", "live_stop", "live_update",
-                "remove_bake", "simplify_copy", "subdivide_copy"]
+    __all__ += ["apply_grid", "bake", "export_scene_file", "export_web", "live_stop",
+                "live_update", "remove_bake", "simplify_copy", "subdivide_copy"]
 
 _MODULES = ("ui.preferences", "ui.properties", "ui.operators", "ui.panels", "live")
 

@@ -13,6 +13,7 @@ bake() runs synchronously (timers do not run in background mode) through the sam
 session.BakeSession as the Bake Indirect operator.
 """
 
+import os
 import time
 
 import bpy
@@ -174,6 +175,30 @@ def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
             exported.close()
     report["warnings"] = report["warnings"] + list(skipped)
     return report
+
+
+def export_web(folder=None, path=None, context=None):
+    """Export for Web: the visible scene (glTF 2.0 with progressive meshes), its grid and the
+    web page in `folder` (default: //bakegi_web/<scene> beside the saved .blend). path: the
+    grid file (default: the scene's newest grid; None and no grid: the page shows direct
+    light only). `bakegi serve FOLDER` streams it to a browser (docs/ivg.md). Returns a
+    report: folder, files, bytes per file, camera (whether the scene's was written),
+    seconds, serve (the command)."""
+    from .write import web_scene
+    context = _context(context)
+    if path is None:
+        path = context.scene.get(grid_file.GRID_PATH_PROPERTY)
+    if path and not os.path.isfile(bpy.path.abspath(path)):
+        raise BakeGIError("BAKEGI_ERROR_IO", f"the grid file {path} is missing: bake the grid "
+                          "again or give its path")
+    if folder is None:
+        if not bpy.data.filepath:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              "save the .blend first or give a folder")
+        safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in context.scene.name)
+        folder = bpy.path.abspath(f"//bakegi_web/{safe or 'scene'}")
+    return web_scene.export_web(context, bpy.path.abspath(folder),
+                                bpy.path.abspath(path) if path else None)
 
 
 def live_update(context=None):

@@ -52,6 +52,19 @@ class BufferBuilder {
   std::vector<std::string> views, accessors;
 };
 
+// glTF is Y-up: a point (x, y, z) of the scene (Z-up, Blender's axes) is (x, z, -y) there, a
+// turn of -90 degrees about x (what Blender's glTF exporter does too).
+glm::vec3 to_gltf(const glm::vec3& v) { return {v.x, v.z, -v.y}; }
+constexpr float kHalfSqrt2 = 0.70710678f;
+
+// Quaternion product a * b, (x, y, z, w).
+glm::vec4 multiply(const glm::vec4& a, const glm::vec4& b) {
+  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
+          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+}
+
 // A quaternion turning -Z onto `direction` (glTF lights and cameras look down -Z).
 glm::vec4 rotation_to(const glm::vec3& direction) {
   const glm::vec3 from(0.0f, 0.0f, -1.0f);
@@ -132,10 +145,10 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
       std::vector<glm::vec3> streamed(count), normals(count);
       glm::vec3 lo(INFINITY), hi(-INFINITY);
       for (size_t v = 0; v < count; ++v) {
-        streamed[v] = positions[pm.original_vertex[v]];
-        const glm::vec3 sum = normal_sums[pm.original_vertex[v]];
+        streamed[v] = to_gltf(positions[pm.original_vertex[v]]);
+        const glm::vec3 sum = to_gltf(normal_sums[pm.original_vertex[v]]);
         const float length = glm::length(sum);
-        normals[v] = length > 0.0f ? sum / length : glm::vec3(0.0f, 0.0f, 1.0f);
+        normals[v] = length > 0.0f ? sum / length : glm::vec3(0.0f, 1.0f, 0.0f);
         lo = glm::min(lo, streamed[v]);
         hi = glm::max(hi, streamed[v]);
       }
@@ -194,8 +207,9 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
     std::string node = "{";
     if (light.type == BAKEGI_LIGHT_AREA) {
       area_lights.push_back(
-          "{\"position\":" + vec3(light.position) + ",\"direction\":" + vec3(light.direction) +
-          ",\"axis_u\":" + vec3(light.axis_u) + ",\"size_x\":" + json_number(light.size_x) +
+          "{\"position\":" + vec3(to_gltf(light.position)) +
+          ",\"direction\":" + vec3(to_gltf(light.direction)) +
+          ",\"axis_u\":" + vec3(to_gltf(light.axis_u)) + ",\"size_x\":" + json_number(light.size_x) +
           ",\"size_y\":" +
           json_number(light.shape == BAKEGI_AREA_SQUARE || light.shape == BAKEGI_AREA_DISK
                           ? light.size_x
@@ -207,17 +221,17 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
     std::string description = "{\"color\":" + vec3(color) + ",\"intensity\":" + json_number(peak);
     if (light.type == BAKEGI_LIGHT_POINT) {
       description += ",\"type\":\"point\"}";
-      node += "\"translation\":" + vec3(light.position);
+      node += "\"translation\":" + vec3(to_gltf(light.position));
     } else if (light.type == BAKEGI_LIGHT_SPOT) {
       const float outer = 0.5f * light.spot_size;
       description += ",\"type\":\"spot\",\"spot\":{\"innerConeAngle\":" +
                      json_number(outer * (1.0f - std::clamp(light.spot_blend, 0.0f, 1.0f))) +
                      ",\"outerConeAngle\":" + json_number(outer) + "}}";
-      const glm::vec4 q = rotation_to(light.direction);
-      node += "\"translation\":" + vec3(light.position) + ",\"rotation\":" + vec(&q.x, 4);
+      const glm::vec4 q = rotation_to(to_gltf(light.direction));
+      node += "\"translation\":" + vec3(to_gltf(light.position)) + ",\"rotation\":" + vec(&q.x, 4);
     } else {
       description += ",\"type\":\"directional\"}";
-      const glm::vec4 q = rotation_to(light.direction);
+      const glm::vec4 q = rotation_to(to_gltf(light.direction));
       node += "\"rotation\":" + vec(&q.x, 4);
     }
     lights.push_back(description);
@@ -233,8 +247,10 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
         ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":" + json_number(c.yfov) +
         ",\"aspectRatio\":" + json_number(c.aspect) + ",\"znear\":0.01}}]";
     scene_nodes.push_back(std::to_string(nodes.size()));
-    nodes.push_back("{\"camera\":0,\"translation\":" + vec3(c.position) +
-                    ",\"rotation\":" + vec(&c.rotation.x, 4) + "}");
+    const glm::vec4 rotation =
+        multiply(glm::vec4(-kHalfSqrt2, 0.0f, 0.0f, kHalfSqrt2), c.rotation);
+    nodes.push_back("{\"camera\":0,\"translation\":" + vec3(to_gltf(c.position)) +
+                    ",\"rotation\":" + vec(&rotation.x, 4) + "}");
   }
 
   std::ostringstream json;

@@ -4,6 +4,8 @@
 // the full mesh) plus, in the primitive's extras, what a streaming client needs on top:
 //   "bakegi_progressive": {"parent": accessor (the vertex lookup table),
 //                          "valid_at": accessor (per face), "level_vertices": [...]}.
+// Axes: Y up, as glTF asks (a scene point (x, y, z) is (x, z, -y)); the grid keeps the
+// scene's Z-up axes, which the page converts back to.
 // Lights: point, spot and sun as KHR_lights_punctual (intensity in the core's units: W/sr,
 // sun W/m^2, which three.js' physically based lights read as such), area lights (not in
 // glTF) in the scene's extras with their radiance; materials as unlit-free metallic 0,
@@ -23,7 +25,8 @@ namespace bakegi {
 
 struct WebCamera {
   glm::vec3 position{0.0f};
-  glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // quaternion x, y, z, w: the camera looks down -Z
+  glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // quaternion x, y, z, w: the camera looks down
+                                               // -Z (scene axes, as Blender's camera)
   float yfov = 0.6911f;                        // radians (Blender's 50 mm on a 36 mm sensor)
   float aspect = 1.0f;
 };

@@ -1,0 +1,93 @@
+// What the page takes from scene.gltf (written by bakegi web export): materials (base colour,
+// emission as radiance), lights (KHR_lights_punctual in the core's units, which three.js'
+// physically based lights read the same way: W/sr, W/m^2; area lights from the extras as
+// RectAreaLights of that radiance), the camera, and each primitive's progressive data.
+import * as THREE from "three";
+import { RectAreaLightUniformsLib } from "three/examples/jsm/lights/RectAreaLightUniformsLib.js";
+
+export function makeMaterial(description) {
+  const base = description.pbrMetallicRoughness?.baseColorFactor ?? [0.8, 0.8, 0.8, 1];
+  const radiance = description.extras?.emission_radiance ?? [0, 0, 0];
+  const peak = Math.max(...radiance);
+  // Lambert only (specularIntensity 0), as the core's diffuse materials; the colours are
+  // linear, as glTF's factors.
+  return new THREE.MeshPhysicalMaterial({
+    color: new THREE.Color(base[0], base[1], base[2]),
+    roughness: 1,
+    metalness: 0,
+    specularIntensity: 0,
+    emissive: peak > 0 ? new THREE.Color(radiance[0] / peak, radiance[1] / peak, radiance[2] / peak) : new THREE.Color(0, 0, 0),
+    emissiveIntensity: peak,
+  });
+}
+
+function nodeTransform(object, node) {
+  if (node.translation) object.position.fromArray(node.translation);
+  if (node.rotation) object.quaternion.fromArray(node.rotation);
+}
+
+export function makeLights(gltf) {
+  const lights = [];
+  const punctual = gltf.extensions?.KHR_lights_punctual?.lights ?? [];
+  for (const node of gltf.nodes ?? []) {
+    const index = node.extensions?.KHR_lights_punctual?.light;
+    if (index === undefined) continue;
+    const l = punctual[index];
+    const color = new THREE.Color(...(l.color ?? [1, 1, 1]));
+    let light;
+    if (l.type === "point") {
+      light = new THREE.PointLight(color, l.intensity, 0, 2);
+    } else if (l.type === "spot") {
+      const outer = l.spot?.outerConeAngle ?? Math.PI / 4;
+      const inner = l.spot?.innerConeAngle ?? 0;
+      light = new THREE.SpotLight(color, l.intensity, 0, outer, 1 - inner / outer, 2);
+    } else {
+      light = new THREE.DirectionalLight(color, l.intensity);
+    }
+    const holder = new THREE.Object3D();
+    nodeTransform(holder, node);
+    holder.add(light);
+    if (light.target) {
+      // three.js aims spot and sun lights at a target; glTF's look down the node's -Z.
+      light.target.position.set(0, 0, -1);
+      holder.add(light.target);
+    }
+    lights.push(holder);
+  }
+  const areas = gltf.extras?.bakegi?.area_lights ?? [];
+  if (areas.length) RectAreaLightUniformsLib.init();
+  for (const a of areas) {
+    const peak = Math.max(...a.radiance);
+    if (!(peak > 0)) continue;
+    const color = new THREE.Color(a.radiance[0] / peak, a.radiance[1] / peak, a.radiance[2] / peak);
+    const light = new THREE.RectAreaLight(color, peak, a.size_x, a.size_y);
+    light.position.fromArray(a.position);
+    // A RectAreaLight shines down its -Z with its width along its X: build that frame.
+    const z = new THREE.Vector3(...a.direction).negate().normalize();
+    const x = new THREE.Vector3(...a.axis_u).normalize();
+    const y = new THREE.Vector3().crossVectors(z, x);
+    light.quaternion.setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, z));
+    lights.push(light);
+  }
+  return lights;
+}
+
+// The glTF camera (a PerspectiveCamera with its node's pose), or null.
+export function makeCamera(gltf, aspect) {
+  for (const node of gltf.nodes ?? []) {
+    if (node.camera === undefined) continue;
+    const p = gltf.cameras[node.camera].perspective;
+    const camera = new THREE.PerspectiveCamera(THREE.MathUtils.radToDeg(p.yfov), aspect, p.znear ?? 0.01, p.zfar ?? 1000);
+    nodeTransform(camera, node);
+    return camera;
+  }
+  return null;
+}
+
+// The primitives in file order with what the stream and a local load need.
+export function primitivesOf(gltf) {
+  const out = [];
+  (gltf.meshes ?? []).forEach((mesh, m) =>
+    mesh.primitives.forEach((primitive, p) => out.push({ mesh: m, primitive: p, description: primitive })));
+  return out;
+}

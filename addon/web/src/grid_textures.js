@@ -1,0 +1,111 @@
+// The grid on the GPU: two 3D textures, directions and colours (half floats, which WebGL2
+// filters linearly everywhere), each hemisphere a block of the grid's size along x.
+import * as THREE from "three";
+import { HEMISPHERES } from "./irradiance_grid.js";
+
+export class GridTextures {
+  constructor(grid) {
+    const [nx, ny, nz] = grid.resolution;
+    this.grid = grid;
+    const make = () => {
+      const texture = new THREE.Data3DTexture(new Uint16Array(4 * HEMISPHERES * nx * ny * nz), HEMISPHERES * nx, ny, nz);
+      texture.format = THREE.RGBAFormat;
+      texture.type = THREE.HalfFloatType;
+      texture.minFilter = THREE.LinearFilter;
+      texture.magFilter = THREE.LinearFilter;
+      texture.wrapS = texture.wrapT = texture.wrapR = THREE.ClampToEdgeWrapping;
+      texture.unpackAlignment = 1;
+      return texture;
+    };
+    this.directions = make();
+    this.colors = make();
+    const cell = grid.cellSize();
+    this.uniforms = {
+      bakegiDirections: { value: this.directions },
+      bakegiColors: { value: this.colors },
+      bakegiBoundsMin: { value: new THREE.Vector3(...grid.boundsMin) },
+      bakegiCellSize: { value: new THREE.Vector3(...cell) },
+      bakegiResolution: { value: new THREE.Vector3(nx, ny, nz) },
+      bakegiIndirectScale: { value: 1 },
+      bakegiWhiteAlbedo: { value: 0 },
+    };
+  }
+
+  // Uploads every vertex's values (IrradianceGrid.filled()).
+  upload(values) {
+    const [nx, ny, nz] = this.grid.resolution;
+    const directions = this.directions.image.data;
+    const colors = this.colors.image.data;
+    const toHalf = THREE.DataUtils.toHalfFloat;
+    const width = HEMISPHERES * nx;
+    for (let k = 0; k < nz; ++k) {
+      for (let j = 0; j < ny; ++j) {
+        for (let i = 0; i < nx; ++i) {
+          const vertex = (k * ny + j) * nx + i;
+          for (let h = 0; h < HEMISPHERES; ++h) {
+            const texel = 4 * ((k * ny + j) * width + h * nx + i);
+            const base = vertex * 6 * HEMISPHERES + 6 * h;
+            for (let c = 0; c < 3; ++c) {
+              directions[texel + c] = toHalf(values[base + c]);
+              colors[texel + c] = toHalf(Math.min(values[base + 3 + c], 65000));
+            }
+            directions[texel + 3] = colors[texel + 3] = toHalf(1);
+          }
+        }
+      }
+    }
+    this.directions.needsUpdate = true;
+    this.colors.needsUpdate = true;
+  }
+}
+
+// The paper's shader (§3.2, §3.3) added to a three.js material: indirect diffuse light =
+// albedo * E / pi, E from the grid at the fragment: each axis' hemisphere on the normal's
+// side, trilinearly interpolated (the texture unit), weighted by n_a^2, read as c (d . n).
+// Positions and normals are turned from glTF's Y-up axes to the grid's Z-up ones.
+const DECLARATIONS = /* glsl */ `
+uniform highp sampler3D bakegiDirections;
+uniform highp sampler3D bakegiColors;
+uniform vec3 bakegiBoundsMin;
+uniform vec3 bakegiCellSize;
+uniform vec3 bakegiResolution;
+uniform float bakegiIndirectScale;
+uniform float bakegiWhiteAlbedo;
+varying vec3 vBakegiWorldPosition;
+vec3 bakegiGridIrradiance(vec3 p, vec3 n) {
+  vec3 g = clamp((p - bakegiBoundsMin) / bakegiCellSize - 0.5, vec3(0.0), bakegiResolution - 1.0);
+  vec3 sum = vec3(0.0);
+  for (int a = 0; a < 3; ++a) {
+    float w = n[a] * n[a];
+    if (w == 0.0) continue;
+    float h = float(2 * a + (n[a] >= 0.0 ? 0 : 1));
+    vec3 uvw = vec3((h * bakegiResolution.x + g.x + 0.5) / (6.0 * bakegiResolution.x),
+                    (g.y + 0.5) / bakegiResolution.y, (g.z + 0.5) / bakegiResolution.z);
+    vec3 d = texture(bakegiDirections, uvw).xyz;
+    vec3 c = texture(bakegiColors, uvw).rgb;
+    sum += w * c * dot(d, n);
+  }
+  return max(sum, vec3(0.0)) * RECIPROCAL_PI;
+}
+`;
+
+export function addGridLighting(material, uniforms) {
+  material.onBeforeCompile = (shader) => {
+    Object.assign(shader.uniforms, uniforms);
+    shader.vertexShader = shader.vertexShader
+      .replace("#include <common>", "#include <common>\nvarying vec3 vBakegiWorldPosition;")
+      .replace("#include <project_vertex>",
+        "#include <project_vertex>\nvBakegiWorldPosition = (modelMatrix * vec4(transformed, 1.0)).xyz;");
+    shader.fragmentShader = shader.fragmentShader
+      .replace("#include <common>", "#include <common>\n" + DECLARATIONS)
+      .replace("#include <lights_fragment_end>", `#include <lights_fragment_end>
+      {
+        vec3 worldNormal = inverseTransformDirection(normal, viewMatrix);
+        vec3 p = vec3(vBakegiWorldPosition.x, -vBakegiWorldPosition.z, vBakegiWorldPosition.y);
+        vec3 n = vec3(worldNormal.x, -worldNormal.z, worldNormal.y);
+        vec3 albedo = mix(diffuseColor.rgb, vec3(1.0), bakegiWhiteAlbedo);
+        reflectedLight.indirectDiffuse += albedo * bakegiGridIrradiance(p, n) * bakegiIndirectScale;
+      }`);
+  };
+  material.customProgramCacheKey = () => "bakegi-grid";
+}

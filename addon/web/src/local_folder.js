@@ -1,0 +1,55 @@
+// Opening a folder written by bakegi web export without a server: scene.gltf, scene.bin and
+// grid.bgivg read from the files the user picked, the whole scene at once.
+import { IrradianceGrid } from "./irradiance_grid.js";
+
+function accessor(gltf, bin, index, Type) {
+  const a = gltf.accessors[index];
+  const view = gltf.bufferViews[a.bufferView];
+  const components = a.type === "VEC3" ? 3 : 1;
+  return new Type(bin.slice(view.byteOffset ?? 0, (view.byteOffset ?? 0) + a.count * components * 4));
+}
+
+// The primitive's arrays, as the stream would bring them all.
+export function primitiveArrays(gltf, bin, description) {
+  const progressive = description.extras.bakegi_progressive;
+  return {
+    positions: accessor(gltf, bin, description.attributes.POSITION, Float32Array),
+    normals: description.attributes.NORMAL !== undefined ? accessor(gltf, bin, description.attributes.NORMAL, Float32Array) : null,
+    faces: accessor(gltf, bin, description.indices, Uint32Array),
+    parent: accessor(gltf, bin, progressive.parent, Uint32Array),
+  };
+}
+
+// A .bgivg file (native/src/grid/grid_file.h): the frame (8-byte magic "BAKEGI\0V", u32
+// version, u32 reserved, u64 payload bytes), then bounds, resolution, encoding, valid flags
+// and the hemispheres.
+export function readGridFile(buffer) {
+  const view = new DataView(buffer);
+  const magic = new TextDecoder().decode(new Uint8Array(buffer, 0, 6));
+  if (magic !== "BAKEGI" || view.getUint8(7) !== "V".charCodeAt(0)) throw new Error("not a .bgivg grid file");
+  let offset = 24;
+  const f32 = () => { const v = view.getFloat32(offset, true); offset += 4; return v; };
+  const u32 = () => { const v = view.getUint32(offset, true); offset += 4; return v; };
+  const boundsMin = [f32(), f32(), f32()];
+  const boundsMax = [f32(), f32(), f32()];
+  const resolution = [u32(), u32(), u32()];
+  const encoding = u32();
+  const grid = new IrradianceGrid(resolution, boundsMin, boundsMax);
+  offset += grid.count; // valid flags: every stored vertex is data (filled at bake time)
+  for (let v = 0; v < grid.count; ++v) offset = grid.receive(v, view, offset, encoding);
+  return grid;
+}
+
+export async function readFolder(files) {
+  const byName = new Map([...files].map((f) => [f.name, f]));
+  const need = (name) => {
+    const file = byName.get(name);
+    if (!file) throw new Error(`the folder has no ${name} (write it with bakegi web export)`);
+    return file;
+  };
+  const gltf = JSON.parse(await need("scene.gltf").text());
+  const bin = await need("scene.bin").arrayBuffer();
+  const gridName = gltf.extras?.bakegi?.grid;
+  const grid = gridName ? readGridFile(await need(gridName).arrayBuffer()) : null;
+  return { gltf, bin, grid };
+}

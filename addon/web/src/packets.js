@@ -1,0 +1,37 @@
+// The server's packets (native/cli/web_stream.h has the byte layout), read into plain
+// objects the grid and the geometry apply.
+export const GRID_PACKET = 1;
+export const GEOMETRY_PACKET = 2;
+
+export function readPacket(buffer) {
+  const view = new DataView(buffer);
+  const kind = view.getUint32(0, true);
+  const count = view.getUint32(4, true);
+  if (kind === GRID_PACKET) {
+    const encoding = view.getUint32(8, true);
+    const vertices = new Uint32Array(buffer.slice(12, 12 + 4 * count));
+    return { kind, encoding, vertices, view, recordsOffset: 12 + 4 * count };
+  }
+  if (kind !== GEOMETRY_PACKET) throw new Error(`unknown packet kind ${kind}`);
+  const entries = [];
+  let offset = 8;
+  for (let e = 0; e < count; ++e) {
+    const [primitive, first, vertexCount, hasNormals, faceCount, lookupCount] =
+      [0, 1, 2, 3, 4, 5].map((i) => view.getUint32(offset + 4 * i, true));
+    offset += 24;
+    const positions = new Float32Array(buffer.slice(offset, offset + 12 * vertexCount));
+    offset += 12 * vertexCount;
+    let normals = null;
+    if (hasNormals) {
+      normals = new Float32Array(buffer.slice(offset, offset + 12 * vertexCount));
+      offset += 12 * vertexCount;
+    }
+    const faces = new Uint32Array(buffer.slice(offset, offset + 12 * faceCount));
+    offset += 12 * faceCount;
+    const lookups = new Uint32Array(buffer.slice(offset, offset + 8 * lookupCount));
+    offset += 8 * lookupCount;
+    entries.push({ primitive, first, vertexCount, positions, normals, faces, lookups });
+  }
+  if (offset !== buffer.byteLength) throw new Error("a geometry packet does not add up");
+  return { kind, entries };
+}

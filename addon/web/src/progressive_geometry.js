@@ -1,0 +1,61 @@
+// One primitive's progressive mesh on the page (§4.2): vertices arrive coarse first; each
+// received face is drawn with every corner not yet received replaced by the vertex it
+// collapses onto (the lookup table, recursively), so the mesh refines as vertices arrive.
+import * as THREE from "three";
+
+export class ProgressiveGeometry {
+  constructor(vertexCount, faceCount, hasNormals) {
+    this.vertexCount = vertexCount;
+    this.faceCount = faceCount;
+    this.received = 0;
+    this.faces = new Uint32Array(3 * faceCount);
+    this.facesReceived = 0;
+    this.parent = new Uint32Array(vertexCount);
+    this.geometry = new THREE.BufferGeometry();
+    this.positions = new THREE.BufferAttribute(new Float32Array(3 * vertexCount), 3);
+    this.geometry.setAttribute("position", this.positions);
+    if (hasNormals) {
+      this.normals = new THREE.BufferAttribute(new Float32Array(3 * vertexCount), 3);
+      this.geometry.setAttribute("normal", this.normals);
+    }
+  }
+
+  add(entry) {
+    if (entry.first !== this.received) throw new Error("geometry arrived out of order");
+    this.positions.array.set(entry.positions, 3 * entry.first);
+    if (this.normals && entry.normals) this.normals.array.set(entry.normals, 3 * entry.first);
+    this.received += entry.vertexCount;
+    this.faces.set(entry.faces, 3 * this.facesReceived);
+    this.facesReceived += entry.faces.length / 3;
+    for (let i = 0; i < entry.lookups.length; i += 2) this.parent[entry.lookups[i]] = entry.lookups[i + 1];
+  }
+
+  // Everything at once (a whole glTF from a local folder).
+  setAll(positions, normals, faces, parent) {
+    this.positions.array.set(positions);
+    if (this.normals && normals) this.normals.array.set(normals);
+    this.faces.set(faces);
+    this.parent.set(parent);
+    this.received = this.vertexCount;
+    this.facesReceived = this.faceCount;
+  }
+
+  fraction() {
+    return this.vertexCount ? this.received / this.vertexCount : 1;
+  }
+
+  // The index buffer for what has arrived.
+  update() {
+    const n = this.received;
+    const index = new Uint32Array(3 * this.facesReceived);
+    for (let i = 0; i < index.length; ++i) {
+      let v = this.faces[i];
+      while (v >= n) v = this.parent[v];
+      index[i] = v;
+    }
+    this.geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    this.positions.needsUpdate = true;
+    if (this.normals) this.normals.needsUpdate = true;
+    this.geometry.computeBoundingSphere();
+  }
+}

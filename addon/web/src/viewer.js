@@ -1,0 +1,238 @@
+// The bakegi web page (issue 16, §4 of Pacanowski et al. 2008): served by `bakegi serve`, it
+// asks for the scene's packets one after the other, grid and geometry interleaved, and draws
+// after each: direct light computed here (three.js lights), indirect light from the grid
+// (grid_textures.js), the grid's missing vertices filled by push-pull after every grid packet
+// (Fig. 2). Opened from a folder (no server) it reads the files the user picks instead.
+// Query: ?until=F stops after F of the stream's bytes (0..1); ?vectors=V&vertices=N&
+// encoding=quantized|factored choose the packets; ?only=grid streams the grid alone; ?size=
+// WxH fixes the canvas; ?mode=full|indirect|direct|light (light: the grid's value E/pi on
+// white, what Blender shows of the BakeGI_Indirect attribute). window.bakegiState tells
+// tests and people where it stands.
+import * as THREE from "three";
+import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { makeCamera, makeLights, makeMaterial, primitivesOf } from "./gltf_scene.js";
+import { addGridLighting, GridTextures } from "./grid_textures.js";
+import { IrradianceGrid } from "./irradiance_grid.js";
+import { GEOMETRY_PACKET, GRID_PACKET, readPacket } from "./packets.js";
+import { primitiveArrays, readFolder } from "./local_folder.js";
+import { ProgressiveGeometry } from "./progressive_geometry.js";
+
+const query = new URLSearchParams(location.search);
+const state = (window.bakegiState = {
+  phase: "starting", packets: 0, packetCount: 0, bytes: 0, totalBytes: 0, gridFraction: 0,
+  geometryFraction: 0, firstImageMs: null, doneMs: null, error: null, frames: 0,
+  pushPullMs: 0, timeline: { script: performance.now() },
+});
+
+const canvas = document.getElementById("view");
+const status = document.getElementById("status");
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.outputColorSpace = THREE.SRGBColorSpace; // Blender's "Standard" view transform
+renderer.toneMapping = THREE.NoToneMapping;
+const size = query.get("size")?.split("x").map(Number);
+function resize() {
+  const [w, h] = size ?? [innerWidth, innerHeight];
+  renderer.setPixelRatio(size ? 1 : devicePixelRatio);
+  renderer.setSize(w, h, !size);
+  if (size) Object.assign(canvas.style, { width: `${w}px`, height: `${h}px` });
+  if (view.camera) {
+    view.camera.aspect = w / h;
+    view.camera.updateProjectionMatrix();
+  }
+}
+
+const view = (window.bakegiView = { scene: new THREE.Scene(), camera: null, controls: null, lights: [], textures: null, grid: null, geometries: [], materials: [] });
+
+function render() {
+  if (!view.camera) return;
+  renderer.render(view.scene, view.camera);
+  ++state.frames;
+}
+
+function setMode(mode) {
+  const indirectOnly = mode === "indirect" || mode === "light";
+  for (const light of view.lights) light.visible = !indirectOnly;
+  for (const material of view.materials) {
+    material.emissiveIntensity = mode === "light" ? 0 : material.userData.emission;
+  }
+  if (view.textures) {
+    view.textures.uniforms.bakegiIndirectScale.value = mode === "direct" ? 0 : 1;
+    view.textures.uniforms.bakegiWhiteAlbedo.value = mode === "light" ? 1 : 0;
+  }
+  render();
+}
+
+function showProgress() {
+  document.getElementById("grid-progress").value = state.gridFraction;
+  document.getElementById("geometry-progress").value = state.geometryFraction;
+  const mb = (b) => (b / 1e6).toFixed(2);
+  status.textContent = state.error ? `error: ${state.error}` :
+    `${state.phase}: ${mb(state.bytes)} of ${mb(state.totalBytes)} MB, grid ` +
+    `${(100 * state.gridFraction).toFixed(0)}%, geometry ${(100 * state.geometryFraction).toFixed(0)}%` +
+    (state.firstImageMs !== null ? `; first image ${state.firstImageMs.toFixed(0)} ms` : "") +
+    (state.doneMs !== null ? `, all ${state.doneMs.toFixed(0)} ms` : "");
+}
+
+// The scene's fixed parts from the glTF: materials, lights, camera, one mesh per primitive.
+function buildScene(gltf, grid, primitiveInfo) {
+  view.grid = grid;
+  view.textures = grid ? new GridTextures(grid) : null;
+  const materials = (gltf.materials ?? []).map((m) => {
+    const material = makeMaterial(m);
+    if (view.textures) addGridLighting(material, view.textures.uniforms);
+    return material;
+  });
+  const keep = (material) => {
+    material.userData.emission = material.emissiveIntensity;
+    view.materials.push(material);
+    return material;
+  };
+  primitivesOf(gltf).forEach((p, i) => {
+    const info = primitiveInfo[i];
+    const geometry = new ProgressiveGeometry(info.vertex_count, info.face_count, info.has_normals);
+    const material = materials[p.description.material] ?? makeMaterial({});
+    if (!info.has_normals) {
+      // No NORMAL: flat shading, as glTF asks (a material per primitive so that smooth
+      // primitives of the same material are not made flat).
+      const flat = material.clone();
+      flat.flatShading = true;
+      flat.onBeforeCompile = material.onBeforeCompile;
+      flat.customProgramCacheKey = material.customProgramCacheKey;
+      view.scene.add(new THREE.Mesh(geometry.geometry, keep(flat)));
+    } else {
+      view.scene.add(new THREE.Mesh(geometry.geometry, keep(material)));
+    }
+    view.geometries.push(geometry);
+  });
+  view.lights = makeLights(gltf);
+  for (const light of view.lights) view.scene.add(light);
+  const [w, h] = size ?? [innerWidth, innerHeight];
+  view.camera = makeCamera(gltf, w / h);
+  if (!view.camera) {
+    view.camera = new THREE.PerspectiveCamera(40, w / h, 0.01, 1000);
+    view.camera.position.set(0, 1, 4);
+  }
+  // The orbit's centre ahead of the camera (taken before OrbitControls, which looks at the
+  // origin when made).
+  const forward = new THREE.Vector3(0, 0, -1).applyQuaternion(view.camera.quaternion);
+  const target = view.camera.position.clone().addScaledVector(forward, 3);
+  view.controls = new OrbitControls(view.camera, canvas);
+  view.controls.target.copy(target);
+  view.controls.update();
+  view.controls.addEventListener("change", render);
+  resize();
+  document.getElementById("mode").value = query.get("mode") ?? "full";
+  setMode(query.get("mode") ?? "full");
+}
+
+function refreshGrid() {
+  if (!view.grid) return;
+  const start = performance.now();
+  view.textures.upload(view.grid.filled(document.getElementById("push-pull").checked));
+  state.pushPullMs += performance.now() - start;
+  state.gridFraction = view.grid.fraction();
+}
+
+function refreshGeometry() {
+  let received = 0;
+  let total = 0;
+  for (const g of view.geometries) {
+    g.update();
+    received += g.received;
+    total += g.vertexCount;
+  }
+  state.geometryFraction = total ? received / total : 1;
+}
+
+async function fetchBytes(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: ${response.status} ${await response.text()}`);
+  return response.arrayBuffer();
+}
+
+const streamParameters = new URLSearchParams();
+for (const key of ["vectors", "vertices", "encoding"]) if (query.has(key)) streamParameters.set(key, query.get(key));
+const suffix = streamParameters.toString() ? `?${streamParameters}` : "";
+
+async function stream(manifest) {
+  const gltf = await (await fetch(manifest.gltf)).json();
+  state.timeline.manifest = performance.now();
+  state.packetCount = manifest.packets.length;
+  state.totalBytes = manifest.total_bytes;
+  const g = manifest.grid;
+  buildScene(gltf, g ? new IrradianceGrid(g.resolution, g.bounds_min, g.bounds_max) : null, manifest.primitives);
+  state.timeline.built = performance.now();
+  state.phase = "streaming";
+  state.startMs = performance.now();
+  const until = Number(query.get("until") ?? 1);
+  const gridOnly = query.get("only") === "grid";
+  if (gridOnly) state.totalBytes = manifest.packets.filter((p) => p.kind === "grid").reduce((a, p) => a + p.bytes, 0);
+  for (let k = 0; k < manifest.packets.length; ++k) {
+    if (gridOnly && manifest.packets[k].kind !== "grid") continue;
+    if (state.bytes + manifest.packets[k].bytes > until * state.totalBytes + 0.5) break;
+    const packet = readPacket(await fetchBytes(`stream/packet/${k}${suffix}`));
+    state.bytes += manifest.packets[k].bytes;
+    ++state.packets;
+    if (packet.kind === GRID_PACKET) {
+      const record = packet.encoding === 1 ? 42 : 144;
+      packet.vertices.forEach((v, i) => view.grid.receive(v, packet.view, packet.recordsOffset + i * record, packet.encoding));
+      refreshGrid();
+    } else if (packet.kind === GEOMETRY_PACKET) {
+      for (const entry of packet.entries) view.geometries[entry.primitive].add(entry);
+      refreshGeometry();
+    }
+    const renderStart = performance.now();
+    render();
+    state.timeline[`render${k}`] = performance.now() - renderStart;
+    if (state.firstImageMs === null && state.geometryFraction > 0 && (!view.grid || state.gridFraction > 0)) {
+      state.firstImageMs = performance.now();
+    }
+    showProgress();
+  }
+  state.phase = state.bytes >= state.totalBytes ? "done" : "paused";
+  state.doneMs = performance.now();
+  showProgress();
+}
+
+async function openFolder(files) {
+  const { gltf, bin, grid } = await readFolder(files);
+  const prims = primitivesOf(gltf);
+  const info = prims.map((p) => {
+    const arrays = primitiveArrays(gltf, bin, p.description);
+    return { arrays, vertex_count: arrays.positions.length / 3, face_count: arrays.faces.length / 3, has_normals: !!arrays.normals };
+  });
+  buildScene(gltf, grid, info);
+  view.geometries.forEach((g, i) => g.setAll(info[i].arrays.positions, info[i].arrays.normals, info[i].arrays.faces, info[i].arrays.parent));
+  refreshGrid();
+  refreshGeometry();
+  state.phase = "done";
+  state.firstImageMs = state.doneMs = performance.now();
+  render();
+  showProgress();
+}
+
+if (query.get("panel") === "0") document.getElementById("panel").style.display = "none";
+document.getElementById("mode").addEventListener("change", (e) => setMode(e.target.value));
+document.getElementById("push-pull").addEventListener("change", () => { refreshGrid(); render(); });
+addEventListener("resize", () => { resize(); render(); });
+
+async function main() {
+  if (location.protocol.startsWith("http")) {
+    const response = await fetch(`stream/manifest.json${suffix}`).catch(() => null);
+    if (response && response.ok) return stream(await response.json());
+  }
+  document.body.classList.add("local");
+  state.phase = "waiting for a folder";
+  showProgress();
+  document.getElementById("folder").addEventListener("change", (e) =>
+    openFolder(e.target.files).catch(fail));
+}
+
+function fail(error) {
+  state.error = String(error?.message ?? error);
+  state.phase = "failed";
+  showProgress();
+  console.error(error);
+}
+
+main().catch(fail);

@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+"""The web page tested for real (issue 16, item 7): Blender builds the Cornell box, bakes a
+grid with bakegi, writes the web folder (Export for Web) and renders the reference: the same
+camera, BakeGI_Indirect from that grid read as the page reads it (the paper's reading: no
+visibility test, n^2 weights, trilinear), shown flat by Workbench with the Standard view
+transform. Then addon/web/test/run.mjs streams the folder with `bakegi serve` into Debian's
+Chromium (playwright-core) and checks the page against it.
+
+    /usr/bin/python3 tools/web_test.py [--work out/web_tests] [--build build] [--fig6]
+        [--cells 16] [--size 480x360] [--junit out.xml]
+
+Needs: the system's Blender, node with addon/web's packages (npm ci), the built page
+(npm run build), chromium. Exit status 0 when every check passes.
+"""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from sweep_cornell import addon_environment  # noqa: E402
+
+BLENDER_SIDE = """
+import sys, bpy, bakegi
+sys.path.insert(0, {scenes!r})
+import cornell_box
+cornell_box.build_cornell_box(subdivisions=16)
+scene = bpy.context.scene
+scene.render.resolution_x, scene.render.resolution_y = {width}, {height}
+scene.render.resolution_percentage = 100
+report = bakegi.bake(target="GRID", method="pathtrace", grid_cell_size=2.0 / {cells},
+                     grid_rays=64, grid_folder={work!r}, objects="VISIBLE")
+print("grid", report["grid"]["path"], report["grid"]["resolution"], flush=True)
+print("web", bakegi.export_web({site!r}), flush=True)
+bakegi.apply_grid("VISIBLE", interpolation="TRILINEAR", directional="SQUARED",
+                  visibility=False, darken_buried=False, hook_materials=False)
+for obj in scene.objects:
+    if obj.type == "MESH":
+        attributes = obj.data.color_attributes
+        attributes.active_color = attributes["BakeGI_Indirect"]
+scene.render.engine = "BLENDER_WORKBENCH"
+shading = scene.display.shading
+shading.light = "FLAT"
+shading.color_type = "VERTEX"
+scene.display.render_aa = "8"
+scene.view_settings.view_transform = "Standard"
+scene.view_settings.look = "None"
+scene.view_settings.exposure = 0.0
+scene.view_settings.gamma = 1.0
+scene.render.image_settings.file_format = "PNG"
+scene.render.image_settings.color_mode = "RGBA"
+scene.render.film_transparent = False
+scene.world.color = (0.0, 0.0, 0.0)
+scene.render.filepath = {reference!r}
+bpy.ops.render.render(write_still=True)
+"""
+
+
+def run(command, env=None, timeout=1200):
+    print("$", " ".join(command), flush=True)
+    return subprocess.run(command, env=env, timeout=timeout)
+
+
+def junit(path, name, ok, seconds, log):
+    suite = ET.Element("testsuite", name="web", tests="1", failures=str(int(not ok)), errors="0",
+                       time=f"{seconds:.1f}")
+    case = ET.SubElement(suite, "testcase", classname="web", name=name, time=f"{seconds:.1f}")
+    if not ok:
+        ET.SubElement(case, "failure", message="see the web test log").text = log[-4000:]
+    ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--work", default=os.path.join(ROOT, "out", "web_tests"))
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--cells", type=int, default=16)
+    parser.add_argument("--size", default="480x360")
+    parser.add_argument("--fig6", action="store_true")
+    parser.add_argument("--junit")
+    args = parser.parse_args()
+    started = time.time()
+    work = os.path.abspath(args.work)
+    site = os.path.join(work, "site")
+    shutil.rmtree(site, ignore_errors=True)
+    os.makedirs(work, exist_ok=True)
+    width, height = (int(v) for v in args.size.split("x"))
+    reference = os.path.join(work, "light_blender.png")
+    script = os.path.join(work, "blender_side.py")
+    with open(script, "w") as f:
+        f.write(BLENDER_SIDE.format(scenes=os.path.join(ROOT, "scenes"), width=width,
+                                    height=height, cells=args.cells, work=work, site=site,
+                                    reference=reference))
+    build = os.path.abspath(args.build)
+    blender = run(["blender", "-b", "--factory-startup", "--addons", "bakegi",
+                   "--python-exit-code", "1", "--python", script],
+                  env=addon_environment(work, build))
+    ok = blender.returncode == 0 and os.path.isfile(reference)
+    log = "" if ok else "Blender could not make the scene, its grid, web folder or reference"
+    if ok:
+        command = ["node", os.path.join(ROOT, "addon", "web", "test", "run.mjs"), "--cli",
+                   os.path.join(build, "bakegi"), "--folder", site, "--out", work,
+                   "--reference", reference, "--size", args.size]
+        if args.fig6:
+            command.append("--fig6")
+        browser = run(command)
+        ok = browser.returncode == 0
+        log = "the browser checks failed (see above and results.json)"
+    if args.junit:
+        junit(args.junit, "streams_and_matches_blender", ok, time.time() - started, log)
+    print("WEB OK" if ok else f"WEB FAILED: {log}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
