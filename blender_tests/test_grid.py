@@ -1,8 +1,9 @@
 """The Irradiance Vector Grid in Blender (issue 16): Bake Grid over a box or the scene,
 Apply Grid on meshes that were not baked (a moved and an added prop, a level of detail made
-with Simplify a Copy), the newest grid found by default, the operators, and a refused grid
-that changes nothing."""
+with Simplify a Copy), the newest grid found by default, Export for Web, the operators, and a
+refused grid that changes nothing."""
 
+import json
 import os
 import shutil
 import sys
@@ -137,6 +138,35 @@ class GridCase(common.SmallCornellCase):
             bakegi.simplify_copy("Prop", 0.0)
         with self.assertRaises(bakegi.BakeGIError):
             bakegi.simplify_copy("NoSuchObject", 0.5)
+
+    def test_export_for_web_writes_the_scene_the_grid_and_the_page(self):
+        self.bake_grid(grid_object=None)
+        folder = os.path.join(self.folder, "web")
+        report = bakegi.export_web(folder)
+        self.assertEqual(report["folder"], folder)
+        for name in ("scene.gltf", "scene.bin", "grid.bgivg", "index.html", "viewer.js"):
+            self.assertIn(name, report["files"])
+            self.assertGreater(report["bytes"][name], 0)
+        with open(os.path.join(folder, "scene.gltf")) as f:
+            gltf = json.load(f)
+        self.assertEqual(gltf["asset"]["version"], "2.0")
+        self.assertEqual(gltf["extras"]["bakegi"]["grid"], "grid.bgivg")
+        primitives = [p for m in gltf["meshes"] for p in m["primitives"]]
+        self.assertGreaterEqual(len(primitives), len(NAMES))
+        self.assertTrue(all("bakegi_progressive" in p["extras"] for p in primitives))
+        # The scene's camera, turned to glTF's Y-up axes: Blender's (x, y, z) is (x, z, -y).
+        camera = bpy.context.scene.camera
+        if camera is not None:
+            node = next(n for n in gltf["nodes"] if "camera" in n)
+            x, y, z = camera.matrix_world.translation
+            self.assertEqual([round(v, 4) for v in node["translation"]],
+                             [round(v, 4) for v in (x, z, -y)])
+        # The operator writes into the folder it is given; without a grid it is unavailable.
+        self.assertEqual(bpy.ops.bakegi.export_web(directory=os.path.join(self.folder, "op")),
+                         {"FINISHED"})
+        self.assertTrue(os.path.isfile(os.path.join(self.folder, "op", "scene.gltf")))
+        bpy.context.scene.pop(bakegi.write.grid_file.GRID_PATH_PROPERTY, None)
+        self.assertFalse(bpy.ops.bakegi.export_web.poll())
 
     def test_a_grid_box_sets_the_bounds_and_far_points_are_named(self):
         bpy.ops.bakegi.add_grid_box()

@@ -5,6 +5,8 @@
 # Blender 3.4 (blender_tests/, the UI test under Xvfb) and Blender 4.2 LTS, 4.5 LTS and 5.0
 # as Python modules (tools/setup_bpy.sh; every test but the UI one). One line per Blender
 # version, then one line "N passed, N failed, N skipped" over everything.
+# Then the web page in Debian's Chromium (tools/web_test.py: Blender exports and renders the
+# Cornell box, playwright-core streams it from `bakegi serve`).
 # Last, the portable library: built on Debian 11 with its dependencies beside it, loaded and
 # baking the Cornell box in a clean Debian 11 root (tools/build_portable.sh, check_portable.sh),
 # then its zip installed in each Blender version (test_install with BAKEGI_INSTALL_ZIP).
@@ -48,6 +50,16 @@ fi
 echo "== Blender versions"
 grep -E "^Blender [0-9.]+.*: [0-9]+ passed" "$results/blender.log"
 
+echo "== the web page in Chromium"
+if ! command -v chromium >/dev/null; then
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+fi
+/usr/bin/python3 tools/web_test.py --work out/web_tests --build "$build_dir" \
+  --junit "$results/web.xml" > "$results/web.log" 2>&1
+web_rc=$?
+grep -E "^(ok  |FAIL)|WEB " "$results/web.log"
+[ $web_rc -eq 0 ] || tail -n 40 "$results/web.log"
+
 portable_rc=0
 if [ "${BAKEGI_SKIP_PORTABLE:-0}" != 1 ]; then
   echo "== portable library (built on Debian 11, loaded in a clean Debian 11 root)"
@@ -86,8 +98,8 @@ PY
   fi
 fi
 
-if [ $native_rc -ne 0 ] || [ $python_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
-  echo "FAILED (exit codes: native $native_rc, python $python_rc, asan $asan_rc, blender $blender_rc, portable $portable_rc)"
+if [ $native_rc -ne 0 ] || [ $python_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $web_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
+  echo "FAILED (exit codes: native $native_rc, python $python_rc, asan $asan_rc, blender $blender_rc, web $web_rc, portable $portable_rc)"
   status=1
 else
   status=0

@@ -11,7 +11,7 @@ build_dir=${BAKEGI_BUILD_DIR:-build}
 
 packages=(cmake ninja-build g++ pkg-config
           libembree-dev libglm-dev libtbb-dev libopenexr-dev libeigen3-dev libboost-dev
-          libmeshoptimizer-dev
+          libmeshoptimizer-dev libcpp-httplib-dev
           googletest libgtest-dev libgmock-dev libbenchmark-dev
           blender python3 python3-numpy python3-matplotlib python3-venv python3-pytest xvfb xauth
           # what the bpy wheels of tools/setup_bpy.sh link to (ldd of bpy/__init__.so)
@@ -33,6 +33,14 @@ fi
 echo "== building the core ($build_dir)"
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j2
+
+echo "== building the web page (addon/web: three.js from npm, bundled into the add-on)"
+# node and npm: the machine's own (the base image has Node 20), else Debian's.
+if ! command -v npm >/dev/null; then
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null
+fi
+(cd addon/web && npm ci --no-audit --no-fund --loglevel=error --cache "$HOME/.cache/bakegi/npm" \
+  && npm run build --silent) || { echo "building the web page failed"; exit 1; }
 
 echo "== packing and installing the Blender add-on"
 /usr/bin/python3 tools/make_addon_zip.py --build-dir "$build_dir" --out dist

@@ -358,8 +358,50 @@ class BAKEGI_OT_apply_grid(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class BAKEGI_OT_export_web(bpy.types.Operator):
+    """Write the visible scene, its newest grid and the web page into a folder, for
+    'bakegi serve FOLDER' to stream to a browser (or to open from disk)"""
+
+    bl_idname = "bakegi.export_web"
+    bl_label = "Export for Web"
+    # Writes files only: nothing in the .blend changes, so nothing to undo.
+    bl_options = {"REGISTER"}
+
+    directory: bpy.props.StringProperty(name="Folder", subtype="DIR_PATH",
+                                        description="Where the web scene is written")
+
+    @classmethod
+    def poll(cls, context):
+        if runtime["running"]:
+            cls.poll_message_set("A bake is running")
+            return False
+        if not context.scene.get(grid_file.GRID_PATH_PROPERTY):
+            cls.poll_message_set("Bake a grid first (Target: Irradiance Grid)")
+            return False
+        return True
+
+    def invoke(self, context, event):
+        if not self.directory:
+            context.window_manager.fileselect_add(self)
+            return {"RUNNING_MODAL"}
+        return self.execute(context)
+
+    def execute(self, context):
+        from .. import api
+        try:
+            report = api.export_web(self.directory or None, context=context)
+        except BakeGIError as error:
+            self.report({"ERROR"}, error.message)
+            return {"CANCELLED"}
+        total = sum(report["bytes"].values())
+        self.report({"INFO"}, f"BakeGI: wrote {report['folder']} ({total / 1e6:.1f} MB); "
+                    f"stream it with: {report['serve']}")
+        return {"FINISHED"}
+
+
 classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake, BAKEGI_OT_subdivide_copy,
-           BAKEGI_OT_simplify_copy, BAKEGI_OT_add_grid_box, BAKEGI_OT_apply_grid)
+           BAKEGI_OT_simplify_copy, BAKEGI_OT_add_grid_box, BAKEGI_OT_apply_grid,
+           BAKEGI_OT_export_web)
 
 
 def register():

@@ -89,7 +89,9 @@ class RENDER_PT_bakegi(bpy.types.Panel):
                          if "LIGHTPROBE_GRID" in _ICONS else "LIGHTPROBE_VOLUME")
         row.operator(operators.BAKEGI_OT_remove_bake.bl_idname, icon="TRASH", text="")
         if settings.target == "GRID":
-            layout.operator(operators.BAKEGI_OT_simplify_copy.bl_idname, icon="MOD_DECIM")
+            row = layout.row(align=True)
+            row.operator(operators.BAKEGI_OT_simplify_copy.bl_idname, icon="MOD_DECIM")
+            row.operator(operators.BAKEGI_OT_export_web.bl_idname, icon="URL")
 
         box = layout.box()
         if operators.runtime["running"]:
