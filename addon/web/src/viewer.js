@@ -21,7 +21,7 @@ const query = new URLSearchParams(location.search);
 const state = (window.bakegiState = {
   phase: "starting", packets: 0, packetCount: 0, bytes: 0, totalBytes: 0, gridFraction: 0,
   geometryFraction: 0, firstImageMs: null, doneMs: null, error: null, frames: 0,
-  pushPullMs: 0, timeline: { script: performance.now() },
+  pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, timeline: { script: performance.now() },
 });
 
 const canvas = document.getElementById("view");
@@ -128,8 +128,11 @@ function buildScene(gltf, grid, primitiveInfo) {
 function refreshGrid() {
   if (!view.grid) return;
   const start = performance.now();
-  view.textures.upload(view.grid.filled(document.getElementById("push-pull").checked));
-  state.pushPullMs += performance.now() - start;
+  const values = view.grid.filled(document.getElementById("push-pull").checked);
+  const filled = performance.now();
+  view.textures.upload(values);
+  state.pushPullMs += filled - start;
+  state.uploadMs += performance.now() - filled;
   state.gridFraction = view.grid.fraction();
 }
 
@@ -170,12 +173,17 @@ async function stream(manifest) {
   for (let k = 0; k < manifest.packets.length; ++k) {
     if (gridOnly && manifest.packets[k].kind !== "grid") continue;
     if (state.bytes + manifest.packets[k].bytes > until * state.totalBytes + 0.5) break;
-    const packet = readPacket(await fetchBytes(`stream/packet/${k}${suffix}`));
+    const fetchStart = performance.now();
+    const bytes = await fetchBytes(`stream/packet/${k}${suffix}`);
+    state.fetchMs += performance.now() - fetchStart;
+    const packet = readPacket(bytes);
     state.bytes += manifest.packets[k].bytes;
     ++state.packets;
     if (packet.kind === GRID_PACKET) {
       const record = packet.encoding === 1 ? 42 : 144;
+      const decodeStart = performance.now();
       packet.vertices.forEach((v, i) => view.grid.receive(v, packet.view, packet.recordsOffset + i * record, packet.encoding));
+      state.decodeMs += performance.now() - decodeStart;
       refreshGrid();
     } else if (packet.kind === GEOMETRY_PACKET) {
       for (const entry of packet.entries) view.geometries[entry.primitive].add(entry);
@@ -212,6 +220,7 @@ async function openFolder(files) {
 }
 
 if (query.get("panel") === "0") document.getElementById("panel").style.display = "none";
+if (query.get("pushpull") === "0") document.getElementById("push-pull").checked = false;
 document.getElementById("mode").addEventListener("change", (e) => setMode(e.target.value));
 document.getElementById("push-pull").addEventListener("change", () => { refreshGrid(); render(); });
 addEventListener("resize", () => { resize(); render(); });
