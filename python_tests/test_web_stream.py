@@ -1,4 +1,4 @@
-"""`bakegi web export` and `bakegi serve` (issue 16, §4): a scene with a grid is exported,
+"""`bakegi web export` and `bakegi serve` (issue 16, §4): a textured scene with a grid is exported,
 served on a free loopback port, and read back packet by packet as the web page does: the
 geometry ends as the glTF's own faces, a face arrives only once its corners resolve to three
 distinct vertices, and the grid's vectors arrive once each, corners first, equal to the file's
@@ -25,7 +25,11 @@ def cli_path(native):
 
 def box_scene(native):
     scene = native.Scene()
-    material = scene.add_material((0.6, 0.5, 0.4))
+    texels = np.zeros((4, 8, 3), np.float32)  # a red/blue checker, 8 x 4 texels
+    texels[:, ::2] = (0.8, 0.1, 0.1)
+    texels[:, 1::2] = (0.1, 0.1, 0.8)
+    texture = scene.add_texture(texels)
+    material = scene.add_material((1.0, 1.0, 1.0), albedo_texture=texture)
     n = 8  # an 8 x 8 grid of squares on each of the box's six faces
     positions, indices = [], []
     for axis in range(3):
@@ -42,8 +46,12 @@ def box_scene(native):
                     quad = [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
                     for t in quad:  # inward-facing: flip on the far side
                         indices.extend(t if side == 1.0 else (t[0], t[2], t[1]))
-    scene.add_mesh(np.array(positions, np.float32), np.array(indices, np.uint32),
-                   material=material)
+    positions = np.array(positions, np.float32)
+    triangles = np.array(indices, np.uint32).reshape(-1, 3)
+    # Every face its own uv square: corners share positions but not uvs (seams everywhere).
+    uvs = positions[triangles][:, :, :2].copy()
+    uvs[len(uvs) // 2:] += 2.0
+    scene.add_mesh(positions, triangles, corner_uvs=uvs, material=material)
     scene.add_light("POINT", position=(0.5, 0.5, 0.5), color=(1.0, 1.0, 1.0))
     return scene
 
@@ -92,6 +100,7 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
     (primitive_info,) = manifest["primitives"]
     vertices = primitive_info["vertex_count"]
     received = np.zeros((vertices, 3), np.float32)
+    received_uvs = np.zeros((vertices, 2), np.float32)
     parent = {}
     count, faces = 0, []
     grid_seen, kinds = [], []
@@ -108,12 +117,15 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
             continue
         offset = 8
         for _ in range(entries):
-            index, first, n, has_normals, face_count, lookups = struct.unpack_from("<6I", data,
-                                                                                   offset)
-            offset += 24
-            assert index == 0 and first == count and not has_normals
+            index, first, n, has_normals, has_uvs, face_count, lookups = struct.unpack_from(
+                "<7I", data, offset)
+            offset += 28
+            assert index == 0 and first == count and not has_normals and has_uvs
             received[first:first + n] = np.frombuffer(data, np.float32, 3 * n, offset).reshape(-1, 3)
             offset += 12 * n
+            received_uvs[first:first + n] = np.frombuffer(data, np.float32, 2 * n,
+                                                          offset).reshape(-1, 2)
+            offset += 8 * n
             count += n
             new_faces = np.frombuffer(data, np.uint32, 3 * face_count, offset).reshape(-1, 3)
             offset += 12 * face_count
@@ -138,7 +150,7 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
 
     def accessor(index, dtype, columns):
         view = views[accessors[index]["bufferView"]]
-        components = 3 if accessors[index]["type"] == "VEC3" else 1
+        components = {"VEC3": 3, "VEC2": 2}.get(accessors[index]["type"], 1)
         return np.frombuffer(binary, dtype, accessors[index]["count"] * components,
                              view.get("byteOffset", 0)).reshape(-1, columns)
 
@@ -146,6 +158,14 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
     assert np.array_equal(received, accessor(prim["attributes"]["POSITION"], np.float32, 3))
     assert np.array_equal(np.array(faces, np.uint32), accessor(prim["indices"], np.uint32, 3))
     assert len(faces) == 6 * 8 * 8 * 2
+    assert np.array_equal(received_uvs, accessor(prim["attributes"]["TEXCOORD_0"], np.float32, 2))
+    # The texture: a PNG beside the glTF, 8 x 4, sRGB-encoded red and blue.
+    material = gltf["materials"][prim["material"]]
+    image = gltf["images"][gltf["textures"][
+        material["pbrMetallicRoughness"]["baseColorTexture"]["index"]]["source"]]
+    png = (folder / image["uri"]).read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    assert struct.unpack(">II", png[16:24]) == (8, 4)
     # The grid: every vertex once, its eight corners first.
     grid = manifest["grid"]
     nx, ny, nz = grid["resolution"]

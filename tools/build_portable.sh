@@ -14,12 +14,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=${BAKEGI_PORTABLE_ROOT:-$HOME/.cache/bakegi/bullseye-build}
 mirror=${BAKEGI_DEBIAN_MIRROR:-http://deb.debian.org/debian}
-packages=build-essential,cmake,ninja-build,pkg-config,patchelf,zlib1g-dev,libembree-dev,libtbb-dev,libopenexr-dev,libglm-dev,libeigen3-dev,libboost-dev,libmeshoptimizer-dev
+packages=build-essential,cmake,ninja-build,pkg-config,patchelf,zlib1g-dev,libembree-dev,libtbb-dev,libopenexr-dev,libglm-dev,libeigen3-dev,libboost-dev,libmeshoptimizer-dev,libstb-dev
 max_glibc=2.31
 
 command -v debootstrap >/dev/null || { apt-get update -qq && apt-get install -y -qq debootstrap >/dev/null; }
 if [ ! -x "$root/usr/bin/patchelf" ] || [ ! -d "$root/usr/include/embree3" ] \
-   || [ ! -f "$root/usr/include/meshoptimizer.h" ]; then
+   || [ ! -f "$root/usr/include/meshoptimizer.h" ] || [ ! -d "$root/usr/include/stb" ]; then
   echo "== making the Debian 11 build root $root"
   rm -rf "$root"
   debootstrap --variant=minbase --include="$packages" bullseye "$root" "$mirror" >/dev/null

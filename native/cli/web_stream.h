@@ -12,9 +12,10 @@
 //             u32 vertex[count], then count records of 42 (quantized) or 144 bytes
 //             (bakegi_grid_encode_vertices: hemispheres +x -x +y -y +z -z)
 //   geometry: u32 kind = 2, u32 entries, then per entry u32 primitive, first_vertex,
-//             vertex_count, has_normals, face_count, lookup_count; f32 position[3 *
-//             vertex_count]; f32 normal[3 * vertex_count] if has_normals; u32 face[3 *
-//             face_count] (streamed vertex indices); u32 (vertex, parent)[lookup_count]
+//             vertex_count, has_normals, has_uvs, face_count, lookup_count; f32 position[3 *
+//             vertex_count]; f32 normal[3 * vertex_count] if has_normals; f32 uv[2 *
+//             vertex_count] if has_uvs; u32 face[3 * face_count] (streamed vertex indices);
+//             u32 (vertex, parent)[lookup_count]
 // The manifest (JSON) lists the primitives, the grid and every packet's kind and bytes.
 #pragma once
 

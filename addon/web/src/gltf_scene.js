@@ -5,19 +5,33 @@
 import * as THREE from "three";
 import { RectAreaLightUniformsLib } from "three/examples/jsm/lights/RectAreaLightUniformsLib.js";
 
-export function makeMaterial(description) {
+// imageUrl(uri): where the page finds an image the glTF names (beside it on the server, an
+// object URL for a picked folder).
+export function makeMaterial(description, gltf = {}, imageUrl = (uri) => uri) {
   const base = description.pbrMetallicRoughness?.baseColorFactor ?? [0.8, 0.8, 0.8, 1];
+  const textureIndex = description.pbrMetallicRoughness?.baseColorTexture?.index;
+  let map = null;
+  if (textureIndex !== undefined) {
+    const image = gltf.images[gltf.textures[textureIndex].source];
+    map = new THREE.TextureLoader().load(imageUrl(image.uri), () => onTextureLoaded());
+    map.colorSpace = THREE.SRGBColorSpace; // glTF base colour textures are sRGB
+    map.flipY = false; // glTF's v runs down the image
+    map.wrapS = map.wrapT = THREE.RepeatWrapping;
+  }
   const radiance = description.extras?.emission_radiance ?? [0, 0, 0];
   const peak = Math.max(...radiance);
   // Lambert only (specularIntensity 0), as the core's diffuse materials; the colours are
   // linear, as glTF's factors.
   return new THREE.MeshPhysicalMaterial({
     color: new THREE.Color(base[0], base[1], base[2]),
+    map,
     roughness: 1,
     metalness: 0,
     specularIntensity: 0,
     emissive: peak > 0 ? new THREE.Color(radiance[0] / peak, radiance[1] / peak, radiance[2] / peak) : new THREE.Color(0, 0, 0),
     emissiveIntensity: peak,
+    // Both sides, as Blender draws and bakes them (backface culling off by default).
+    side: THREE.DoubleSide,
   });
 }
 
@@ -70,6 +84,12 @@ export function makeLights(gltf) {
     lights.push(light);
   }
   return lights;
+}
+
+// Called when a texture has arrived (the page redraws).
+let onTextureLoaded = () => {};
+export function setTextureListener(listener) {
+  onTextureLoaded = listener;
 }
 
 // The glTF camera (a PerspectiveCamera with its node's pose), or null.

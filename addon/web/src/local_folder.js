@@ -5,7 +5,7 @@ import { IrradianceGrid } from "./irradiance_grid.js";
 function accessor(gltf, bin, index, Type) {
   const a = gltf.accessors[index];
   const view = gltf.bufferViews[a.bufferView];
-  const components = a.type === "VEC3" ? 3 : 1;
+  const components = { VEC3: 3, VEC2: 2 }[a.type] ?? 1;
   return new Type(bin.slice(view.byteOffset ?? 0, (view.byteOffset ?? 0) + a.count * components * 4));
 }
 
@@ -15,6 +15,7 @@ export function primitiveArrays(gltf, bin, description) {
   return {
     positions: accessor(gltf, bin, description.attributes.POSITION, Float32Array),
     normals: description.attributes.NORMAL !== undefined ? accessor(gltf, bin, description.attributes.NORMAL, Float32Array) : null,
+    uvs: description.attributes.TEXCOORD_0 !== undefined ? accessor(gltf, bin, description.attributes.TEXCOORD_0, Float32Array) : null,
     faces: accessor(gltf, bin, description.indices, Uint32Array),
     parent: accessor(gltf, bin, progressive.parent, Uint32Array),
   };
@@ -51,5 +52,7 @@ export async function readFolder(files) {
   const bin = await need("scene.bin").arrayBuffer();
   const gridName = gltf.extras?.bakegi?.grid;
   const grid = gridName ? readGridFile(await need(gridName).arrayBuffer()) : null;
-  return { gltf, bin, grid };
+  // The images by their names, as object URLs the texture loader can read.
+  const imageUrl = (name) => URL.createObjectURL(need(name));
+  return { gltf, bin, grid, imageUrl };
 }

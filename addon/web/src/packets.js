@@ -16,9 +16,9 @@ export function readPacket(buffer) {
   const entries = [];
   let offset = 8;
   for (let e = 0; e < count; ++e) {
-    const [primitive, first, vertexCount, hasNormals, faceCount, lookupCount] =
-      [0, 1, 2, 3, 4, 5].map((i) => view.getUint32(offset + 4 * i, true));
-    offset += 24;
+    const [primitive, first, vertexCount, hasNormals, hasUvs, faceCount, lookupCount] =
+      [0, 1, 2, 3, 4, 5, 6].map((i) => view.getUint32(offset + 4 * i, true));
+    offset += 28;
     const positions = new Float32Array(buffer.slice(offset, offset + 12 * vertexCount));
     offset += 12 * vertexCount;
     let normals = null;
@@ -26,11 +26,16 @@ export function readPacket(buffer) {
       normals = new Float32Array(buffer.slice(offset, offset + 12 * vertexCount));
       offset += 12 * vertexCount;
     }
+    let uvs = null;
+    if (hasUvs) {
+      uvs = new Float32Array(buffer.slice(offset, offset + 8 * vertexCount));
+      offset += 8 * vertexCount;
+    }
     const faces = new Uint32Array(buffer.slice(offset, offset + 12 * faceCount));
     offset += 12 * faceCount;
     const lookups = new Uint32Array(buffer.slice(offset, offset + 8 * lookupCount));
     offset += 8 * lookupCount;
-    entries.push({ primitive, first, vertexCount, positions, normals, faces, lookups });
+    entries.push({ primitive, first, vertexCount, positions, normals, uvs, faces, lookups });
   }
   if (offset !== buffer.byteLength) throw new Error("a geometry packet does not add up");
   return { kind, entries };

@@ -4,7 +4,7 @@
 import * as THREE from "three";
 
 export class ProgressiveGeometry {
-  constructor(vertexCount, faceCount, hasNormals) {
+  constructor(vertexCount, faceCount, hasNormals, hasUvs) {
     this.vertexCount = vertexCount;
     this.faceCount = faceCount;
     this.received = 0;
@@ -18,12 +18,17 @@ export class ProgressiveGeometry {
       this.normals = new THREE.BufferAttribute(new Float32Array(3 * vertexCount), 3);
       this.geometry.setAttribute("normal", this.normals);
     }
+    if (hasUvs) {
+      this.uvs = new THREE.BufferAttribute(new Float32Array(2 * vertexCount), 2);
+      this.geometry.setAttribute("uv", this.uvs);
+    }
   }
 
   add(entry) {
     if (entry.first !== this.received) throw new Error("geometry arrived out of order");
     this.positions.array.set(entry.positions, 3 * entry.first);
     if (this.normals && entry.normals) this.normals.array.set(entry.normals, 3 * entry.first);
+    if (this.uvs && entry.uvs) this.uvs.array.set(entry.uvs, 2 * entry.first);
     this.received += entry.vertexCount;
     this.faces.set(entry.faces, 3 * this.facesReceived);
     this.facesReceived += entry.faces.length / 3;
@@ -31,9 +36,10 @@ export class ProgressiveGeometry {
   }
 
   // Everything at once (a whole glTF from a local folder).
-  setAll(positions, normals, faces, parent) {
+  setAll(positions, normals, uvs, faces, parent) {
     this.positions.array.set(positions);
     if (this.normals && normals) this.normals.array.set(normals);
+    if (this.uvs && uvs) this.uvs.array.set(uvs);
     this.faces.set(faces);
     this.parent.set(parent);
     this.received = this.vertexCount;
@@ -56,6 +62,7 @@ export class ProgressiveGeometry {
     this.geometry.setIndex(new THREE.BufferAttribute(index, 1));
     this.positions.needsUpdate = true;
     if (this.normals) this.normals.needsUpdate = true;
+    if (this.uvs) this.uvs.needsUpdate = true;
     this.geometry.computeBoundingSphere();
   }
 }

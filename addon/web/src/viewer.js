@@ -10,7 +10,7 @@
 // tests and people where it stands.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { makeCamera, makeLights, makeMaterial, primitivesOf } from "./gltf_scene.js";
+import { makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener } from "./gltf_scene.js";
 import { addGridLighting, GridTextures } from "./grid_textures.js";
 import { IrradianceGrid } from "./irradiance_grid.js";
 import { GEOMETRY_PACKET, GRID_PACKET, readPacket } from "./packets.js";
@@ -74,11 +74,12 @@ function showProgress() {
 }
 
 // The scene's fixed parts from the glTF: materials, lights, camera, one mesh per primitive.
-function buildScene(gltf, grid, primitiveInfo) {
+function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   view.grid = grid;
   view.textures = grid ? new GridTextures(grid) : null;
+  setTextureListener(() => render());
   const materials = (gltf.materials ?? []).map((m) => {
-    const material = makeMaterial(m);
+    const material = makeMaterial(m, gltf, imageUrl);
     if (view.textures) addGridLighting(material, view.textures.uniforms);
     return material;
   });
@@ -89,7 +90,7 @@ function buildScene(gltf, grid, primitiveInfo) {
   };
   primitivesOf(gltf).forEach((p, i) => {
     const info = primitiveInfo[i];
-    const geometry = new ProgressiveGeometry(info.vertex_count, info.face_count, info.has_normals);
+    const geometry = new ProgressiveGeometry(info.vertex_count, info.face_count, info.has_normals, info.has_uvs);
     const material = materials[p.description.material] ?? makeMaterial({});
     if (!info.has_normals) {
       // No NORMAL: flat shading, as glTF asks (a material per primitive so that smooth
@@ -203,14 +204,18 @@ async function stream(manifest) {
 }
 
 async function openFolder(files) {
-  const { gltf, bin, grid } = await readFolder(files);
+  const { gltf, bin, grid, imageUrl } = await readFolder(files);
   const prims = primitivesOf(gltf);
   const info = prims.map((p) => {
     const arrays = primitiveArrays(gltf, bin, p.description);
-    return { arrays, vertex_count: arrays.positions.length / 3, face_count: arrays.faces.length / 3, has_normals: !!arrays.normals };
+    return { arrays, vertex_count: arrays.positions.length / 3, face_count: arrays.faces.length / 3,
+      has_normals: !!arrays.normals, has_uvs: !!arrays.uvs };
   });
-  buildScene(gltf, grid, info);
-  view.geometries.forEach((g, i) => g.setAll(info[i].arrays.positions, info[i].arrays.normals, info[i].arrays.faces, info[i].arrays.parent));
+  buildScene(gltf, grid, info, imageUrl);
+  view.geometries.forEach((g, i) => {
+    const a = info[i].arrays;
+    g.setAll(a.positions, a.normals, a.uvs, a.faces, a.parent);
+  });
   refreshGrid();
   refreshGeometry();
   state.phase = "done";

@@ -8,6 +8,8 @@
 //    of the page opening (stated; checked against 3 s, see FIRST_IMAGE_LIMIT_MS);
 //  - screenshots after 10%, 50% and 100% of the stream's bytes: their difference to the
 //    final image falls monotonically, to 0;
+//  - index.html opened from disk (file://, no server) with the folder's files picked shows
+//    the same final image;
 //  - with --reference (Blender's render of the same camera showing BakeGI_Indirect from
 //    the same grid, read as the page reads it), the page's "light" view matches it within
 //    the tolerance below;
@@ -17,6 +19,7 @@
 import { spawn } from "node:child_process";
 import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
+import { pathToFileURL } from "node:url";
 import { chromium } from "playwright-core";
 
 const args = Object.fromEntries(
@@ -127,6 +130,20 @@ try {
   results.stages.push({ until: 1, bytes: finalState.bytes, grid: 1, geometry: 1, difference_to_final: 0 });
   const d = results.stages.map((s) => s.difference_to_final);
   check(d[0] > d[1] && d[1] > d[2], `the difference to the final image falls: ${d.map((v) => v.toFixed(2)).join(" > ")} (of 255)`);
+
+  // The same folder opened from disk, no server: the page reads the picked files and shows
+  // the same final image.
+  const local = await browser.newPage({ viewport: { width: width + 20, height: height + 20 } });
+  local.on("pageerror", (error) => failures.push(`page error (local folder): ${error.message}`));
+  await local.goto(`${pathToFileURL(join(args.folder, "index.html")).href}?size=${width}x${height}&panel=0`);
+  await local.waitForFunction(() => window.bakegiState?.phase === "waiting for a folder");
+  await local.setInputFiles("#folder", args.folder);
+  await local.waitForFunction(() => ["done", "failed"].includes(window.bakegiState?.phase), null, { timeout: 120000 });
+  const fromDisk = await pixels(local);
+  const localDifference = meanAbsoluteDifference(fromDisk, final);
+  results.local_folder_difference = localDifference;
+  check(localDifference <= 0.5, `the folder opened from disk shows the streamed final image (difference ${localDifference.toFixed(3)} of 255)`);
+  await local.close();
 
   if (args.reference) {
     await load(page, url, "until=1&mode=light");

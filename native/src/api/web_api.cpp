@@ -66,6 +66,7 @@ bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* gr
     }
     const bakegi::WebGltf gltf = bakegi::encode_web_gltf(scene->description, options);
     bakegi::write_file_atomically(root / "scene.bin", gltf.bin);
+    for (const auto& [name, png] : gltf.images) bakegi::write_file_atomically(root / name, png);
     bakegi::write_file_atomically(
         root / "scene.gltf",
         std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(gltf.json.data()),

@@ -5,11 +5,17 @@
 #include <cstring>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "bakegi/bakegi.h"
 #include "json_text.h"
 #include "util/error.h"
 #include "web/progressive_mesh.h"
+
+// stb_image_write (Debian's libstb-dev), compiled here, private to this file.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
 
 namespace bakegi {
 
@@ -54,15 +60,16 @@ class BufferBuilder {
 
 // glTF is Y-up: a point (x, y, z) of the scene (Z-up, Blender's axes) is (x, z, -y) there, a
 // turn of -90 degrees about x (what Blender's glTF exporter does too).
-glm::vec3 to_gltf(const glm::vec3& v) { return {v.x, v.z, -v.y}; }
+glm::vec3 to_gltf(const glm::vec3& v) {
+  return {v.x, v.z, -v.y};
+}
 constexpr float kHalfSqrt2 = 0.70710678f;
 
 // Quaternion product a * b, (x, y, z, w).
 glm::vec4 multiply(const glm::vec4& a, const glm::vec4& b) {
-  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+  return {
+      a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+      a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
 
 // A quaternion turning -Z onto `direction` (glTF lights and cameras look down -Z).
@@ -74,6 +81,33 @@ glm::vec4 rotation_to(const glm::vec3& direction) {
   const glm::vec3 axis = glm::cross(from, to);
   const glm::vec4 q(axis.x, axis.y, axis.z, 1.0f + d);
   return q / glm::length(q);
+}
+
+// Linear RGB to 8-bit sRGB, the standard curve.
+uint8_t srgb_byte(float linear) {
+  const float x = std::clamp(linear, 0.0f, 1.0f);
+  const float encoded = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+  return uint8_t(std::lround(encoded * 255.0f));
+}
+
+std::vector<uint8_t> encode_srgb_png(const Texture& texture) {
+  std::vector<uint8_t> rgb(size_t(texture.width) * texture.height * 3);
+  const auto& texels = texture.texels();
+  for (size_t i = 0; i < texels.size() && 3 * i + 2 < rgb.size(); ++i) {
+    rgb[3 * i] = srgb_byte(texels[i].x);
+    rgb[3 * i + 1] = srgb_byte(texels[i].y);
+    rgb[3 * i + 2] = srgb_byte(texels[i].z);
+  }
+  std::vector<uint8_t> png;
+  const int written = stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        auto* bytes = static_cast<std::vector<uint8_t>*>(context);
+        bytes->insert(bytes->end(), static_cast<uint8_t*>(data),
+                      static_cast<uint8_t*>(data) + size);
+      },
+      &png, int(texture.width), int(texture.height), 3, rgb.data(), int(texture.width) * 3);
+  if (!written) throw Error(BAKEGI_ERROR_INTERNAL, "a texture could not be encoded as PNG");
+  return png;
 }
 
 struct Primitive {
@@ -109,9 +143,15 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
     }
     std::vector<std::string> primitives;
     for (const auto& [material, primitive] : by_material) {
-      // The primitive's own vertices, and whether its shading is flat.
-      std::vector<uint32_t> local(mesh.positions.size(), UINT32_MAX), indices;
+      // The primitive's own vertices, and whether its shading is flat. A textured one keeps
+      // a vertex per (vertex, uv): its UV seams stay seams (and borders to the simplifier).
+      const bool textured = material < scene.materials.size() &&
+                            scene.materials[material].albedo_texture != BAKEGI_NO_TEXTURE &&
+                            !mesh.corner_uvs.empty();
+      std::map<std::tuple<uint32_t, float, float>, uint32_t> local;
+      std::vector<uint32_t> indices;
       std::vector<glm::vec3> positions, normal_sums;
+      std::vector<glm::vec2> uvs;
       bool flat = true;
       for (const uint32_t t : primitive.triangles) {
         glm::vec3 p[3];
@@ -121,12 +161,14 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
             throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                         "mesh " + std::to_string(m) + " indexes past its vertices");
           }
-          if (local[v] == UINT32_MAX) {
-            local[v] = uint32_t(positions.size());
+          const glm::vec2 uv = textured ? mesh.corner_uvs[3 * t + c] : glm::vec2(0.0f);
+          const auto [at, added] = local.try_emplace({v, uv.x, uv.y}, uint32_t(positions.size()));
+          if (added) {
             positions.push_back(mesh.positions[v]);
             normal_sums.push_back(glm::vec3(0.0f));
+            uvs.push_back(uv);
           }
-          indices.push_back(local[v]);
+          indices.push_back(at->second);
           p[c] = mesh.positions[v];
         }
         const glm::vec3 face = glm::cross(p[1] - p[0], p[2] - p[0]);
@@ -161,6 +203,15 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
         attributes += ",\"NORMAL\":" + std::to_string(buffer.add(normals.data(), count * 12, count,
                                                                  kFloat, "VEC3", kArrayBuffer));
       }
+      if (textured) {
+        // The core's textures have row 0 at v = 0 and are written top row first, so glTF's
+        // v (0 at the image's top) is the core's v unchanged.
+        std::vector<glm::vec2> streamed_uvs(count);
+        for (size_t v = 0; v < count; ++v) streamed_uvs[v] = uvs[pm.original_vertex[v]];
+        attributes +=
+            ",\"TEXCOORD_0\":" + std::to_string(buffer.add(streamed_uvs.data(), count * 8, count,
+                                                           kFloat, "VEC2", kArrayBuffer));
+      }
       const int faces = buffer.add(pm.faces.data(), pm.faces.size() * 4, pm.faces.size(),
                                    kUnsignedInt, "SCALAR", kElementArrayBuffer);
       const int parent = buffer.add(pm.parent.data(), count * 4, count, kUnsignedInt, "SCALAR", 0);
@@ -188,15 +239,33 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
                     ",\"extras\":{\"object_id\":" + std::to_string(mesh.object_id) + "}}");
   }
 
+  // Albedo textures as PNG images (8-bit sRGB, as glTF's base colour textures are).
+  std::vector<std::string> textures, images;
+  std::map<uint32_t, size_t> texture_index;
+  for (const Material& material : scene.materials) {
+    const uint32_t t = material.albedo_texture;
+    if (t == BAKEGI_NO_TEXTURE || t >= scene.textures.size() || texture_index.count(t)) continue;
+    const std::string name = "texture_" + std::to_string(t) + ".png";
+    out.images.push_back({name, encode_srgb_png(scene.textures[t])});
+    texture_index[t] = textures.size();
+    textures.push_back("{\"sampler\":0,\"source\":" + std::to_string(images.size()) + "}");
+    images.push_back("{\"uri\":" + json_quote(name) + "}");
+  }
+
   std::vector<std::string> materials;
   for (const Material& material : scene.materials) {
     const glm::vec3 base = glm::clamp(material.albedo, 0.0f, 1.0f);
+    const auto texture = texture_index.find(material.albedo_texture);
+    const std::string base_texture =
+        texture == texture_index.end()
+            ? std::string()
+            : ",\"baseColorTexture\":{\"index\":" + std::to_string(texture->second) + "}";
     const float peak = std::max({material.emission.x, material.emission.y, material.emission.z});
     const glm::vec3 emissive = peak > 0.0f ? material.emission / peak : glm::vec3(0.0f);
     materials.push_back(
         "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[" + json_number(base.x) + "," +
-        json_number(base.y) + "," + json_number(base.z) +
-        ",1],\"metallicFactor\":0,\"roughnessFactor\":1},\"emissiveFactor\":" + vec3(emissive) +
+        json_number(base.y) + "," + json_number(base.z) + ",1]" + base_texture +
+        ",\"metallicFactor\":0,\"roughnessFactor\":1},\"emissiveFactor\":" + vec3(emissive) +
         ",\"extras\":{\"emission_radiance\":" + vec3(material.emission) + "}}");
   }
 
@@ -207,10 +276,9 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
     std::string node = "{";
     if (light.type == BAKEGI_LIGHT_AREA) {
       area_lights.push_back(
-          "{\"position\":" + vec3(to_gltf(light.position)) +
-          ",\"direction\":" + vec3(to_gltf(light.direction)) +
-          ",\"axis_u\":" + vec3(to_gltf(light.axis_u)) + ",\"size_x\":" + json_number(light.size_x) +
-          ",\"size_y\":" +
+          "{\"position\":" + vec3(to_gltf(light.position)) + ",\"direction\":" +
+          vec3(to_gltf(light.direction)) + ",\"axis_u\":" + vec3(to_gltf(light.axis_u)) +
+          ",\"size_x\":" + json_number(light.size_x) + ",\"size_y\":" +
           json_number(light.shape == BAKEGI_AREA_SQUARE || light.shape == BAKEGI_AREA_DISK
                           ? light.size_x
                           : light.size_y) +
@@ -247,8 +315,7 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
         ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":" + json_number(c.yfov) +
         ",\"aspectRatio\":" + json_number(c.aspect) + ",\"znear\":0.01}}]";
     scene_nodes.push_back(std::to_string(nodes.size()));
-    const glm::vec4 rotation =
-        multiply(glm::vec4(-kHalfSqrt2, 0.0f, 0.0f, kHalfSqrt2), c.rotation);
+    const glm::vec4 rotation = multiply(glm::vec4(-kHalfSqrt2, 0.0f, 0.0f, kHalfSqrt2), c.rotation);
     nodes.push_back("{\"camera\":0,\"translation\":" + vec3(to_gltf(c.position)) +
                     ",\"rotation\":" + vec(&rotation.x, 4) + "}");
   }
@@ -267,7 +334,11 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
   const std::string roots = field("nodes", scene_nodes);
   json << ",\"scene\":0,\"scenes\":[{" << (roots.empty() ? roots : roots.substr(1)) << "}]"
        << field("nodes", nodes) << field("meshes", meshes) << field("materials", materials)
-       << cameras << field("accessors", buffer.accessors) << field("bufferViews", buffer.views);
+       << cameras << field("textures", textures) << field("images", images)
+       << (textures.empty() ? ""
+                            : ",\"samplers\":[{\"magFilter\":9729,\"minFilter\":9987,"
+                              "\"wrapS\":10497,\"wrapT\":10497}]")
+       << field("accessors", buffer.accessors) << field("bufferViews", buffer.views);
   if (!buffer.bin.empty()) {
     json << ",\"buffers\":[{\"uri\":\"scene.bin\",\"byteLength\":" << buffer.bin.size() << "}]";
   }

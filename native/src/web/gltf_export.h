@@ -9,12 +9,14 @@
 // Lights: point, spot and sun as KHR_lights_punctual (intensity in the core's units: W/sr,
 // sun W/m^2, which three.js' physically based lights read as such), area lights (not in
 // glTF) in the scene's extras with their radiance; materials as unlit-free metallic 0,
-// roughness 1 base colours, emission in extras (radiance W/(m^2 sr)). Textures are not
-// written yet: a textured material gets its albedo factor.
+// roughness 1 base colours, emission in extras (radiance W/(m^2 sr)). Albedo textures
+// become PNG images beside the file (8-bit sRGB) with TEXCOORD_0 (a textured primitive keeps
+// a vertex per distinct corner uv).
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,6 +42,7 @@ struct WebExportOptions {
 struct WebGltf {
   std::string json;          // scene.gltf
   std::vector<uint8_t> bin;  // scene.bin, which the JSON names
+  std::vector<std::pair<std::string, std::vector<uint8_t>>> images;  // file name, PNG bytes
   size_t primitives = 0, vertices = 0, faces = 0;
 };
 
