@@ -168,6 +168,28 @@ class GridCase(common.SmallCornellCase):
         bpy.context.scene.pop(bakegi.write.grid_file.GRID_PATH_PROPERTY, None)
         self.assertFalse(bpy.ops.bakegi.export_web.poll())
 
+    def test_method_grid_bakes_corners_and_lightmaps_from_the_grid(self):
+        path = self.bake_grid(grid_object=None)["grid"]["path"]
+        bakegi.apply_grid(list(NAMES))
+        applied = common.read_color_attribute(WALLS)
+        # The same reading as a bake method: the same values at the same corners, up to the
+        # bake's own handling of its points (coincident corners share a value; measured: 0.4%
+        # at most).
+        report = bakegi.bake(method="grid", method_settings={"grid_file": path},
+                             objects=list(NAMES), target="CORNER")
+        self.assertEqual(report["method"], "grid")
+        numpy.testing.assert_allclose(common.read_color_attribute(WALLS), applied, rtol=0.01,
+                                      atol=1e-6)
+        self.assertIn("estimated_error", report)
+        # And lightmap texels: an EXR atlas lit from the grid.
+        folder = os.path.join(self.folder, "lightmaps")
+        report = bakegi.bake(method="grid", method_settings={"grid_file": path},
+                             target="LIGHTMAP", objects="VISIBLE", lightmap_folder=folder,
+                             texels_per_meter=16.0)
+        self.assertTrue(os.path.isfile(report["lightmap"]["path"]), report["lightmap"])
+        with self.assertRaises(bakegi.BakeGIError):
+            bakegi.bake(method="grid", objects=list(NAMES), target="CORNER")
+
     def test_a_grid_box_sets_the_bounds_and_far_points_are_named(self):
         bpy.ops.bakegi.add_grid_box()
         box = bpy.context.scene.bakegi.grid_object

@@ -1,5 +1,5 @@
-"""`bakegi web export` and `bakegi serve` (issue 16, §4): a textured scene with a grid is exported,
-served on a free loopback port, and read back packet by packet as the web page does: the
+"""`bakegi web export` and `bakegi serve` (issue 16, §4): a textured scene with a grid is
+exported, served on a free loopback port, and read back packet by packet as the page does: the
 geometry ends as the glTF's own faces, a face arrives only once its corners resolve to three
 distinct vertices, and the grid's vectors arrive once each, corners first, equal to the file's
 bytes."""
@@ -121,7 +121,8 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
                 "<7I", data, offset)
             offset += 28
             assert index == 0 and first == count and not has_normals and has_uvs
-            received[first:first + n] = np.frombuffer(data, np.float32, 3 * n, offset).reshape(-1, 3)
+            received[first:first + n] = np.frombuffer(data, np.float32, 3 * n,
+                                                      offset).reshape(-1, 3)
             offset += 12 * n
             received_uvs[first:first + n] = np.frombuffer(data, np.float32, 2 * n,
                                                           offset).reshape(-1, 2)

@@ -28,7 +28,8 @@ def main():
                       key=lambda r: r["ratio"])
         axes.plot([100 * r["ratio"] for r in mine], [100 * r["apply_grid"]["nrmse"] for r in mine],
                   "o-", label=f"Apply Grid, {cells}\u00b3 grid baked once at full detail")
-    first = sorted((r for r in rows if r["cells_on_longest_axis"] == rows[0]["cells_on_longest_axis"]),
+    coarsest = rows[0]["cells_on_longest_axis"]
+    first = sorted((r for r in rows if r["cells_on_longest_axis"] == coarsest),
                    key=lambda r: r["ratio"])
     axes.plot([100 * r["ratio"] for r in first],
               [100 * r["direct_bake_at_defaults"]["nrmse"] for r in first], "s--", color="grey",

@@ -204,5 +204,64 @@ TEST(GridApi, PointsUnderABlockAreFlaggedInside) {
             BAKEGI_ERROR_INVALID_ARGUMENT);
 }
 
+// Method "grid": a bake at the points reads the grid file as Apply Grid does
+// (bakegi_grid_evaluate_in_scene with visibility and buried points, |n| weights), and a bake
+// without a file, or with a missing one, is refused with a message.
+TEST(GridApi, MethodGridBakesThePointsFromAGridFile) {
+  const auto scene = new_box_scene();
+  const GridHandle layout = grid_layout(0.0f, 1.0f, 0.25f);
+  const auto grid_settings = new_settings();
+  bakegi_job* raw = nullptr;
+  ASSERT_EQ(bakegi_job_start_grid(scene.get(), layout.get(), 32, grid_settings.get(), &raw),
+            BAKEGI_OK);
+  const JobHandle grid_job(raw);
+  ASSERT_EQ(bakegi_job_wait(grid_job.get()), BAKEGI_OK) << bakegi_last_error();
+  bakegi_grid* baked_raw = nullptr;
+  ASSERT_EQ(bakegi_job_get_grid(grid_job.get(), &baked_raw), BAKEGI_OK);
+  const GridHandle baked(baked_raw);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "bakegi_method_grid_test.bgivg").string();
+  ASSERT_EQ(bakegi_grid_write_file(baked.get(), path.c_str(), BAKEGI_GRID_FLOAT, nullptr),
+            BAKEGI_OK);
+
+  const auto points = new_floor_points(25);
+  std::vector<float> positions(75), normals(75), expected(75);
+  ASSERT_EQ(bakegi_points_get(points.get(), positions.data(), normals.data(), nullptr), BAKEGI_OK);
+  ASSERT_EQ(bakegi_grid_evaluate_in_scene(
+                baked.get(), scene.get(), positions.data(), normals.data(), 25,
+                BAKEGI_GRID_TRILINEAR, BAKEGI_GRID_ABSOLUTE,
+                BAKEGI_GRID_VISIBILITY | BAKEGI_GRID_DARKEN_BURIED, expected.data(), nullptr),
+            BAKEGI_OK);
+
+  const auto settings = new_settings();
+  ASSERT_EQ(bakegi_settings_set_string(settings.get(), "method", "grid"), BAKEGI_OK);
+  bakegi_job* refused_raw = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &refused_raw), BAKEGI_OK);
+  const JobHandle refused(refused_raw);
+  EXPECT_EQ(bakegi_job_wait(refused.get()), BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(bakegi_last_error()).find("grid_file"), std::string::npos)
+      << bakegi_last_error();
+  ASSERT_EQ(bakegi_settings_set_string(settings.get(), "grid_file", path.c_str()), BAKEGI_OK);
+  ASSERT_EQ(bakegi_settings_set_int(settings.get(), "error_probes", 0), BAKEGI_OK);
+  bakegi_job* job_raw = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job_raw), BAKEGI_OK)
+      << bakegi_last_error();
+  const JobHandle job(job_raw);
+  ASSERT_EQ(bakegi_job_wait(job.get()), BAKEGI_OK) << bakegi_last_error();
+  std::vector<float> out(75);
+  ASSERT_EQ(bakegi_job_get_result(job.get(), out.data(), 25), BAKEGI_OK);
+  for (size_t i = 0; i < out.size(); ++i) EXPECT_FLOAT_EQ(out[i], expected[i]) << i;
+  EXPECT_GT(expected[1], 0.0f);
+
+  std::remove(path.c_str());
+  // The file is read when the job solves, in its thread: the job fails, naming it.
+  bakegi_job* missing_raw = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &missing_raw), BAKEGI_OK);
+  const JobHandle missing(missing_raw);
+  EXPECT_EQ(bakegi_job_wait(missing.get()), BAKEGI_ERROR_IO);
+  EXPECT_NE(std::string(bakegi_last_error()).find("bakegi_method_grid_test"), std::string::npos)
+      << bakegi_last_error();
+}
+
 }  // namespace
 }  // namespace bakegi

@@ -103,12 +103,12 @@ TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {
   EXPECT_EQ(std::get<int64_t>(method_schema("meshless").find("direct_samples")->fallback), 4);
 }
 
-// Each solver folder registers its method while the library loads (no central list): all four
+// Each solver folder registers its method while the library loads (no central list): all five
 // are there, in listing order, and the default method is one of them and the "method"
 // setting's default in every schema.
 TEST(SettingSchema, EverySolverFolderRegistersItsMethod) {
   EXPECT_EQ(method_names(),
-            (std::vector<std::string>{"pathtrace", "direct", "antiradiance", "meshless"}));
+            (std::vector<std::string>{"pathtrace", "direct", "antiradiance", "meshless", "grid"}));
   EXPECT_NE(std::find(method_names().begin(), method_names().end(), kDefaultMethod),
             method_names().end());
   for (const std::string& method : method_names()) {
@@ -126,7 +126,7 @@ TEST(SettingSchema, TheCApiDescribesEachMethod) {
   ASSERT_EQ(bakegi_settings_describe("", all.data(), all.size(), nullptr), BAKEGI_OK);
   all.resize(length);
   EXPECT_EQ(all,
-            "{\"methods\": [\"pathtrace\", \"direct\", \"antiradiance\", \"meshless\"], "
+            "{\"methods\": [\"pathtrace\", \"direct\", \"antiradiance\", \"meshless\", \"grid\"], "
             "\"default\": \"pathtrace\", \"default_settings\": {\"denoise\": 1, "
             "\"samples\": 65536, \"target_error\": 0.050000000000000003}}");
 
