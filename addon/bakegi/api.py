@@ -244,20 +244,25 @@ def export_scene_file(path, target="CORNER", objects="SELECTED", context=None,
                          "count": t.count} for t in exported.targets]}
 
 
+def _on_object(obj, context, make):
+    """make(the object `obj` names, or `obj` itself); its ValueError as a BakeGIError."""
+    context = _context(context)
+    target = context.blend_data.objects.get(obj) if isinstance(obj, str) else obj
+    if target is None:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {obj!r}")
+    try:
+        return make(target)
+    except ValueError as error:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", str(error)) from None
+
+
 def subdivide_copy(obj, vertices=4000, context=None):
     """Makes '<name>_BakeGI', a copy of the mesh object `obj` (or its name) with about
     `vertices` vertices spread over its surface, for a target whose vertices are too few for
     its light (report["error_check"]["coarse_objects"] names them); hides `obj`. Returns the
     copy."""
     from . import subdivision
-    context = _context(context)
-    target = context.blend_data.objects.get(obj) if isinstance(obj, str) else obj
-    if target is None:
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {obj!r}")
-    try:
-        return subdivision.subdivide_copy(target, vertices)
-    except ValueError as error:
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", str(error)) from None
+    return _on_object(obj, context, lambda target: subdivision.subdivide_copy(target, vertices))
 
 
 def simplify_copy(obj, ratio=0.1, context=None):
@@ -267,14 +272,7 @@ def simplify_copy(obj, ratio=0.1, context=None):
     {"triangles", "lod_triangles", "deviation"}: the deviation reached over the mesh's
     extent)."""
     from . import simplification
-    context = _context(context)
-    target = context.blend_data.objects.get(obj) if isinstance(obj, str) else obj
-    if target is None:
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"no object named {obj!r}")
-    try:
-        return simplification.simplify_copy(target, ratio)
-    except ValueError as error:
-        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", str(error)) from None
+    return _on_object(obj, context, lambda target: simplification.simplify_copy(target, ratio))
 
 
 def remove_bake(objects=None, context=None):

@@ -12,6 +12,7 @@ import mathutils.kdtree
 import numpy
 
 from . import native
+from .subdivision import replace_with_copy
 
 SUFFIX = "_LOD"
 
@@ -88,16 +89,5 @@ def simplify_copy(obj, ratio):
     finally:
         evaluated.to_mesh_clear()
 
-    copy = obj.copy()
-    copy.modifiers.clear()  # the mesh is the evaluated one already
-    copy.data = mesh
-    copy.name = name
-    for collection in obj.users_collection:
-        collection.objects.link(copy)
-    obj.hide_set(True)
-    obj.hide_render = True
-    for other in bpy.context.selected_objects:
-        other.select_set(False)
-    copy.select_set(True)
-    bpy.context.view_layer.objects.active = copy
+    copy = replace_with_copy(obj, mesh, name, clear_modifiers=True)
     return copy, {"triangles": before, "lod_triangles": after, "deviation": deviation}

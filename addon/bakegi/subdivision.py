@@ -61,9 +61,18 @@ def subdivide_copy(obj, vertices=DEFAULT_VERTICES):
     finally:
         bm.free()
 
+    return replace_with_copy(obj, mesh, obj.name + SUFFIX)
+
+
+def replace_with_copy(obj, mesh, name, clear_modifiers=False):
+    """Links '<name>', a copy of `obj` with `mesh`, into obj's collections, hides `obj` in
+    the viewport and the render (not changed: one click brings it back) and selects the copy
+    alone. clear_modifiers: `mesh` is already evaluated. Returns the copy."""
     copy = obj.copy()
+    if clear_modifiers:
+        copy.modifiers.clear()
     copy.data = mesh
-    copy.name = obj.name + SUFFIX
+    copy.name = name
     for collection in obj.users_collection:
         collection.objects.link(copy)
     obj.hide_set(True)

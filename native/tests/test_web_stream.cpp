@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include "capi_test_scene.h"
+#include "test_meshes.h"
 #include "util/error.h"
 #include "web/grid_stream_order.h"
 #include "web/progressive_mesh.h"
@@ -53,35 +54,8 @@ TEST(GridStreamOrder, CornersFirstThenCoarseToFineSpreadOverSlices) {
   EXPECT_NE(grid_stream_order(layout, 2), order);
 }
 
-struct TestMesh {
-  std::vector<glm::vec3> positions;
-  std::vector<uint32_t> indices;
-};
-
-TestMesh sphere(uint32_t rings, uint32_t segments) {
-  TestMesh mesh;
-  mesh.positions.push_back({0, 0, 1});
-  for (uint32_t r = 1; r < rings; ++r) {
-    const double theta = std::numbers::pi * r / rings;
-    for (uint32_t s = 0; s < segments; ++s) {
-      const double phi = 2.0 * std::numbers::pi * s / segments;
-      mesh.positions.push_back({float(std::sin(theta) * std::cos(phi)),
-                                float(std::sin(theta) * std::sin(phi)), float(std::cos(theta))});
-    }
-  }
-  mesh.positions.push_back({0, 0, -1});
-  const uint32_t south = uint32_t(mesh.positions.size() - 1);
-  auto at = [&](uint32_t r, uint32_t s) { return 1 + (r - 1) * segments + s % segments; };
-  for (uint32_t s = 0; s < segments; ++s) {
-    mesh.indices.insert(mesh.indices.end(), {0, at(1, s), at(1, s + 1)});
-    mesh.indices.insert(mesh.indices.end(), {south, at(rings - 1, s + 1), at(rings - 1, s)});
-    for (uint32_t r = 1; r + 1 < rings; ++r) {
-      mesh.indices.insert(mesh.indices.end(), {at(r, s), at(r + 1, s), at(r + 1, s + 1)});
-      mesh.indices.insert(mesh.indices.end(), {at(r, s), at(r + 1, s + 1), at(r, s + 1)});
-    }
-  }
-  return mesh;
-}
+using test::sphere;
+using test::TestMesh;
 
 // The area a client draws with the first n vertices (faces valid at n, corners resolved).
 double drawn_area(const ProgressiveMesh& pm, const std::vector<glm::vec3>& streamed, uint32_t n,
