@@ -115,6 +115,7 @@ try {
   check(finalState.firstImageMs !== null && finalState.firstImageMs <= FIRST_IMAGE_LIMIT_MS,
     `first lit image ${finalState.firstImageMs?.toFixed(0)} ms after the page opened (target 300 ms)`);
   results.first_image_ms = finalState.firstImageMs;
+  results.webgl_context_ms = finalState.timeline.context;
   results.all_ms = finalState.doneMs;
   results.push_pull_ms = finalState.pushPullMs;
   results.total_bytes = finalState.totalBytes;
