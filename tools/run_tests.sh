@@ -52,7 +52,7 @@ grep -E "^Blender [0-9.]+.*: [0-9]+ passed" "$results/blender.log"
 
 echo "== the web page in Chromium"
 if ! command -v chromium >/dev/null; then
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
 fi
 /usr/bin/python3 tools/web_test.py --work out/web_tests --build "$build_dir" \
   --junit "$results/web.xml" > "$results/web.log" 2>&1
