@@ -23,12 +23,6 @@ namespace {
 constexpr uint64_t kDefaultMaxVertices = uint64_t(64) * 64 * 64;
 constexpr uint32_t kDefaultRaysPerHemisphere = 64;
 
-const bakegi::IrradianceVectorGrid& grid_of(const bakegi_grid* grid) {
-  require(grid, "grid");
-  require(grid->grid.get(), "grid");
-  return *grid->grid;
-}
-
 glm::vec3 vec3_from(const float* v) {
   return {v[0], v[1], v[2]};
 }

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "api/api_guard.h"
 #include "bake/bake_job.h"
 #include "bake/error_probes.h"
 #include "grid/irradiance_vector_grid.h"
@@ -32,3 +33,10 @@ struct bakegi_grid {
   std::shared_ptr<const bakegi::IrradianceVectorGrid> grid;
   std::string info_json = "{}";  // stored with the grid in its file
 };
+
+// The grid a handle holds; Error(INVALID_ARGUMENT) naming "grid" for a null one.
+inline const bakegi::IrradianceVectorGrid& grid_of(const bakegi_grid* grid) {
+  bakegi::require(grid, "grid");
+  bakegi::require(grid->grid.get(), "grid");
+  return *grid->grid;
+}

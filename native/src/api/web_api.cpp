@@ -16,16 +16,6 @@ using bakegi::Error;
 using bakegi::guarded;
 using bakegi::require;
 
-namespace {
-
-const bakegi::IrradianceVectorGrid& grid_of(const bakegi_grid* grid) {
-  require(grid, "grid");
-  require(grid->grid.get(), "grid");
-  return *grid->grid;
-}
-
-}  // namespace
-
 extern "C" {
 
 bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* grid,

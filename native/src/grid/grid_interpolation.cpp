@@ -7,7 +7,6 @@
 #include <tbb/parallel_for.h>
 
 #include "util/error.h"
-#include "util/job_context.h"
 #include "util/sampling.h"
 
 namespace bakegi {
@@ -136,13 +135,6 @@ void evaluate_grid(const IrradianceVectorGrid& grid, std::span<const glm::vec3> 
                             evaluate_grid(grid, positions[i], normals[i], interpolation, weights);
                       }
                     });
-}
-
-void GridField::evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                         JobContext& context) const {
-  context.throw_if_cancelled();
-  evaluate_grid(*grid_, points.positions, points.normals, out, interpolation_, weights_);
-  context.set_stage_progress(1.0);
 }
 
 }  // namespace bakegi

@@ -10,10 +10,7 @@
 // of n_a^2 is 1), too bright (up to sqrt(3)) for light concentrated in the normal's octant;
 // measured against references in docs/ivg.md. The baked value (output convention E_indirect / pi)
 // of channel c is max(0, I_n^c . n) / pi. Positions outside the grid take the nearest vertices'
-// values (clamped).
-//
-// GridField puts a grid behind the IndirectField interface, so a grid lights bake points,
-// lightmap texels and meshes that were not in the bake alike.
+// values (clamped). grid/grid_field.h puts a grid behind the IndirectField interface.
 #pragma once
 
 #include <functional>
@@ -22,7 +19,6 @@
 
 #include <glm/glm.hpp>
 
-#include "field/indirect_field.h"
 #include "grid/irradiance_vector_grid.h"
 
 namespace bakegi {
@@ -54,19 +50,5 @@ void evaluate_grid(const IrradianceVectorGrid& grid, std::span<const glm::vec3> 
                    std::span<const glm::vec3> normals, std::span<glm::vec3> out,
                    GridInterpolation interpolation,
                    GridDirectionalWeights weights = GridDirectionalWeights::kSquared);
-
-class GridField : public IndirectField {
- public:
-  GridField(std::shared_ptr<const IrradianceVectorGrid> grid, GridInterpolation interpolation,
-            GridDirectionalWeights weights = GridDirectionalWeights::kSquared)
-      : grid_(std::move(grid)), interpolation_(interpolation), weights_(weights) {}
-  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                JobContext& context) const override;
-
- private:
-  std::shared_ptr<const IrradianceVectorGrid> grid_;
-  GridInterpolation interpolation_;
-  GridDirectionalWeights weights_;
-};
 
 }  // namespace bakegi

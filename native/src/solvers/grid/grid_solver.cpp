@@ -1,9 +1,7 @@
 #include "solvers/grid/grid_solver.h"
 
-#include <algorithm>
-
+#include "grid/grid_field.h"
 #include "grid/grid_file.h"
-#include "grid/grid_visibility.h"
 #include "settings/settings.h"
 #include "util/error.h"
 #include "util/file_bytes.h"
@@ -39,46 +37,6 @@ struct GridMethodSettings {
   }
 };
 
-// Points per call to the grid's (parallel) reading, between progress reports and cancel.
-constexpr size_t kChunk = 1 << 16;
-
-class BakedGridField : public IndirectField {
- public:
-  BakedGridField(IrradianceVectorGrid grid, const GridSceneLookup& lookup, const Scene& scene,
-                 const RayTracer& tracer)
-      : grid_(std::move(grid)), lookup_(lookup), scene_(scene), tracer_(tracer) {}
-
-  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
-                JobContext& context) const override {
-    GridSceneStatistics statistics;
-    std::vector<uint8_t> codes(points.size());
-    for (size_t first = 0; first < points.size(); first += kChunk) {
-      context.throw_if_cancelled();
-      const size_t count = std::min(kChunk, points.size() - first);
-      evaluate_grid_in_scene(grid_, scene_, tracer_,
-                             std::span<const glm::vec3>(points.positions).subspan(first, count),
-                             std::span<const glm::vec3>(points.normals).subspan(first, count),
-                             lookup_, out.subspan(first, count),
-                             std::span<uint8_t>(codes).subspan(first, count), statistics);
-      context.set_stage_progress(double(first + count) / double(points.size()));
-    }
-    context.report().add_count("rays", statistics.rays);
-    context.report().add_count("grid_unsure_points", statistics.unsure);
-    context.report().add_count("grid_buried_points", statistics.buried);
-    if (statistics.unsure > 0) {
-      context.report().warn(std::to_string(statistics.unsure) +
-                            " points saw no grid vertex near them and read 0 (outside the "
-                            "grid's rooms, or the grid is too coarse there)");
-    }
-  }
-
- private:
-  IrradianceVectorGrid grid_;
-  GridSceneLookup lookup_;
-  const Scene& scene_;
-  const RayTracer& tracer_;
-};
-
 }  // namespace
 
 const std::vector<SettingSpec>& GridSolver::setting_specs() {
@@ -108,8 +66,8 @@ std::unique_ptr<IndirectField> GridSolver::solve(const SolveInputs& inputs, JobC
   context.set_stage_text("reading the grid");
   const std::vector<uint8_t> bytes = read_file_bytes(utf8_path(settings.file), kMaxGridFileBytes);
   GridFile file = decode_grid_file(bytes, settings.file);
-  return std::make_unique<BakedGridField>(std::move(file.grid), settings.lookup, inputs.scene,
-                                          inputs.tracer);
+  return std::make_unique<GridField>(std::move(file.grid), settings.lookup, inputs.scene,
+                                     inputs.tracer);
 }
 
 }  // namespace bakegi
