@@ -20,10 +20,8 @@ project come with the reference's noise. tools/plot_ivg_lod.py draws docs/ivg_lo
 """
 
 import argparse
-import glob
 import json
 import os
-import subprocess
 import sys
 import time
 
@@ -34,15 +32,12 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "addon"))
 
-import real_scene_metrics as metrics  # noqa: E402
 from ivg_sweep import bake_grid, figures  # noqa: E402
+from real_scenes import reference, run  # noqa: E402  (the suite's reference loop)
 from sweep_cornell import addon_environment  # noqa: E402
 from bakegi import native  # noqa: E402
 
 SUBSET = 2000
-CHUNK_SAMPLES = 512
-MAX_CHUNKS = 64
-TARGET_NOISE = 0.02
 
 # Runs inside Blender: every visible mesh replaced by its level of detail, then exported.
 EXPORT_LEVEL = """
@@ -64,14 +59,6 @@ def log(message):
     print(f"[ivg_lod {time.strftime('%H:%M:%S')}] {message}", flush=True)
 
 
-def run(command, env=None):
-    completed = subprocess.run(command, env=env, capture_output=True, text=True)
-    if completed.returncode != 0:
-        raise SystemExit(f"{' '.join(command)} failed ({completed.returncode}):\n"
-                         f"{completed.stdout[-3000:]}\n{completed.stderr[-3000:]}")
-    return completed
-
-
 def export_level(blend, ratio, folder, build):
     bgs, info = os.path.join(folder, "scene.bgs"), os.path.join(folder, "export.json")
     if not os.path.exists(info):
@@ -80,24 +67,6 @@ def export_level(blend, ratio, folder, build):
              "--python-expr", expression], env=addon_environment(folder, build))
     with open(info) as f:
         return bgs, json.load(f)
-
-
-def reference(cli, subset_bgs, folder):
-    """(reference, its noise, samples): chunks until the noise is at most TARGET_NOISE."""
-    chunks, noise = [], float("inf")
-    while len(chunks) < MAX_CHUNKS:
-        for _ in range(2):
-            seed = len(chunks) + 1
-            path = os.path.join(folder, f"reference_chunk_{seed}.npy")
-            if not os.path.exists(path):
-                run([cli, "bake", subset_bgs, "--method", "pathtrace", "--samples",
-                     str(CHUNK_SAMPLES), "--seed", str(seed), "--out", path])
-            chunks.append(numpy.load(path).astype(numpy.float64))
-        odd, even = numpy.mean(chunks[0::2], axis=0), numpy.mean(chunks[1::2], axis=0)
-        noise = metrics.nrmse(odd, even) / 2.0
-        if noise <= TARGET_NOISE:
-            break
-    return numpy.mean(chunks, axis=0), noise, len(chunks) * CHUNK_SAMPLES
 
 
 def main():

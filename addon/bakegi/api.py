@@ -22,6 +22,7 @@ from . import live, session
 from .export import scene as export_scene_module, targets as export_targets
 from .ui import operators, properties
 from .write import attributes, grid_file
+from .write.file_names import safe_name
 from .native import BakeGIError
 from .request import BakeRequest, GridOptions, LightmapOptions
 
@@ -195,8 +196,7 @@ def export_web(folder=None, path=None, context=None):
         if not bpy.data.filepath:
             raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                               "save the .blend first or give a folder")
-        safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in context.scene.name)
-        folder = bpy.path.abspath(f"//bakegi_web/{safe or 'scene'}")
+        folder = bpy.path.abspath(f"//bakegi_web/{safe_name(context.scene.name)}")
     return web_scene.export_web(context, bpy.path.abspath(folder),
                                 bpy.path.abspath(path) if path else None)
 

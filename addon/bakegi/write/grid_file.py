@@ -12,6 +12,7 @@ from .. import native
 from ..export import materials, points as export_points
 from ..export.targets import BakeTarget
 from . import attributes, material_hook
+from .file_names import safe_name
 
 # The custom property of the scene that names its newest grid file (what apply_grid reads
 # when no path is given); set by every successful GRID bake.
@@ -19,8 +20,7 @@ GRID_PATH_PROPERTY = "bakegi_grid_path"
 
 
 def grid_file_name(scene_name):
-    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in scene_name) or "scene"
-    return f"BakeGI_Grid_{safe}.bgivg"
+    return f"BakeGI_Grid_{safe_name(scene_name)}.bgivg"
 
 
 def object_bounds(obj):

@@ -7,6 +7,7 @@ import os
 
 from ..native import BakeGIError
 from .attributes import drop_lightmap, look_up_targets
+from .file_names import safe_name
 from .material_hook import ATTRIBUTE_NAME, LIGHTMAP_OFFSET, LIGHTMAP_SCALE, LIGHTMAP_WEIGHT
 
 
@@ -15,8 +16,7 @@ def lightmap_image_name(scene_name):
 
 
 def lightmap_file_name(scene_name):
-    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in scene_name) or "scene"
-    return f"BakeGI_Lightmap_{safe}.exr"
+    return f"BakeGI_Lightmap_{safe_name(scene_name)}.exr"
 
 
 def write_lightmap(data, exported, rgb, path, scene_name, full_float=False, blend_path=""):
