@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 
 #include "usage_error.h"
@@ -91,4 +92,30 @@ std::vector<int64_t> parse_int_list(const std::string& text, const std::string& 
   return list;
 }
 
+std::vector<float> parse_float_list(const std::string& text, const std::string& what,
+                                    size_t count) {
+  std::vector<float> values;
+  size_t begin = 0;
+  while (begin <= text.size()) {
+    const size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string part = text.substr(begin, comma - begin);
+    size_t used = 0;
+    float value = 0.0f;
+    try {
+      value = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || part.empty() || !std::isfinite(value)) {
+      throw UsageError(what + ": '" + part + "' is not a number");
+    }
+    values.push_back(value);
+    begin = comma + 1;
+  }
+  if (values.size() != count) {
+    throw UsageError(what + " expects " + std::to_string(count) + " numbers, got " +
+                     std::to_string(values.size()));
+  }
+  return values;
+}
 }  // namespace bakegi::cli

@@ -21,6 +21,7 @@ int run_settings_command(const std::vector<std::string>& args);
 int run_grid_command(const std::vector<std::string>& args);
 int run_web_command(const std::vector<std::string>& args);
 int run_serve_command(const std::vector<std::string>& args);
+int run_preview_command(const std::vector<std::string>& args);
 
 // Loads an (n, 3) array and checks n against the expected bake point count.
 std::vector<float> load_rgb_array(const std::string& path, uint64_t expected_points);

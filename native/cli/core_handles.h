@@ -13,6 +13,7 @@ namespace bakegi::cli {
 using bakegi::GridHandle;
 using bakegi::JobHandle;
 using bakegi::PointsHandle;
+using bakegi::PreviewHandle;
 using bakegi::SceneHandle;
 using bakegi::SettingsHandle;
 

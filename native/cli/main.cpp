@@ -77,6 +77,13 @@ commands:
       and its grid and geometry as interleaved packets of V grid vectors (default 512,
       after the 8 corners) and N vertices (default 4096); --float sends the grid's vectors
       as floats instead of quantized (docs/ivg.md).
+  preview scene.bgs --camera x,y,z,qx,qy,qz,qw,yfov,shiftx,shifty,ortho,0 [--width W]
+          [--height H] [--out rgba.npy] [--direct d.npy] [--indirect i.npy] [--repeat R]
+          [settings]
+      One frame of the splatting preview (direct light + one splatted bounce; default
+      640x480, top row first): writes (H, W, 4) radiance and (H, W, 3) E/pi arrays and
+      prints each frame's report (timings per step, VPLs, subsplats per level). --repeat
+      renders again with the G-buffer kept, as when only lights move.
   settings [METHOD] [--markdown | --json]
       The settings each method reads (all methods without METHOD): key, type, default,
       range or choices, role (shapes | lighting | execution) and meaning, from the core's
@@ -141,6 +148,7 @@ int main(int argc, char** argv) {
     if (command == "grid") return run_grid_command(args);
     if (command == "web") return run_web_command(args);
     if (command == "serve") return run_serve_command(args);
+    if (command == "preview") return run_preview_command(args);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "bakegi: %s\n(run 'bakegi --help' for usage)\n", e.what());

@@ -3,7 +3,6 @@
 // from the client folder, so that `bakegi serve` or a browser opening the folder shows it.
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include "arguments.h"
 #include "commands.h"
@@ -16,27 +15,6 @@
 namespace bakegi::cli {
 
 namespace {
-
-std::vector<float> parse_camera(const std::string& text) {
-  std::vector<float> values;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, ',')) {
-    size_t used = 0;
-    float value = 0.0f;
-    try {
-      value = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != part.size()) throw UsageError("--camera: '" + part + "' is not a number");
-    values.push_back(value);
-  }
-  if (values.size() != 9) {
-    throw UsageError("--camera expects nine numbers: x,y,z, quaternion x,y,z,w, yfov, aspect");
-  }
-  return values;
-}
 
 // Copies the page's files (every file of the client folder) into the scene folder.
 size_t copy_client(const std::filesystem::path& client, const std::filesystem::path& folder) {
@@ -71,7 +49,9 @@ int run_web_command(const std::vector<std::string>& words) {
     grid = GridHandle(raw);
   }
   std::vector<float> camera;
-  if (const auto text = args.value("camera")) camera = parse_camera(*text);
+  if (const auto text = args.value("camera")) {
+    camera = parse_float_list(*text, "--camera (x,y,z, quaternion x,y,z,w, yfov, aspect)", 9);
+  }
   check(bakegi_web_export(file.scene.get(), grid.get(), out.c_str(),
                           camera.empty() ? nullptr : camera.data()),
         "writing the web scene to " + out);

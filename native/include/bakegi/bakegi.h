@@ -651,6 +651,36 @@ BAKEGI_API bakegi_status bakegi_grid_encode_vertices(const bakegi_grid* grid,
                                                      const uint32_t* vertices, uint64_t count,
                                                      int encoding, uint8_t* out_bytes);
 
+/* ---- the splatting preview (issue 17; native/src/solvers/splatting/) ----------------- */
+
+/* Direct light plus one bounce splatted from reflective-shadow-map VPLs through the
+ * adaptive multiresolution buffer (Nichols & Wyman 2009), seen from a camera: the render
+ * engine "BakeGI Preview". The preview copies the scene's geometry and materials and builds
+ * its BVH once; lights change with bakegi_preview_set_lights without rebuilding it. */
+typedef struct bakegi_preview bakegi_preview;
+
+BAKEGI_API bakegi_status bakegi_preview_create(const bakegi_scene* scene,
+                                               bakegi_preview** out_preview);
+BAKEGI_API void bakegi_preview_destroy(bakegi_preview* preview);
+/* Takes the lights and the world's radiance of `lights` (its meshes are ignored). */
+BAKEGI_API bakegi_status bakegi_preview_set_lights(bakegi_preview* preview,
+                                                   const bakegi_scene* lights);
+/* Renders width x height pixels, the top row first. camera: 12 floats, position xyz, the
+ * rotation quaternion xyzw (looking down -Z, up +Y, as a Blender camera), vertical field of
+ * view (radians), lens shift x and y (in units of the larger image side), orthographic
+ * scale (0: perspective). settings: the splatting method's (may be NULL: defaults). Any
+ * output may be NULL: out_rgba (w*h*4) the radiance (alpha 1 where a surface is seen, 0
+ * where the world shows), out_direct and out_indirect (w*h*3) E_direct/pi and E_indirect/pi.
+ * The frame's report (timings per step, VPLs, subsplats per level) is kept for
+ * bakegi_preview_get_report. */
+BAKEGI_API bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera,
+                                               uint32_t width, uint32_t height,
+                                               const bakegi_settings* settings, float* out_rgba,
+                                               float* out_direct, float* out_indirect);
+/* The last frame's report as JSON (the text contract of bakegi_job_get_report). */
+BAKEGI_API bakegi_status bakegi_preview_get_report(const bakegi_preview* preview, char* buffer,
+                                                   size_t capacity, size_t* out_length);
+
 #ifdef __cplusplus
 }
 #endif

@@ -25,10 +25,15 @@ struct GridDeleter {
   void operator()(bakegi_grid* g) const { bakegi_grid_destroy(g); }
 };
 
+struct PreviewDeleter {
+  void operator()(bakegi_preview* p) const { bakegi_preview_destroy(p); }
+};
+
 using SceneHandle = std::unique_ptr<bakegi_scene, SceneDeleter>;
 using PointsHandle = std::unique_ptr<bakegi_points, PointsDeleter>;
 using SettingsHandle = std::unique_ptr<bakegi_settings, SettingsDeleter>;
 using JobHandle = std::unique_ptr<bakegi_job, JobDeleter>;
 using GridHandle = std::unique_ptr<bakegi_grid, GridDeleter>;
+using PreviewHandle = std::unique_ptr<bakegi_preview, PreviewDeleter>;
 
 }  // namespace bakegi

@@ -26,6 +26,12 @@ AreaLight::AreaLight(const Light& light)
   }
 }
 
+glm::vec3 AreaLight::point_at(float u1, float u2) const {
+  const glm::vec2 local = round_ ? sample_concentric_disk(u1, u2) * glm::vec2(half_u_, half_v_)
+                                 : glm::vec2((2.0f * u1 - 1.0f) * half_u_, (2.0f * u2 - 1.0f) * half_v_);
+  return center_ + axis_u_ * local.x + axis_v_ * local.y;
+}
+
 bool AreaLight::sample(const glm::vec3& p, float u1, float u2, LightSample& out) const {
   if (glm::dot(p - center_, normal_) <= 0.0f || !(area_ > 0.0f)) return false;
   glm::vec3 q;

@@ -21,6 +21,11 @@ class AreaLight {
   bool intersect(const glm::vec3& origin, const glm::vec3& direction, float t_max,
                  LightHit& out) const;
   float area() const { return area_; }
+  const glm::vec3& radiance() const { return radiance_; }
+  const glm::vec3& normal() const { return normal_; }  // the emitting side
+  // The point of the light's shape at (u1, u2) in [0,1)^2, uniform by area (reflective
+  // shadow maps place their views there).
+  glm::vec3 point_at(float u1, float u2) const;
 
  private:
   SphericalRectangle spherical_rectangle(const glm::vec3& p) const {

@@ -1,0 +1,64 @@
+// The multiresolution illumination buffer (Nichols & Wyman 2009, §3.4, §3.5): one image per
+// level, each subsplat's indirect light written as one texel of its level (equation 2 summed
+// over the VPLs), then upsampled coarsest to finest into one image.
+//
+// Upsampling (§3.5): coarsest to finest, each texel that holds light (rendered at its level,
+// or brought up from the coarser ones) hands it to its four children by bilinear
+// interpolation among the neighbours of its level that also hold light; texels without
+// light stay empty, so light is neither pulled from nor spread into the regions refined
+// further, and never crosses the discontinuities that made them. (The paper's 3x3 weights
+// are read as this interpolation to the next level: applied as a blur of every level's own
+// samples they would flatten peaks and bias edges, 4.8% against full resolution on the
+// Cornell box instead of the 2% the issue asks for.) Nearest and naive bilinear upsampling
+// are kept to show the artifacts of their Fig. 7.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "solvers/splatting/subsplat_refinement.h"
+
+namespace bakegi {
+
+enum class Upsampling { kInterpolated, kNearest, kBilinear };
+
+class MultiresolutionBuffer {
+ public:
+  MultiresolutionBuffer(uint32_t width, uint32_t height, uint32_t levels);
+
+  // Adds light at a subsplat's texel (not thread-safe: one writer per buffer).
+  void add(const Subsplat& s, const glm::vec3& value);
+  // Adds another buffer of the same size (the per-thread buffers of §3.3.1's variant).
+  void add(const MultiresolutionBuffer& other);
+
+  // The combined full-resolution image (row order); pixels no subsplat covers are 0.
+  std::vector<glm::vec3> upsample(Upsampling mode) const;
+
+  uint32_t levels() const { return uint32_t(levels_.size()); }
+
+ private:
+  struct Level {
+    uint32_t width = 0, height = 0;
+    std::vector<glm::vec3> light;
+    std::vector<uint8_t> filled;
+  };
+  std::vector<glm::vec3> upsample_interpolated() const;
+  std::vector<glm::vec3> upsample_nearest() const;
+  std::vector<glm::vec3> upsample_bilinear() const;
+
+  uint32_t width_, height_;
+  std::vector<Level> levels_;
+};
+
+// The indirect light at one pixel of the G-buffer (thread-safe).
+using PixelLight = std::function<glm::vec3(size_t pixel)>;
+
+// Renders every subsplat of `set` into `buffer`: the light at the subsplat's pixel (the
+// mipmap texel's representative), in parallel.
+void render_subsplats(const SubsplatSet& set, const MinMaxMipmap& mipmap, const PixelLight& light,
+                      MultiresolutionBuffer& buffer);
+
+}  // namespace bakegi

@@ -1,0 +1,138 @@
+#include "solvers/splatting/splatting_indirect.h"
+
+#include <chrono>
+
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include "solvers/splatting/min_max_mipmap.h"
+#include "solvers/splatting/multiresolution_buffer.h"
+#include "solvers/splatting/subsplat_refinement.h"
+#include "solvers/splatting/virtual_point_lights.h"
+#include "solvers/splatting/vpl_visibility.h"
+#include "util/luminance.h"
+#include "util/sampling.h"
+
+namespace bakegi {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// §3.3.1: each VPL refines its own subsplats and renders them into a per-thread buffer.
+MultiresolutionBuffer render_illumination_refined(const MinMaxMipmap& mipmap, const EyeGBuffer& g,
+                                                  const VirtualPointLights& vpls, uint32_t coarsest,
+                                                  uint32_t finest, float threshold, float extent,
+                                                  std::vector<uint64_t>& per_level) {
+  tbb::combinable<MultiresolutionBuffer> buffers(
+      [&] { return MultiresolutionBuffer(g.width, g.height, mipmap.levels()); });
+  tbb::combinable<std::vector<uint64_t>> counts(
+      [&] { return std::vector<uint64_t>(mipmap.levels(), 0); });
+  tbb::parallel_for(size_t(0), vpls.size(), [&](size_t v) {
+    MultiresolutionBuffer& buffer = buffers.local();
+    std::vector<uint64_t>& count = counts.local();
+    // The floor of the relative test: this VPL's light at the scene's own size, so that
+    // faint far regions do not split on relative noise.
+    const float floor = float(max_component(vpls.fluxes[v])) / (kPi * kPi * extent * extent);
+    illumination_refined_subsplats(mipmap, g, vpls, v, coarsest, finest, threshold, floor,
+                                   [&](const Subsplat& s, const glm::vec3& value) {
+                                     buffer.add(s, value);
+                                     ++count[s.level];
+                                   });
+  });
+  MultiresolutionBuffer total(g.width, g.height, mipmap.levels());
+  buffers.combine_each([&](const MultiresolutionBuffer& b) { total.add(b); });
+  per_level.assign(mipmap.levels(), 0);
+  counts.combine_each([&](const std::vector<uint64_t>& c) {
+    for (size_t k = 0; k < c.size(); ++k) per_level[k] += c[k];
+  });
+  return total;
+}
+
+float scene_extent_of(const EyeGBuffer& g) {
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (!g.hit[i]) continue;
+    lo = glm::min(lo, g.position[i]);
+    hi = glm::max(hi, g.position[i]);
+  }
+  const float e = glm::length(hi - lo);
+  return e > 0.0f ? e : 1.0f;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
+                                      const SplattingSettings& settings,
+                                      SplatStatistics& statistics, const RayTracer* tracer,
+                                      float ray_epsilon) {
+  auto start = std::chrono::steady_clock::now();
+  const bool full = settings.refinement == SubsplatRefinement::kNone;
+  const uint32_t coarsest =
+      full ? 0 : coarsest_level_for(gbuffer.width, gbuffer.height, settings.base_resolution);
+  const uint32_t finest = settings.max_resolution == 0 || full
+                              ? 0
+                              : std::min(coarsest, coarsest_level_for(gbuffer.width, gbuffer.height,
+                                                                      settings.max_resolution));
+  statistics.coarsest_level = coarsest;
+  statistics.finest_level = finest;
+  const MinMaxMipmap mipmap(gbuffer, coarsest, settings.discontinuity);
+  statistics.seconds_mipmap = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  MultiresolutionBuffer buffer(gbuffer.width, gbuffer.height, mipmap.levels());
+  if (settings.refinement == SubsplatRefinement::kIllumination) {
+    buffer = render_illumination_refined(mipmap, gbuffer, vpls, coarsest, finest,
+                                         settings.illumination_threshold, scene_extent_of(gbuffer),
+                                         statistics.subsplats_per_level);
+    statistics.seconds_render = seconds_since(start);
+  } else {
+    const SubsplatSet set =
+        full ? pixel_subsplats(mipmap)
+             : refine_subsplats(mipmap, coarsest, finest, settings.discontinuity);
+    statistics.subsplats_per_level = set.per_level;
+    statistics.seconds_refine = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    if (tracer && settings.visibility_clusters > 0) {
+      VirtualPointLights clustered = vpls;
+      const VplClusters clusters = cluster_vpls(clustered, settings.visibility_clusters);
+      render_subsplats(
+          set, mipmap,
+          [&](size_t p) {
+            return visible_vpl_light(clustered, clusters, *tracer, ray_epsilon, gbuffer.position[p],
+                                     gbuffer.normal[p], gbuffer.geometric[p]);
+          },
+          buffer);
+    } else {
+      render_subsplats(
+          set, mipmap,
+          [&](size_t p) {
+            return vpl_irradiance_over_pi(vpls, gbuffer.position[p], gbuffer.normal[p]);
+          },
+          buffer);
+    }
+    statistics.seconds_render = seconds_since(start);
+  }
+  statistics.subsplats = 0;
+  for (uint64_t c : statistics.subsplats_per_level) statistics.subsplats += c;
+
+  start = std::chrono::steady_clock::now();
+  std::vector<glm::vec3> image = buffer.upsample(full ? Upsampling::kNearest : settings.upsampling);
+  // §4.3: detail the coarse levels smoothed away, from the angle to the eye (equation 3).
+  for (size_t i = 0; i < image.size(); ++i) {
+    if (!gbuffer.hit[i]) {
+      image[i] = glm::vec3(0.0f);
+      continue;
+    }
+    if (settings.detail_alpha > 0.0f) {
+      const float facing = std::max(0.0f, glm::dot(gbuffer.view[i], gbuffer.normal[i]));
+      image[i] *= settings.detail_alpha * facing + (1.0f - settings.detail_alpha);
+    }
+  }
+  statistics.seconds_upsample = seconds_since(start);
+  return image;
+}
+
+}  // namespace bakegi

@@ -1,0 +1,33 @@
+// Steps 3 to 6 of Nichols & Wyman 2009 (§3.2-3.5) for one G-buffer and one set of VPLs:
+// min-max mipmap, subsplat refinement, rendering into the multiresolution buffer and
+// upsampling, with each step's time and the subsplat counts per level (their Tables 1-2).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "solvers/splatting/eye_gbuffer.h"
+#include "solvers/splatting/splatting_settings.h"
+
+namespace bakegi {
+
+class RayTracer;
+
+struct SplatStatistics {
+  double seconds_mipmap = 0, seconds_refine = 0, seconds_render = 0, seconds_upsample = 0;
+  std::vector<uint64_t> subsplats_per_level;  // index = level (texels of 2^level pixels)
+  uint64_t subsplats = 0;
+  uint32_t coarsest_level = 0, finest_level = 0;
+};
+
+// Indirect irradiance / pi at every pixel of `gbuffer` (0 where nothing is seen). With
+// `tracer` and settings.visibility_clusters > 0, each subsplat's light passes the clustered
+// shadow rays of vpl_visibility.h (the §3.3.1 variant ignores them).
+std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
+                                      const SplattingSettings& settings,
+                                      SplatStatistics& statistics,
+                                      const RayTracer* tracer = nullptr, float ray_epsilon = 0.0f);
+
+}  // namespace bakegi

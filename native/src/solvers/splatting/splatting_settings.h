@@ -1,0 +1,41 @@
+// The settings of the splatting method (bake and preview alike), read once from a Settings.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "settings/setting_schema.h"
+#include "solvers/splatting/min_max_mipmap.h"
+#include "solvers/splatting/multiresolution_buffer.h"
+#include "solvers/splatting/reflective_shadow_map.h"
+#include "solvers/splatting/virtual_point_lights.h"
+
+namespace bakegi {
+
+class Settings;
+
+enum class SubsplatRefinement { kShared, kIllumination, kNone };
+
+struct SplattingSettings {
+  RsmOptions rsm;
+  uint32_t vpl_count = 256;
+  VplSampling vpl_sampling = VplSampling::kRegular;
+  uint32_t base_resolution = 16;  // texels of the coarsest level along the larger side
+  uint32_t max_resolution = 0;    // finest level's texels along the larger side, 0: pixels
+  DiscontinuityTest discontinuity;
+  // kShared: §3.3 (one set for all VPLs); kIllumination: §3.3.1 (per VPL); kNone: every
+  // pixel a subsplat (full-resolution splatting).
+  SubsplatRefinement refinement = SubsplatRefinement::kShared;
+  float illumination_threshold = 0.25f;
+  Upsampling upsampling = Upsampling::kInterpolated;
+  float detail_alpha = 0.0f;  // §4.3, equation 3
+  uint32_t direct_samples = 1;
+  // Shadow rays per receiver towards clustered VPLs (0: none, the paper's approximation).
+  uint32_t visibility_clusters = 0;
+  uint64_t seed = 0;
+
+  static SplattingSettings from(const Settings& settings);
+  static const std::vector<SettingSpec>& specs();
+};
+
+}  // namespace bakegi

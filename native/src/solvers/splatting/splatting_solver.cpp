@@ -1,0 +1,80 @@
+#include "solvers/splatting/splatting_solver.h"
+
+#include "lights/direct_light.h"
+#include "scene/scene.h"
+#include "solvers/splatting/point_subsplats.h"
+#include "solvers/splatting/reflective_shadow_map.h"
+#include "solvers/splatting/splatting_settings.h"
+#include "solvers/splatting/virtual_point_lights.h"
+#include "solvers/splatting/vpl_visibility.h"
+#include "util/job_context.h"
+
+namespace bakegi {
+
+namespace {
+
+// The VPLs' light at bake points, through the point hierarchy (refinement "shared" or
+// "illumination": the bake refines at geometric discontinuities either way) or at every
+// point (refinement "none").
+class SplattingField : public IndirectField {
+ public:
+  SplattingField(VirtualPointLights vpls, const SplattingSettings& settings,
+                 const RayTracer& tracer, float ray_epsilon)
+      : vpls_(std::move(vpls)), settings_(settings), tracer_(tracer), epsilon_(ray_epsilon) {
+    if (settings_.visibility_clusters > 0) {
+      clusters_ = cluster_vpls(vpls_, settings_.visibility_clusters);
+    }
+  }
+
+  void evaluate(const BakePoints& points, std::span<glm::vec3> out,
+                JobContext& context) const override {
+    const PointLightFunction light = [&](const glm::vec3& position, const glm::vec3& normal,
+                                         size_t) {
+      if (clusters_.count() == 0) return vpl_irradiance_over_pi(vpls_, position, normal);
+      // Bake points carry one normal: it stands for the geometric one too.
+      return visible_vpl_light(vpls_, clusters_, tracer_, epsilon_, position, normal, normal);
+    };
+    PointSubsplatOptions options;
+    options.base_resolution = settings_.base_resolution;
+    options.normal_threshold = settings_.discontinuity.normal_threshold;
+    options.depth_threshold = settings_.discontinuity.depth_threshold;
+    if (settings_.refinement == SubsplatRefinement::kNone) {
+      options.normal_threshold = -1.0f;  // every cell splits: each point reads its own light
+    }
+    PointSubsplatStatistics statistics;
+    splat_at_points(points.positions, points.normals, options, light, out, statistics, context);
+  }
+
+ private:
+  VirtualPointLights vpls_;
+  SplattingSettings settings_;
+  VplClusters clusters_;
+  const RayTracer& tracer_;
+  float epsilon_;
+};
+
+}  // namespace
+
+const std::vector<SettingSpec>& SplattingSolver::setting_specs() {
+  return SplattingSettings::specs();
+}
+
+void SplattingSolver::check_settings(const Settings& settings) const {
+  (void)SplattingSettings::from(settings);
+}
+
+std::unique_ptr<IndirectField> SplattingSolver::solve(const SolveInputs& inputs,
+                                                      JobContext& context) {
+  const SplattingSettings settings = SplattingSettings::from(inputs.settings);
+  context.set_stage_text("reflective shadow maps");
+  RsmOptions rsm = settings.rsm;
+  rsm.ray_epsilon = inputs.direct.ray_epsilon();
+  const std::vector<ReflectiveShadowMap> maps =
+      render_reflective_shadow_maps(inputs.scene, inputs.tracer, rsm);
+  context.throw_if_cancelled();
+  return std::make_unique<SplattingField>(
+      select_vpls(maps, settings.vpl_count, settings.vpl_sampling), settings, inputs.tracer,
+      inputs.direct.ray_epsilon());
+}
+
+}  // namespace bakegi

@@ -1,0 +1,117 @@
+#include "solvers/splatting/subsplat_refinement.h"
+
+#include <algorithm>
+
+#include "solvers/splatting/virtual_point_lights.h"
+
+namespace bakegi {
+
+namespace {
+
+std::vector<Subsplat> coarsest_subsplats(const MinMaxMipmap& mipmap, uint32_t coarsest) {
+  std::vector<Subsplat> out;
+  const MipLevel& l = mipmap.level(coarsest);
+  for (uint32_t y = 0; y < l.height; ++y) {
+    for (uint32_t x = 0; x < l.width; ++x) {
+      if (l.hits[l.index(x, y)] > 0) out.push_back({coarsest, x, y});
+    }
+  }
+  return out;
+}
+
+// The children of s that see a surface, in the paper's order (top left, top right, bottom
+// right, bottom left).
+template <typename Visit>
+void for_each_child(const MinMaxMipmap& mipmap, const Subsplat& s, Visit&& visit) {
+  const MipLevel& fine = mipmap.level(s.level - 1);
+  const uint32_t offsets[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const auto& o : offsets) {
+    const uint32_t x = 2 * s.x + o[0], y = 2 * s.y + o[1];
+    if (x < fine.width && y < fine.height && fine.hits[fine.index(x, y)] > 0) {
+      visit(Subsplat{s.level - 1, x, y});
+    }
+  }
+}
+
+SubsplatSet counted(std::vector<Subsplat> subsplats, uint32_t levels) {
+  SubsplatSet set;
+  set.per_level.assign(levels, 0);
+  for (const Subsplat& s : subsplats) ++set.per_level[s.level];
+  set.subsplats = std::move(subsplats);
+  return set;
+}
+
+glm::vec3 light_at(const MinMaxMipmap& mipmap, const EyeGBuffer& g, const VirtualPointLights& vpls,
+                   size_t vpl, const Subsplat& s) {
+  const uint32_t pixel =
+      mipmap.level(s.level).representative[mipmap.level(s.level).index(s.x, s.y)];
+  return vpl_term_over_pi(vpls, vpl, g.position[pixel], g.normal[pixel]);
+}
+
+}  // namespace
+
+SubsplatSet refine_subsplats(const MinMaxMipmap& mipmap, uint32_t coarsest, uint32_t finest,
+                             const DiscontinuityTest& test) {
+  std::vector<Subsplat> current = coarsest_subsplats(mipmap, coarsest);
+  std::vector<Subsplat> done;
+  for (uint32_t k = coarsest; k > finest; --k) {
+    std::vector<Subsplat> next;
+    for (const Subsplat& s : current) {
+      if (mipmap.refines(k, s.x, s.y, test)) {
+        for_each_child(mipmap, s, [&](const Subsplat& c) { next.push_back(c); });
+      } else {
+        done.push_back(s);
+      }
+    }
+    current = std::move(next);
+  }
+  done.insert(done.end(), current.begin(), current.end());
+  return counted(std::move(done), mipmap.levels());
+}
+
+SubsplatSet pixel_subsplats(const MinMaxMipmap& mipmap) {
+  std::vector<Subsplat> all;
+  const MipLevel& l = mipmap.level(0);
+  for (uint32_t y = 0; y < l.height; ++y) {
+    for (uint32_t x = 0; x < l.width; ++x) {
+      if (l.hits[l.index(x, y)] > 0) all.push_back({0, x, y});
+    }
+  }
+  return counted(std::move(all), mipmap.levels());
+}
+
+uint64_t illumination_refined_subsplats(
+    const MinMaxMipmap& mipmap, const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
+    size_t vpl, uint32_t coarsest, uint32_t finest, float threshold, float floor,
+    const std::function<void(const Subsplat&, const glm::vec3&)>& emit) {
+  std::vector<Subsplat> stack = coarsest_subsplats(mipmap, coarsest);
+  uint64_t emitted = 0;
+  while (!stack.empty()) {
+    const Subsplat s = stack.back();
+    stack.pop_back();
+    if (s.level > finest) {
+      // SamplesDiffer: component-wise range of the quadrants' light against the threshold.
+      glm::vec3 lo(1e30f), hi(0.0f), sum(0.0f);
+      Subsplat children[4];
+      int count = 0;
+      for_each_child(mipmap, s, [&](const Subsplat& c) {
+        const glm::vec3 v = light_at(mipmap, gbuffer, vpls, vpl, c);
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+        sum += v;
+        children[count++] = c;
+      });
+      const glm::vec3 range = hi - lo;
+      const float mean = std::max(std::max(sum.x, std::max(sum.y, sum.z)) / float(count), floor);
+      if (count > 0 && std::max(range.x, std::max(range.y, range.z)) > threshold * mean) {
+        for (int c = 0; c < count; ++c) stack.push_back(children[c]);
+        continue;
+      }
+    }
+    emit(s, light_at(mipmap, gbuffer, vpls, vpl, s));
+    ++emitted;
+  }
+  return emitted;
+}
+
+}  // namespace bakegi

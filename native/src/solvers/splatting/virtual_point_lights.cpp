@@ -1,0 +1,158 @@
+#include "solvers/splatting/virtual_point_lights.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "util/luminance.h"
+#include "util/sampling.h"
+
+namespace bakegi {
+
+void VirtualPointLights::push(const glm::vec3& position, const glm::vec3& normal,
+                              const glm::vec3& flux, float area) {
+  positions.push_back(position);
+  normals.push_back(normal);
+  fluxes.push_back(flux);
+  disk_areas.push_back(area / kPi);
+}
+
+namespace {
+
+double map_luminance(const ReflectiveShadowMap& map) {
+  double sum = 0.0;
+  for (const RsmTexel& t : map.texels) sum += luminance(t.flux);
+  return sum;
+}
+
+// How many VPLs each map gets: proportional to its reflected flux, at least one for a map
+// with any, by largest remainders.
+std::vector<uint32_t> share_out(const std::vector<ReflectiveShadowMap>& maps, uint32_t count) {
+  std::vector<double> weight(maps.size());
+  double total = 0.0;
+  for (size_t m = 0; m < maps.size(); ++m) total += weight[m] = map_luminance(maps[m]);
+  std::vector<uint32_t> shares(maps.size(), 0);
+  if (!(total > 0.0)) return shares;
+  std::vector<std::pair<double, size_t>> remainders;
+  uint32_t given = 0;
+  for (size_t m = 0; m < maps.size(); ++m) {
+    if (!(weight[m] > 0.0)) continue;
+    const double exact = weight[m] / total * count;
+    shares[m] = std::max(1u, uint32_t(exact));
+    given += shares[m];
+    remainders.push_back({exact - std::floor(exact), m});
+  }
+  std::sort(remainders.rbegin(), remainders.rend());
+  for (size_t i = 0; given < count && i < remainders.size(); ++i, ++given) {
+    ++shares[remainders[i].second];
+  }
+  return shares;
+}
+
+// The paper's fixed grid: the map cut into about `share` square blocks, one VPL per block
+// with flux, at the texel with flux nearest the block's centre, carrying the block's flux
+// and area.
+void regular_vpls(const ReflectiveShadowMap& map, uint32_t share, VirtualPointLights& out) {
+  if (share == 0 || map.texels.empty()) return;
+  const double texels_per_vpl = double(map.width) * map.height / share;
+  const uint32_t block = std::max(1u, uint32_t(std::lround(std::sqrt(texels_per_vpl))));
+  for (uint32_t by = 0; by < map.height; by += block) {
+    for (uint32_t bx = 0; bx < map.width; bx += block) {
+      const uint32_t ex = std::min(map.width, bx + block), ey = std::min(map.height, by + block);
+      glm::vec3 flux(0.0f);
+      float area = 0.0f;
+      const float cx = 0.5f * float(bx + ex - 1), cy = 0.5f * float(by + ey - 1);
+      const RsmTexel* centre = nullptr;
+      float best = 1e30f;
+      for (uint32_t y = by; y < ey; ++y) {
+        for (uint32_t x = bx; x < ex; ++x) {
+          const RsmTexel& t = map.texels[size_t(y) * map.width + x];
+          if (!(max_component(t.flux) > 0.0f)) continue;
+          flux += t.flux;
+          area += t.area;
+          const float d = (float(x) - cx) * (float(x) - cx) + (float(y) - cy) * (float(y) - cy);
+          if (d < best) best = d, centre = &t;
+        }
+      }
+      if (centre) out.push(centre->position, centre->normal, flux, area);
+    }
+  }
+}
+
+// Texels drawn by luminance of reflected flux, systematically (one uniform offset), each
+// carrying flux / (count p) and its area scaled alike.
+void importance_vpls(const std::vector<ReflectiveShadowMap>& maps, uint32_t count,
+                     VirtualPointLights& out) {
+  std::vector<const RsmTexel*> texels;
+  std::vector<double> cdf;
+  double total = 0.0;
+  for (const ReflectiveShadowMap& map : maps) {
+    for (const RsmTexel& t : map.texels) {
+      const double y = luminance(t.flux);
+      if (!(y > 0.0)) continue;
+      total += y;
+      cdf.push_back(total);
+      texels.push_back(&t);
+    }
+  }
+  if (texels.empty() || count == 0) return;
+  for (uint32_t k = 0; k < count; ++k) {
+    const double u = (double(k) + 0.5) / double(count) * total;
+    const size_t i = std::min(size_t(std::lower_bound(cdf.begin(), cdf.end(), u) - cdf.begin()),
+                              texels.size() - 1);
+    const RsmTexel& t = *texels[i];
+    const double p = luminance(t.flux) / total;
+    const float scale = float(1.0 / (double(count) * p));
+    out.push(t.position, t.normal, t.flux * scale, t.area * scale);
+  }
+}
+
+}  // namespace
+
+VirtualPointLights select_vpls(const std::vector<ReflectiveShadowMap>& maps, uint32_t count,
+                               VplSampling sampling) {
+  VirtualPointLights vpls;
+  if (sampling == VplSampling::kImportance) {
+    importance_vpls(maps, count, vpls);
+    return vpls;
+  }
+  const std::vector<uint32_t> shares = share_out(maps, count);
+  for (size_t m = 0; m < maps.size(); ++m) regular_vpls(maps[m], shares[m], vpls);
+  return vpls;
+}
+
+glm::vec3 vpl_term_over_pi(const VirtualPointLights& vpls, size_t v, const glm::vec3& position,
+                           const glm::vec3& normal) {
+  const glm::vec3 d = vpls.positions[v] - position;
+  const float r2 = glm::dot(d, d);
+  const float r = std::sqrt(r2);
+  if (!(r > 0.0f)) return glm::vec3(0.0f);
+  const float cos_receiver = std::max(0.0f, glm::dot(normal, d)) / r;
+  const float cos_vpl = std::max(0.0f, -glm::dot(vpls.normals[v], d)) / r;
+  constexpr float kInvPiSquared = 1.0f / (kPi * kPi);
+  return vpls.fluxes[v] * (cos_receiver * cos_vpl * kInvPiSquared / (r2 + vpls.disk_areas[v]));
+}
+
+glm::vec3 vpl_irradiance_over_pi(const VirtualPointLights& vpls, const glm::vec3& position,
+                                 const glm::vec3& normal, size_t begin, size_t end) {
+  // Written out over plain floats so the compiler can vectorize the loop.
+  const glm::vec3* p = vpls.positions.data();
+  const glm::vec3* n = vpls.normals.data();
+  const glm::vec3* f = vpls.fluxes.data();
+  const float* a = vpls.disk_areas.data();
+  float sr = 0.0f, sg = 0.0f, sb = 0.0f;
+  for (size_t v = begin; v < end; ++v) {
+    const float dx = p[v].x - position.x, dy = p[v].y - position.y, dz = p[v].z - position.z;
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float cr = std::max(0.0f, normal.x * dx + normal.y * dy + normal.z * dz);
+    const float cv = std::max(0.0f, -(n[v].x * dx + n[v].y * dy + n[v].z * dz));
+    // cos_r cos_v / (r^2 + A/pi) with both cosines' 1/r folded into r^2.
+    const float w = r2 > 0.0f ? cr * cv / (r2 * (r2 + a[v])) : 0.0f;
+    sr += w * f[v].x;
+    sg += w * f[v].y;
+    sb += w * f[v].z;
+  }
+  constexpr float kInvPiSquared = 1.0f / (kPi * kPi);
+  return glm::vec3(sr, sg, sb) * kInvPiSquared;
+}
+
+}  // namespace bakegi

@@ -1,0 +1,54 @@
+// Virtual point lights from reflective shadow maps (Nichols & Wyman 2009, §3.1) and the
+// light one of them sends to a diffuse receiver (their equation 2 with diffuse BRDFs).
+//
+// Selection is either the paper's fixed regular grid over each map (one VPL per block of
+// texels, at the block's centre texel, carrying the block's flux), or importance sampling
+// of texels by reflected flux (systematic, so the count is exact). Either way the VPLs
+// carry all the maps' flux: their sum is total_reflected_flux(maps).
+//
+// The 1/r^2 singularity the paper clamps (their Fig. 13) is bounded here by the surface a
+// VPL stands for: it shines like a disk of that area, whose on-axis irradiance
+// Phi / (pi (r^2 + A/pi)) stays finite as r -> 0 and tends to Phi / (pi r^2) far away.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "solvers/splatting/reflective_shadow_map.h"
+
+namespace bakegi {
+
+enum class VplSampling { kRegular, kImportance };
+
+// Structure of arrays: the gather's inner loop runs over VPLs.
+struct VirtualPointLights {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec3> fluxes;  // W, RGB (reflected, diffuse)
+  std::vector<float> disk_areas;  // A / pi of each VPL's surface: the near-field bound
+  size_t size() const { return positions.size(); }
+  void push(const glm::vec3& position, const glm::vec3& normal, const glm::vec3& flux, float area);
+};
+
+VirtualPointLights select_vpls(const std::vector<ReflectiveShadowMap>& maps, uint32_t count,
+                               VplSampling sampling);
+
+// The indirect light the VPLs [begin, end) send to a receiver at `position` with unit
+// `normal`, in the output convention: irradiance / pi, so that albedo x value is the diffuse
+// radiance it reflects. No visibility: the paper's approximation.
+glm::vec3 vpl_irradiance_over_pi(const VirtualPointLights& vpls, const glm::vec3& position,
+                                 const glm::vec3& normal, size_t begin, size_t end);
+inline glm::vec3 vpl_irradiance_over_pi(const VirtualPointLights& vpls, const glm::vec3& position,
+                                        const glm::vec3& normal) {
+  return vpl_irradiance_over_pi(vpls, position, normal, 0, vpls.size());
+}
+
+// One VPL's term of the above.
+glm::vec3 vpl_term_over_pi(const VirtualPointLights& vpls, size_t v, const glm::vec3& position,
+                           const glm::vec3& normal);
+
+}  // namespace bakegi
