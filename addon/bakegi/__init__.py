@@ -41,7 +41,7 @@ if bpy is not None:
     __all__ += ["apply_grid", "bake", "export_scene_file", "export_web", "live_stop",
                 "live_update", "remove_bake", "simplify_copy", "subdivide_copy"]
 
-_MODULES = ("ui.preferences", "ui.properties", "ui.operators", "ui.panels", "live")
+_MODULES = ("ui.preferences", "ui.properties", "ui.operators", "ui.panels", "live", "preview")
 
 
 def register():

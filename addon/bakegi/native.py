@@ -184,6 +184,12 @@ _SIGNATURES = {
                                      POINTER(c_uint64), POINTER(c_float)]),
     "bakegi_web_export": (c_int, [_P, _P, c_char_p, POINTER(c_float)]),
     "bakegi_grid_stream_order": (c_int, [_P, c_uint64, POINTER(c_uint32)]),
+    "bakegi_preview_create": (c_int, [_P, _PP]),
+    "bakegi_preview_destroy": (None, [_P]),
+    "bakegi_preview_set_lights": (c_int, [_P, _P]),
+    "bakegi_preview_render": (c_int, [_P, POINTER(c_float), c_uint32, c_uint32, _P,
+                                      POINTER(c_float), POINTER(c_float), POINTER(c_float)]),
+    "bakegi_preview_get_report": (c_int, [_P, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
     "bakegi_grid_encode_vertices": (c_int, [_P, POINTER(c_uint32), c_uint64, c_int,
                                             POINTER(ctypes.c_uint8)]),
     "bakegi_grid_create": (c_int, [POINTER(c_float), POINTER(c_float), c_float, c_uint64, _PP]),
@@ -912,6 +918,50 @@ class Settings(_Handle):
             raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                               f"setting {key!r}: unsupported value type {type(value).__name__}")
         _check(status, f"setting {key!r}")
+
+
+class Preview(_Handle):
+    """The splatting preview (bakegi_preview): the scene's geometry and BVH built once, lights
+    replaced with set_lights, frames rendered from a camera in milliseconds."""
+
+    _destroy_name = "bakegi_preview_destroy"
+
+    def __init__(self, scene):
+        lib = load_library()
+        out = c_void_p()
+        _check(lib.bakegi_preview_create(scene.handle, byref(out)), "bakegi_preview_create")
+        super().__init__(out.value)
+        self.report = {}
+
+    def set_lights(self, scene):
+        """Takes the lights and the world of the core scene `scene` (its meshes are ignored)."""
+        _check(load_library().bakegi_preview_set_lights(self.handle, scene.handle),
+               "bakegi_preview_set_lights")
+
+    def render(self, camera, width, height, settings=None, layers=False):
+        """One frame, top row first: a float32 (height, width, 4) numpy array of radiance
+        (alpha 1 where a surface is seen), and with layers=True also the (height, width, 3)
+        direct and indirect E/pi. camera: 12 numbers (position, quaternion xyzw looking down
+        -Z, vertical field of view, shift x, shift y, orthographic scale or 0, 0). The frame's
+        report (timings, VPLs, subsplats per level) is in self.report."""
+        numbers = [float(v) for v in camera]
+        if len(numbers) != 12:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                              f"camera needs 12 numbers, got {len(numbers)}")
+        width, height = int(width), int(height)
+        if width < 1 or height < 1:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", "the image needs pixels")
+        rgba = np.empty((height, width, 4), dtype=np.float32)
+        direct = np.empty((height, width, 3), dtype=np.float32) if layers else None
+        indirect = np.empty((height, width, 3), dtype=np.float32) if layers else None
+        _check(load_library().bakegi_preview_render(
+            self.handle, (c_float * 12)(*numbers), width, height,
+            settings.handle if settings is not None else None, _fptr(rgba),
+            _fptr(direct) if layers else None, _fptr(indirect) if layers else None),
+            "bakegi_preview_render")
+        self.report = json.loads(_read_text(load_library().bakegi_preview_get_report,
+                                            [self.handle], "the preview's report"))
+        return (rgba, direct, indirect) if layers else rgba
 
 
 class Job(_Handle):

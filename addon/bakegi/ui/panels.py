@@ -185,7 +185,30 @@ def _draw_error_check(layout, verdict):
         op.object_name = name
 
 
-classes = (RENDER_PT_bakegi, VIEW3D_PT_bakegi_live)
+class RENDER_PT_bakegi_preview(bpy.types.Panel):
+    """Settings of the BakeGI Preview render engine (splatting, issue 17)."""
+
+    bl_label = "BakeGI Preview"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "render"
+    COMPAT_ENGINES = {"BAKEGI_PREVIEW"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.bakegi
+        layout.prop(props, "preview_vpl_count")
+        layout.prop(props, "preview_visibility_clusters")
+        layout.prop(props, "preview_viewport_scale")
+        layout.label(text="One splatted bounce: a draft of the indirect light", icon="INFO")
+
+
+classes = (RENDER_PT_bakegi, VIEW3D_PT_bakegi_live, RENDER_PT_bakegi_preview)
 
 
 def register():

@@ -92,6 +92,16 @@ def _live_toggled(self, context):
 
 
 class BakeGISettings(bpy.types.PropertyGroup):
+    preview_vpl_count: IntProperty(
+        name="VPLs", default=256, min=1, max=65536, soft_max=4096,
+        description="BakeGI Preview: virtual point lights of the one splatted bounce")
+    preview_visibility_clusters: IntProperty(
+        name="Visibility Rays", default=0, min=0, max=4096, soft_max=64,
+        description="BakeGI Preview: shadow rays per subsplat towards clustered VPLs (0: no "
+        "visibility for the bounce, as the paper; light may leak through walls)")
+    preview_viewport_scale: FloatProperty(
+        name="Viewport Resolution", default=0.5, min=0.1, max=1.0, subtype="FACTOR",
+        description="BakeGI Preview: the viewport renders at this fraction of its size")
     show_debug: BoolProperty(
         name="Debug Methods", default=False,
         description="Offer methods meant for checking the add-on rather than for baking")

@@ -101,7 +101,8 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
       render_subsplats(
           set, mipmap,
           [&](size_t p) {
-            return visible_vpl_light(clustered, clusters, *tracer, ray_epsilon, gbuffer.position[p],
+            return visible_vpl_light(clustered, clusters, *tracer, ray_epsilon,
+                                     settings.near_field_split, gbuffer.position[p],
                                      gbuffer.normal[p], gbuffer.geometric[p]);
           },
           buffer);
@@ -109,6 +110,10 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
       render_subsplats(
           set, mipmap,
           [&](size_t p) {
+            if (settings.near_field_split > 0.0f) {
+              return near_field_light(vpls, gbuffer.position[p], gbuffer.normal[p], 0, vpls.size(),
+                                      settings.near_field_split);
+            }
             return vpl_irradiance_over_pi(vpls, gbuffer.position[p], gbuffer.normal[p]);
           },
           buffer);

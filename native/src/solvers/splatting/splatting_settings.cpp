@@ -61,6 +61,9 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
       integer_setting("visibility_clusters", 0, 0, 4096, R::kLighting,
                       "shadow rays per receiver towards clustered VPLs (0: no visibility for "
                       "the indirect bounce, as in the paper)"),
+      number_setting("near_field_split", 2.0, 0.0, 100.0, R::kLighting,
+                     "a VPL closer than this many radii of the surface it stands for sends its "
+                     "texels' light instead (the near field the paper clamps); 0: never"),
   };
   return specs;
 }
@@ -100,6 +103,7 @@ SplattingSettings SplattingSettings::from(const Settings& settings) {
   s.detail_alpha = float(read.get_float("detail_alpha"));
   s.direct_samples = uint32_t(read.get_int("direct_samples"));
   s.visibility_clusters = uint32_t(read.get_int("visibility_clusters"));
+  s.near_field_split = float(read.get_float("near_field_split"));
   s.seed = uint64_t(read.get_int("seed"));
   return s;
 }

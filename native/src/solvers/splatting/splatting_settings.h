@@ -32,6 +32,8 @@ struct SplattingSettings {
   uint32_t direct_samples = 1;
   // Shadow rays per receiver towards clustered VPLs (0: none, the paper's approximation).
   uint32_t visibility_clusters = 0;
+  // A VPL closer than this many radii of its surface sends its texels' light (0: never).
+  float near_field_split = 2.0f;
   uint64_t seed = 0;
 
   static SplattingSettings from(const Settings& settings);

@@ -30,9 +30,13 @@ class SplattingField : public IndirectField {
                 JobContext& context) const override {
     const PointLightFunction light = [&](const glm::vec3& position, const glm::vec3& normal,
                                          size_t) {
-      if (clusters_.count() == 0) return vpl_irradiance_over_pi(vpls_, position, normal);
+      if (clusters_.count() == 0) {
+        return near_field_light(vpls_, position, normal, 0, vpls_.size(),
+                                settings_.near_field_split);
+      }
       // Bake points carry one normal: it stands for the geometric one too.
-      return visible_vpl_light(vpls_, clusters_, tracer_, epsilon_, position, normal, normal);
+      return visible_vpl_light(vpls_, clusters_, tracer_, epsilon_, settings_.near_field_split,
+                               position, normal, normal);
     };
     PointSubsplatOptions options;
     options.base_resolution = settings_.base_resolution;

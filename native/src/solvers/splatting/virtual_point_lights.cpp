@@ -48,16 +48,21 @@ std::vector<uint32_t> share_out(const std::vector<ReflectiveShadowMap>& maps, ui
   return shares;
 }
 
-// The paper's fixed grid: the map cut into about `share` square blocks, one VPL per block
+// The paper's fixed grid: the map cut into about `share` blocks, one VPL per block
 // with flux, at the texel with flux nearest the block's centre, carrying the block's flux
 // and area.
 void regular_vpls(const ReflectiveShadowMap& map, uint32_t share, VirtualPointLights& out) {
   if (share == 0 || map.texels.empty()) return;
-  const double texels_per_vpl = double(map.width) * map.height / share;
-  const uint32_t block = std::max(1u, uint32_t(std::lround(std::sqrt(texels_per_vpl))));
-  for (uint32_t by = 0; by < map.height; by += block) {
-    for (uint32_t bx = 0; bx < map.width; bx += block) {
-      const uint32_t ex = std::min(map.width, bx + block), ey = std::min(map.height, by + block);
+  // Columns and rows of blocks in the map's proportions, about `share` blocks in all.
+  const uint32_t columns = std::clamp(
+      uint32_t(std::lround(std::sqrt(double(share) * map.width / map.height))), 1u, map.width);
+  const uint32_t rows = std::clamp(uint32_t(std::lround(double(share) / columns)), 1u, map.height);
+  const uint32_t block_w = (map.width + columns - 1) / columns;
+  const uint32_t block_h = (map.height + rows - 1) / rows;
+  for (uint32_t by = 0; by < map.height; by += block_h) {
+    for (uint32_t bx = 0; bx < map.width; bx += block_w) {
+      const uint32_t ex = std::min(map.width, bx + block_w);
+      const uint32_t ey = std::min(map.height, by + block_h);
       glm::vec3 flux(0.0f);
       float area = 0.0f;
       const float cx = 0.5f * float(bx + ex - 1), cy = 0.5f * float(by + ey - 1);
@@ -73,7 +78,16 @@ void regular_vpls(const ReflectiveShadowMap& map, uint32_t share, VirtualPointLi
           if (d < best) best = d, centre = &t;
         }
       }
-      if (centre) out.push(centre->position, centre->normal, flux, area);
+      if (!centre) continue;
+      out.push(centre->position, centre->normal, flux, area);
+      if (out.texel_begin.empty()) out.texel_begin.push_back(uint32_t(out.texels.size()));
+      for (uint32_t y = by; y < ey; ++y) {
+        for (uint32_t x = bx; x < ex; ++x) {
+          const RsmTexel& t = map.texels[size_t(y) * map.width + x];
+          if (max_component(t.flux) > 0.0f) out.texels.push_back(t);
+        }
+      }
+      out.texel_begin.push_back(uint32_t(out.texels.size()));
     }
   }
 }
@@ -115,8 +129,17 @@ VirtualPointLights select_vpls(const std::vector<ReflectiveShadowMap>& maps, uin
     importance_vpls(maps, count, vpls);
     return vpls;
   }
-  const std::vector<uint32_t> shares = share_out(maps, count);
-  for (size_t m = 0; m < maps.size(); ++m) regular_vpls(maps[m], shares[m], vpls);
+  // Blocks without flux (outside a spot's cone, past the scene's edge) give no VPL: ask
+  // for more blocks until the count is reached (within 3%), at most a few times.
+  uint32_t asked = count;
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    vpls = VirtualPointLights{};
+    vpls.texel_begin.clear();
+    const std::vector<uint32_t> shares = share_out(maps, asked);
+    for (size_t m = 0; m < maps.size(); ++m) regular_vpls(maps[m], shares[m], vpls);
+    if (vpls.size() == 0 || vpls.size() * 100 >= size_t(count) * 97) break;
+    asked = uint32_t(std::min<double>(double(asked) * count / double(vpls.size()) + 1.0, 1e7));
+  }
   return vpls;
 }
 
@@ -130,6 +153,40 @@ glm::vec3 vpl_term_over_pi(const VirtualPointLights& vpls, size_t v, const glm::
   const float cos_vpl = std::max(0.0f, -glm::dot(vpls.normals[v], d)) / r;
   constexpr float kInvPiSquared = 1.0f / (kPi * kPi);
   return vpls.fluxes[v] * (cos_receiver * cos_vpl * kInvPiSquared / (r2 + vpls.disk_areas[v]));
+}
+
+namespace {
+
+glm::vec3 texel_term_over_pi(const RsmTexel& t, const glm::vec3& position,
+                             const glm::vec3& normal) {
+  const glm::vec3 d = t.position - position;
+  const float r2 = glm::dot(d, d);
+  if (!(r2 > 0.0f)) return glm::vec3(0.0f);
+  const float cr = std::max(0.0f, glm::dot(normal, d));
+  const float cv = std::max(0.0f, -glm::dot(t.normal, d));
+  return t.flux * (cr * cv / (r2 * (r2 + t.area / kPi)) / (kPi * kPi));
+}
+
+}  // namespace
+
+glm::vec3 near_field_light(const VirtualPointLights& vpls, const glm::vec3& position,
+                           const glm::vec3& normal, size_t begin, size_t end, float split) {
+  if (vpls.texel_begin.size() != vpls.size() + 1) {
+    return vpl_irradiance_over_pi(vpls, position, normal, begin, end);
+  }
+  glm::vec3 sum(0.0f);
+  const float split2 = split * split;
+  for (size_t v = begin; v < end; ++v) {
+    const glm::vec3 d = vpls.positions[v] - position;
+    if (glm::dot(d, d) < split2 * vpls.disk_areas[v]) {
+      for (uint32_t t = vpls.texel_begin[v]; t < vpls.texel_begin[v + 1]; ++t) {
+        sum += texel_term_over_pi(vpls.texels[t], position, normal);
+      }
+    } else {
+      sum += vpl_term_over_pi(vpls, v, position, normal);
+    }
+  }
+  return sum;
 }
 
 glm::vec3 vpl_irradiance_over_pi(const VirtualPointLights& vpls, const glm::vec3& position,

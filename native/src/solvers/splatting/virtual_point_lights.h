@@ -30,6 +30,10 @@ struct VirtualPointLights {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec3> fluxes;  // W, RGB (reflected, diffuse)
   std::vector<float> disk_areas;  // A / pi of each VPL's surface: the near-field bound
+  // Regular sampling: the texels each VPL gathers, [texel_begin[v], texel_begin[v + 1]) of
+  // `texels`, for receivers so close that the block's extent matters (near_field_light).
+  std::vector<uint32_t> texel_begin;
+  std::vector<RsmTexel> texels;
   size_t size() const { return positions.size(); }
   void push(const glm::vec3& position, const glm::vec3& normal, const glm::vec3& flux, float area);
 };
@@ -46,6 +50,14 @@ inline glm::vec3 vpl_irradiance_over_pi(const VirtualPointLights& vpls, const gl
                                         const glm::vec3& normal) {
   return vpl_irradiance_over_pi(vpls, position, normal, 0, vpls.size());
 }
+
+// As vpl_irradiance_over_pi, but a VPL closer than `split` times the radius of the surface it
+// stands for sends its texels' light instead of its own (each bounded by its own area): the
+// VPL's single point misplaces light near it (the bias the paper's Fig. 13 clamps away),
+// which its texels resolve down to the maps' resolution. Without texels (importance sampling)
+// this is vpl_irradiance_over_pi.
+glm::vec3 near_field_light(const VirtualPointLights& vpls, const glm::vec3& position,
+                           const glm::vec3& normal, size_t begin, size_t end, float split);
 
 // One VPL's term of the above.
 glm::vec3 vpl_term_over_pi(const VirtualPointLights& vpls, size_t v, const glm::vec3& position,

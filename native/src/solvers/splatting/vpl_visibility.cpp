@@ -41,11 +41,17 @@ VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count) {
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return keys[a] < keys[b]; });
   VirtualPointLights sorted;
+  const bool has_texels = vpls.texel_begin.size() == n + 1;
+  if (has_texels) sorted.texel_begin.push_back(0);
   for (size_t i : order) {
     sorted.positions.push_back(vpls.positions[i]);
     sorted.normals.push_back(vpls.normals[i]);
     sorted.fluxes.push_back(vpls.fluxes[i]);
     sorted.disk_areas.push_back(vpls.disk_areas[i]);
+    if (!has_texels) continue;
+    sorted.texels.insert(sorted.texels.end(), vpls.texels.begin() + vpls.texel_begin[i],
+                         vpls.texels.begin() + vpls.texel_begin[i + 1]);
+    sorted.texel_begin.push_back(uint32_t(sorted.texels.size()));
   }
   vpls = std::move(sorted);
   const size_t c = std::min<size_t>(count, n);
@@ -72,13 +78,14 @@ VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count) {
 }
 
 glm::vec3 visible_vpl_light(const VirtualPointLights& vpls, const VplClusters& clusters,
-                            const RayTracer& tracer, float epsilon, const glm::vec3& position,
-                            const glm::vec3& normal, const glm::vec3& geometric_normal) {
+                            const RayTracer& tracer, float epsilon, float split,
+                            const glm::vec3& position, const glm::vec3& normal,
+                            const glm::vec3& geometric_normal) {
   glm::vec3 sum(0.0f);
   const glm::vec3 origin = position + geometric_normal * epsilon;
   for (size_t c = 0; c < clusters.count(); ++c) {
     const glm::vec3 light =
-        vpl_irradiance_over_pi(vpls, position, normal, clusters.begin[c], clusters.begin[c + 1]);
+        near_field_light(vpls, position, normal, clusters.begin[c], clusters.begin[c + 1], split);
     if (!(max_component(light) > 0.0f)) continue;
     const glm::vec3 to = clusters.anchor[c] - origin;
     const float distance = glm::length(to);

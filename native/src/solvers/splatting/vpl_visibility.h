@@ -27,9 +27,11 @@ struct VplClusters {
 // size (fewer when there are fewer VPLs).
 VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count);
 
-// Light at a receiver with one shadow ray per cluster; `epsilon` offsets both ends.
+// Light at a receiver (near_field_light with `split`) with one shadow ray per cluster;
+// `epsilon` offsets both ends.
 glm::vec3 visible_vpl_light(const VirtualPointLights& vpls, const VplClusters& clusters,
-                            const RayTracer& tracer, float epsilon, const glm::vec3& position,
-                            const glm::vec3& normal, const glm::vec3& geometric_normal);
+                            const RayTracer& tracer, float epsilon, float split,
+                            const glm::vec3& position, const glm::vec3& normal,
+                            const glm::vec3& geometric_normal);
 
 }  // namespace bakegi
