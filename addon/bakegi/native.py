@@ -188,7 +188,8 @@ _SIGNATURES = {
     "bakegi_preview_destroy": (None, [_P]),
     "bakegi_preview_set_lights": (c_int, [_P, _P]),
     "bakegi_preview_render": (c_int, [_P, POINTER(c_float), c_uint32, c_uint32, _P,
-                                      POINTER(c_float), POINTER(c_float), POINTER(c_float)]),
+                                      POINTER(c_float), POINTER(c_float), POINTER(c_float),
+                                      POINTER(ctypes.c_uint8)]),
     "bakegi_preview_get_report": (c_int, [_P, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
     "bakegi_grid_encode_vertices": (c_int, [_P, POINTER(c_uint32), c_uint64, c_int,
                                             POINTER(ctypes.c_uint8)]),
@@ -957,7 +958,7 @@ class Preview(_Handle):
         _check(load_library().bakegi_preview_render(
             self.handle, (c_float * 12)(*numbers), width, height,
             settings.handle if settings is not None else None, _fptr(rgba),
-            _fptr(direct) if layers else None, _fptr(indirect) if layers else None),
+            _fptr(direct) if layers else None, _fptr(indirect) if layers else None, None),
             "bakegi_preview_render")
         self.report = json.loads(_read_text(load_library().bakegi_preview_get_report,
                                             [self.handle], "the preview's report"))

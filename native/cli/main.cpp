@@ -78,10 +78,12 @@ commands:
       after the 8 corners) and N vertices (default 4096); --float sends the grid's vectors
       as floats instead of quantized (docs/ivg.md).
   preview scene.bgs --camera x,y,z,qx,qy,qz,qw,yfov,shiftx,shifty,ortho,0 [--width W]
-          [--height H] [--out rgba.npy] [--direct d.npy] [--indirect i.npy] [--repeat R]
+          [--height H] [--out rgba.npy] [--direct d.npy] [--indirect i.npy]
+          [--levels l.npy] [--repeat R]
           [settings]
       One frame of the splatting preview (direct light + one splatted bounce; default
-      640x480, top row first): writes (H, W, 4) radiance and (H, W, 3) E/pi arrays and
+      640x480, top row first): writes (H, W, 4) radiance, (H, W, 3) E/pi arrays and the
+      (H, W) subsplat level of each pixel (255: none), and
       prints each frame's report (timings per step, VPLs, subsplats per level). --repeat
       renders again with the G-buffer kept, as when only lights move.
   settings [METHOD] [--markdown | --json]

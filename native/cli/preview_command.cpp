@@ -33,7 +33,8 @@ std::string preview_report(const bakegi_preview* preview) {
 
 int run_preview_command(const std::vector<std::string>& words) {
   std::vector<OptionSpec> specs = bake_setting_options();
-  for (const char* name : {"camera", "width", "height", "out", "direct", "indirect", "repeat"}) {
+  for (const char* name :
+       {"camera", "width", "height", "out", "direct", "indirect", "levels", "repeat"}) {
     specs.push_back({name});
   }
   const Arguments args(words, specs);
@@ -57,9 +58,10 @@ int run_preview_command(const std::vector<std::string>& words) {
 
   const size_t n = size_t(width) * height;
   std::vector<float> rgba(4 * n), direct(3 * n), indirect(3 * n);
+  std::vector<uint8_t> levels(n);
   for (int r = 0; r < repeat; ++r) {
     check(bakegi_preview_render(preview.get(), camera.data(), width, height, core_settings.get(),
-                                rgba.data(), direct.data(), indirect.data()),
+                                rgba.data(), direct.data(), indirect.data(), levels.data()),
           "rendering the preview");
     std::printf("%s\n", preview_report(preview.get()).c_str());
   }
@@ -67,6 +69,10 @@ int run_preview_command(const std::vector<std::string>& words) {
     write_npy_float32(*path, rgba.data(), {height, width, 4});
   if (const auto path = args.value("direct"))
     write_npy_float32(*path, direct.data(), {height, width, 3});
+  if (const auto path = args.value("levels")) {
+    const std::vector<float> as_float(levels.begin(), levels.end());
+    write_npy_float32(*path, as_float.data(), {height, width});
+  }
   if (const auto path = args.value("indirect"))
     write_npy_float32(*path, indirect.data(), {height, width, 3});
   return kExitOk;

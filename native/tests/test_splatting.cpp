@@ -113,5 +113,219 @@ TEST(SplattingVpls, SphereRoomOneBounceIsAnalytic) {
   }
 }
 
+// A synthetic G-buffer: a plane facing the eye at depth 1 on the left of column `edge` and at
+// depth 2 on its right.
+EyeGBuffer step_gbuffer(uint32_t width, uint32_t height, uint32_t edge) {
+  EyeGBuffer g;
+  g.width = width;
+  g.height = height;
+  const size_t n = g.size();
+  g.hit.assign(n, 1);
+  g.depth.assign(n, 1.0f);
+  g.position.assign(n, glm::vec3(0.0f));
+  g.normal.assign(n, glm::vec3(0, 0, 1));
+  g.geometric = g.normal;
+  g.albedo.assign(n, glm::vec3(0.5f));
+  g.emission.assign(n, glm::vec3(0.0f));
+  g.view = g.normal;
+  for (uint32_t y = 0; y < height; ++y) {
+    for (uint32_t x = 0; x < width; ++x) {
+      const size_t i = g.index(x, y);
+      g.depth[i] = x < edge ? 1.0f : 2.0f;
+      g.position[i] = glm::vec3(float(x), float(y), -g.depth[i]);
+    }
+  }
+  return g;
+}
+
+uint32_t level_at(const SubsplatSet& set, uint32_t x, uint32_t y) {
+  for (const Subsplat& s : set.subsplats) {
+    const uint32_t cell = 1u << s.level;
+    if (x / cell == s.x && y / cell == s.y) return s.level;
+  }
+  return 255;
+}
+
+// Refinement splits down to pixels along a depth edge and leaves the rest coarse; every
+// pixel is covered by exactly one subsplat.
+TEST(SplattingRefinement, SplitsAtDiscontinuitiesAndCoversEveryPixelOnce) {
+  const EyeGBuffer g = step_gbuffer(64, 64, 37);  // the edge inside a 16-pixel texel
+  DiscontinuityTest test;
+  const MinMaxMipmap mipmap(g, 4, test);
+  const SubsplatSet set = refine_subsplats(mipmap, 4, 0, test);
+  std::vector<int> covered(g.size(), 0);
+  for (const Subsplat& s : set.subsplats) {
+    const uint32_t cell = 1u << s.level;
+    for (uint32_t y = s.y * cell; y < (s.y + 1) * cell; ++y) {
+      for (uint32_t x = s.x * cell; x < (s.x + 1) * cell; ++x) ++covered[g.index(x, y)];
+    }
+  }
+  for (int c : covered) ASSERT_EQ(c, 1);
+  EXPECT_EQ(level_at(set, 36, 10), 0u);
+  EXPECT_EQ(level_at(set, 37, 10), 0u);
+  EXPECT_EQ(level_at(set, 2, 10), 4u);
+  // Texels diagonal to a discontinuous one split too (the paper's §5.2 fix): the right
+  // column's texels are next to the edge's column; without that rule they stay whole.
+  EXPECT_EQ(level_at(set, 60, 60), 3u);
+  DiscontinuityTest own = test;
+  own.neighbours = NeighbourTest::kNone;
+  EXPECT_EQ(level_at(refine_subsplats(MinMaxMipmap(g, 4, own), 4, 0, own), 60, 60), 4u);
+  EXPECT_LT(set.subsplats.size(), g.size() / 6);
+}
+
+// An edge on a texel boundary is invisible to each texel's own min and max (the paper's
+// Fig. 15, top); testing the texel with its eight neighbours finds it.
+TEST(SplattingRefinement, EdgesOnTexelBoundariesNeedTheNeighbourTest) {
+  const EyeGBuffer g = step_gbuffer(64, 64, 32);
+  DiscontinuityTest own;
+  own.neighbours = NeighbourTest::kNone;
+  const SubsplatSet missed = refine_subsplats(MinMaxMipmap(g, 4, own), 4, 0, own);
+  EXPECT_EQ(level_at(missed, 31, 20), 4u);
+  DiscontinuityTest all;
+  all.neighbours = NeighbourTest::kAll;
+  const SubsplatSet found = refine_subsplats(MinMaxMipmap(g, 4, all), 4, 0, all);
+  EXPECT_EQ(level_at(found, 31, 20), 0u);
+  EXPECT_EQ(level_at(found, 32, 20), 0u);
+}
+
+// Interpolated upsampling reproduces constant light exactly whatever the levels, and never
+// puts light where no subsplat was.
+TEST(SplattingUpsampling, KeepsConstantLightAndLeavesEmptyTexelsEmpty) {
+  const EyeGBuffer g = step_gbuffer(64, 64, 37);
+  DiscontinuityTest test;
+  const MinMaxMipmap mipmap(g, 4, test);
+  const SubsplatSet set = refine_subsplats(mipmap, 4, 0, test);
+  MultiresolutionBuffer buffer(64, 64, mipmap.levels());
+  // Light only on the left of the edge (the subsplats whose pixels are all at depth 1).
+  for (const Subsplat& s : set.subsplats) {
+    const uint32_t cell = 1u << s.level;
+    if ((s.x + 1) * cell <= 37) buffer.add(s, glm::vec3(2.0f, 1.0f, 0.5f));
+  }
+  const std::vector<glm::vec3> image = buffer.upsample(Upsampling::kInterpolated);
+  for (uint32_t y = 0; y < 64; ++y) {
+    for (uint32_t x = 0; x < 64; ++x) {
+      const glm::vec3 v = image[g.index(x, y)];
+      if (x < 37) {
+        EXPECT_NEAR(v.x, 2.0f, 1e-5f) << x << "," << y;
+        EXPECT_NEAR(v.z, 0.5f, 1e-5f);
+      } else {
+        EXPECT_EQ(v.x, 0.0f) << x << "," << y;  // no light spread across the edge
+      }
+    }
+  }
+}
+
+SceneDescription lit_room() {
+  SceneDescription d;
+  const uint32_t white = add_material(d, glm::vec3(0.7f));
+  const uint32_t red = add_material(d, glm::vec3(0.8f, 0.1f, 0.1f));
+  d.meshes.push_back(make_cube({-2, -2, 0}, {2, 2, 3}, Facing::kInward, white));
+  d.meshes.push_back(make_cube({-0.8f, -0.2f, 0}, {0.2f, 0.8f, 1.2f}, Facing::kOutward, red));
+  d.lights.push_back(test::point_light({0.5f, -0.5f, 2.5f}, glm::vec3(20.0f)));
+  return d;
+}
+
+PreviewCamera room_camera() {
+  PreviewCamera c;
+  c.position = {0.0f, -1.9f, 1.5f};
+  c.forward = glm::normalize(glm::vec3(0.0f, 1.0f, -0.15f));
+  c.up = {0, 0, 1};
+  c.fov_y = 1.2f;
+  return c;
+}
+
+double luminance_nrmse(const std::vector<glm::vec3>& y, const std::vector<glm::vec3>& r) {
+  double sum = 0.0, mean = 0.0;
+  for (size_t i = 0; i < y.size(); ++i) {
+    const double d = luminance(y[i]) - luminance(r[i]);
+    sum += d * d;
+    mean += luminance(r[i]);
+  }
+  mean /= double(y.size());
+  return std::sqrt(sum / double(y.size())) / mean;
+}
+
+// The claim shape: multiresolution splatting gives full-resolution splatting's image
+// within a few percent from a fraction of the subsplats.
+TEST(SplattingPreview, MultiresolutionMatchesFullResolution) {
+  SplattingPreview preview(lit_room());
+  SplattingSettings settings;
+  settings.direct_samples = 0;
+  settings.near_field_split = 0.0f;
+  const PreviewFrame multi = preview.render(room_camera(), 200, 150, settings);
+  settings.refinement = SubsplatRefinement::kNone;
+  const PreviewFrame full = preview.render(room_camera(), 200, 150, settings);
+  EXPECT_TRUE(full.statistics.gbuffer_reused);
+  const double nrmse = luminance_nrmse(multi.indirect, full.indirect);
+  EXPECT_LT(nrmse, 0.03);
+  EXPECT_GT(nrmse, 0.0);
+  EXPECT_LT(multi.statistics.splat.subsplats * 3, full.statistics.splat.subsplats);
+  for (const glm::vec3& v : multi.indirect) {
+    ASSERT_TRUE(std::isfinite(v.x) && v.x >= 0.0f);
+  }
+}
+
+// Moving the light moves the bounce; a scene without lights gives black indirect light.
+TEST(SplattingPreview, FollowsTheLightsAndSurvivesNone) {
+  SplattingPreview preview(lit_room());
+  SplattingSettings settings;
+  const PreviewFrame before = preview.render(room_camera(), 64, 48, settings);
+  std::vector<Light> lights = preview.scene().description.lights;
+  lights[0].position.x = -1.5f;
+  preview.set_lights(lights, glm::vec3(0.0f));
+  const PreviewFrame after = preview.render(room_camera(), 64, 48, settings);
+  EXPECT_GT(luminance_nrmse(after.indirect, before.indirect), 0.05);
+  preview.set_lights({}, glm::vec3(0.0f));
+  const PreviewFrame dark = preview.render(room_camera(), 64, 48, settings);
+  EXPECT_EQ(dark.statistics.vpls, 0u);
+  for (const glm::vec3& v : dark.indirect) ASSERT_EQ(v.x, 0.0f);
+}
+
+// The optional visibility removes light that passes through a wall between two rooms.
+TEST(SplattingVisibility, ClusteredShadowRaysStopLightThroughAWall) {
+  SceneDescription d;
+  const uint32_t m = add_material(d, glm::vec3(0.7f));
+  d.meshes.push_back(make_cube({-2, -1, 0}, {2, 1, 2}, Facing::kInward, m));
+  test::add_quad(d, {0, 0, 1}, {0, 1, 0}, {0, 0, 1}, 1.0f, 1.0f, m);  // the wall at x = 0
+  d.lights.push_back(test::point_light({-1.0f, 0.0f, 1.0f}, glm::vec3(10.0f)));
+  const BuiltScene built(d);
+  RsmOptions options;
+  VirtualPointLights vpls =
+      select_vpls(render_reflective_shadow_maps(*built.scene, *built.tracer, options), 256,
+                  VplSampling::kRegular);
+  // A point in the dark room facing the wall's other side, and the ceiling there.
+  const glm::vec3 p(1.9f, 0.0f, 1.0f), n(-1, 0, 0);
+  const glm::vec3 leak = vpl_irradiance_over_pi(vpls, p, n);
+  EXPECT_GT(leak.x, 0.0f);  // the paper's VPL light passes the wall
+  const VplClusters clusters = cluster_vpls(vpls, 64);
+  const glm::vec3 seen = visible_vpl_light(vpls, clusters, *built.tracer, 1e-4f, 0.0f, p, n, n);
+  EXPECT_LT(seen.x, 0.05f * leak.x);
+}
+
+// The bake method over points (the point hierarchy) on the sphere room: the analytic one
+// bounce at points spread over the sphere, coarse subsplats and single points alike.
+TEST(SplattingBake, SphereRoomPointsGetTheAnalyticBounce) {
+  SceneDescription d;
+  const uint32_t m = add_material(d, glm::vec3(0.6f));
+  d.meshes.push_back(make_icosphere({0, 0, 0}, 1.0f, 4, m));
+  d.lights.push_back(test::point_light({0, 0, 0}, glm::vec3(5.0f)));
+  std::vector<glm::vec3> positions, normals;
+  for (const glm::vec3& v : d.meshes[0].positions) {
+    positions.push_back(v * 0.999f);
+    normals.push_back(-glm::normalize(v));
+  }
+  test::Baker baker(d);
+  test::BakeOptions options;
+  options.method = "splatting";
+  const std::vector<glm::vec3> values = baker.bake(test::make_points(positions, normals), options);
+  const double expected = 0.6 * 5.0 / kPiD;
+  double sum = 0.0;
+  for (const glm::vec3& v : values) {
+    ASSERT_NEAR(v.x, expected, 0.06 * expected);
+    sum += v.x;
+  }
+  EXPECT_NEAR(sum / double(values.size()), expected, 0.02 * expected);
+}
+
 }  // namespace
 }  // namespace bakegi

@@ -30,6 +30,9 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             col.prop(settings, "bins")
             col.prop(settings, "iterations")
             col.prop(settings, "seed")
+        elif method == "splatting":
+            col.prop(settings, "preview_vpl_count")
+            col.prop(settings, "preview_visibility_clusters")
         elif method == "meshless":
             col.prop(settings, "meshless_levels")
             col.prop(settings, "meshless_epsilon")

@@ -25,6 +25,9 @@ METHOD_ITEMS = [
     ("meshless", "Meshless (Live)", "Lehtinen et al. 2008: precomputes how direct light "
      "becomes indirect light once, then relights in milliseconds; with Live Indirect the "
      "bake follows the lights as they move"),
+    ("splatting", "Splatting (Draft)", "Nichols & Wyman 2009: one bounce from virtual point "
+     "lights through an adaptive multiresolution hierarchy; fastest, a draft (one bounce, no "
+     "visibility for the bounce unless Visibility Rays is set)"),
 ]
 
 TARGET_ITEMS = [
@@ -266,6 +269,9 @@ class BakeGISettings(bpy.types.PropertyGroup):
                 settings["target_error"] = QUALITY_TARGETS[self.quality]
             if self.denoise:
                 settings["denoise"] = 1
+        elif method == "splatting":
+            settings.update(vpl_count=self.preview_vpl_count,
+                            visibility_clusters=self.preview_visibility_clusters)
         elif method == "meshless":
             settings.update(levels=self.meshless_levels, epsilon=self.meshless_epsilon)
             if self.use_cache:

@@ -670,13 +670,16 @@ BAKEGI_API bakegi_status bakegi_preview_set_lights(bakegi_preview* preview,
  * view (radians), lens shift x and y (in units of the larger image side), orthographic
  * scale (0: perspective). settings: the splatting method's (may be NULL: defaults). Any
  * output may be NULL: out_rgba (w*h*4) the radiance (alpha 1 where a surface is seen, 0
- * where the world shows), out_direct and out_indirect (w*h*3) E_direct/pi and E_indirect/pi.
+ * where the world shows), out_direct and out_indirect (w*h*3) E_direct/pi and E_indirect/pi,
+ * out_levels (w*h) the subsplat level covering each pixel (texels of 2^level pixels; 255
+ * where none, and everywhere for refinement "illumination").
  * The frame's report (timings per step, VPLs, subsplats per level) is kept for
  * bakegi_preview_get_report. */
 BAKEGI_API bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera,
                                                uint32_t width, uint32_t height,
                                                const bakegi_settings* settings, float* out_rgba,
-                                               float* out_direct, float* out_indirect);
+                                               float* out_direct, float* out_indirect,
+                                               uint8_t* out_levels);
 /* The last frame's report as JSON (the text contract of bakegi_job_get_report). */
 BAKEGI_API bakegi_status bakegi_preview_get_report(const bakegi_preview* preview, char* buffer,
                                                    size_t capacity, size_t* out_length);

@@ -104,7 +104,8 @@ bakegi_status bakegi_preview_set_lights(bakegi_preview* preview, const bakegi_sc
 
 bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera, uint32_t width,
                                     uint32_t height, const bakegi_settings* settings,
-                                    float* out_rgba, float* out_direct, float* out_indirect) {
+                                    float* out_rgba, float* out_direct, float* out_indirect,
+                                    uint8_t* out_levels) {
   return guarded(__func__, [&] {
     require(preview, "preview");
     const bakegi::PreviewCamera view = camera_from(camera);
@@ -127,6 +128,10 @@ bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera
         if (out_direct) out_direct[3 * i + c] = frame.direct[i][c];
         if (out_indirect) out_indirect[3 * i + c] = frame.indirect[i][c];
       }
+    }
+    if (out_levels) {
+      const std::vector<uint8_t>& levels = frame.statistics.splat.pixel_levels;
+      for (size_t i = 0; i < n; ++i) out_levels[i] = levels.empty() ? 255 : levels[i];
     }
     preview->report = report_json(frame);
   });

@@ -158,15 +158,57 @@ bool MinMaxMipmap::discontinuous(uint32_t k, uint32_t x, uint32_t y,
   return l.curvature_max[i] > test.normal_threshold;
 }
 
+bool MinMaxMipmap::discontinuous_with_neighbours(uint32_t k, uint32_t x, uint32_t y,
+                                                 const DiscontinuityTest& test) const {
+  const MipLevel& l = levels_[k];
+  float depth_lo = kInf, depth_hi = -kInf, derivative = 0.0f, curvature = 0.0f;
+  glm::vec3 normal_lo(kInf), normal_hi(-kInf);
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int nx = int(x) + dx, ny = int(y) + dy;
+      if (nx < 0 || ny < 0 || nx >= int(l.width) || ny >= int(l.height)) continue;
+      const size_t i = l.index(uint32_t(nx), uint32_t(ny));
+      const uint32_t w = std::min(l.cell, image_width_ - uint32_t(nx) * l.cell);
+      const uint32_t h = std::min(l.cell, image_height_ - uint32_t(ny) * l.cell);
+      if (l.hits[i] < w * h) return true;  // background beside or inside
+      if (test.depth == DepthTest::kRange) {
+        depth_lo = std::min(depth_lo, l.depth_min[i]);
+        depth_hi = std::max(depth_hi, l.depth_max[i]);
+      } else {
+        derivative = std::max(derivative, l.derivative_max[i]);
+      }
+      if (test.normal == NormalTest::kComponents) {
+        normal_lo = glm::min(normal_lo, l.normal_min[i]);
+        normal_hi = glm::max(normal_hi, l.normal_max[i]);
+      } else {
+        curvature = std::max(curvature, l.curvature_max[i]);
+      }
+    }
+  }
+  if (test.depth == DepthTest::kRange ? depth_hi - depth_lo > test.depth_threshold * depth_lo
+                                      : derivative > test.depth_threshold) {
+    return true;
+  }
+  if (test.normal == NormalTest::kComponents) {
+    const glm::vec3 range = normal_hi - normal_lo;
+    return std::max(range.x, std::max(range.y, range.z)) > test.normal_threshold;
+  }
+  return curvature > test.normal_threshold;
+}
+
 bool MinMaxMipmap::refines(uint32_t k, uint32_t x, uint32_t y,
                            const DiscontinuityTest& test) const {
+  const MipLevel& l = levels_[k];
+  if (x >= l.width || y >= l.height || l.hits[l.index(x, y)] == 0) return false;
+  if (test.neighbours == NeighbourTest::kAll) {
+    return discontinuous_with_neighbours(k, x, y, test);
+  }
   if (discontinuous(k, x, y, test)) return true;
   if (test.neighbours == NeighbourTest::kNone) return false;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       if (dx == 0 && dy == 0) continue;
-      const bool diagonal = dx != 0 && dy != 0;
-      if (test.neighbours == NeighbourTest::kDiagonal && !diagonal) continue;
+      if (dx == 0 || dy == 0) continue;  // the diagonal neighbours only
       const int nx = int(x) + dx, ny = int(y) + dy;
       if (nx < 0 || ny < 0) continue;
       if (discontinuous(k, uint32_t(nx), uint32_t(ny), test)) return true;

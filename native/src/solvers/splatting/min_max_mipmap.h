@@ -23,15 +23,16 @@ namespace bakegi {
 enum class DepthTest { kRange, kDerivative };
 enum class NormalTest { kComponents, kCurvature };
 // Which neighbours of a subsplat also make it refine (§5.2): none; the four diagonal ones
-// (the paper's fix for diagonal artifacts); all eight (its fix for edges on mipmap
-// boundaries, at up to 40% more subsplats).
+// whose own texel is discontinuous (the paper's fix for diagonal artifacts); all eight,
+// tested together with the texel as one area (its fix for edges that lie on a texel
+// boundary, which no single texel's min and max can see; up to 40% more subsplats).
 enum class NeighbourTest { kNone, kDiagonal, kAll };
 
 struct DiscontinuityTest {
   DepthTest depth = DepthTest::kRange;
   NormalTest normal = NormalTest::kComponents;
   NeighbourTest neighbours = NeighbourTest::kDiagonal;
-  float depth_threshold = 0.1f;   // relative depth range, or |grad z| / z per pixel
+  float depth_threshold = 0.03f;  // relative depth range, or |grad z| / z per pixel
   float normal_threshold = 0.5f;  // component range [0, 2], or curvature [0, 2]
 };
 
@@ -63,6 +64,10 @@ class MinMaxMipmap {
   bool refines(uint32_t k, uint32_t x, uint32_t y, const DiscontinuityTest& test) const;
 
  private:
+  // The texel and its eight neighbours as one area (NeighbourTest::kAll).
+  bool discontinuous_with_neighbours(uint32_t k, uint32_t x, uint32_t y,
+                                     const DiscontinuityTest& test) const;
+
   std::vector<MipLevel> levels_;
   uint32_t image_width_, image_height_;
 };

@@ -20,6 +20,9 @@ struct SplatStatistics {
   std::vector<uint64_t> subsplats_per_level;  // index = level (texels of 2^level pixels)
   uint64_t subsplats = 0;
   uint32_t coarsest_level = 0, finest_level = 0;
+  // Per pixel, the level of the subsplat that covers it (255: none), for the refinement
+  // pictures (shared and full-resolution splatting; empty for the per-VPL variant).
+  std::vector<uint8_t> pixel_levels;
 };
 
 // Indirect irradiance / pi at every pixel of `gbuffer` (0 where nothing is seen). With

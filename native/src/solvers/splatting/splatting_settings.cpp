@@ -40,7 +40,7 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
                    "differs (3.3.1); none: every pixel (full-resolution splatting)"),
       text_setting("depth_test", "range", {"range", "derivative"}, R::kLighting,
                    "min-max mipmap of relative depth, or max-mipmap of |grad z|/z (3.2.1)"),
-      number_setting("depth_threshold", 0.1, 0.0, 100.0, R::kLighting,
+      number_setting("depth_threshold", 0.03, 0.0, 100.0, R::kLighting,
                      "relative depth range (or derivative per pixel) that splits a subsplat"),
       text_setting("normal_test", "components", {"components", "curvature"}, R::kLighting,
                    "min-max of each normal component, or max curvature 2 sin(angle/2) (3.2.2)"),

@@ -55,6 +55,7 @@ VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count) {
   }
   vpls = std::move(sorted);
   const size_t c = std::min<size_t>(count, n);
+  const float offset = 1e-4f * glm::length(hi - lo) + 1e-6f;
   for (size_t k = 0; k <= c; ++k) clusters.begin.push_back(k * n / c);
   for (size_t k = 0; k < c; ++k) {
     glm::dvec3 centre(0.0);
@@ -71,8 +72,9 @@ VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count) {
       const glm::dvec3 d = glm::dvec3(vpls.positions[v]) - centre;
       if (glm::dot(d, d) < best_d) best_d = glm::dot(d, d), best = v;
     }
-    // Ends just off the VPL's surface, on its lit side.
-    clusters.anchor.push_back(vpls.positions[best]);
+    // Ends just off the VPL's surface, on its lit side: a ray from behind that surface must
+    // meet it before the end.
+    clusters.anchor.push_back(vpls.positions[best] + vpls.normals[best] * offset);
   }
   return clusters;
 }
