@@ -272,6 +272,7 @@ class UiTest:
         yield from self.live_indirect(scene, objects)
         yield from self.lightmap(scene, objects, before, predicted, positions)
         yield from self.grid(scene, before, predicted, positions)
+        yield from self.preview_engine(scene, positions)
         os.remove(os.path.join(self.output, "_probe.png"))
 
     def lightmap(self, scene, objects, before, predicted, positions):
@@ -389,6 +390,34 @@ class UiTest:
         if live.state() is not None:
             failures.append("turning Live Indirect off kept the precomputation")
         self.record("test_ui.live_indirect_follows_a_moved_light", started, failures)
+
+    def preview_engine(self, scene, positions):
+        """BakeGI Preview in the viewport's rendered shading: the ceiling (lit only by the
+        bounce) shows light, and moving the light changes the picture without a bake."""
+        started = time.perf_counter()
+        failures = []
+        space = self.area.spaces.active
+        previous_engine = scene.render.engine
+        scene.render.engine = "BAKEGI_PREVIEW"
+        space.shading.type = "RENDERED"
+        yield from self.wait_for_viewport()
+        first = self.screenshot("ui_preview_engine.png")
+        ceiling, count = self.mean_linear(first, positions)
+        if count == 0 or not ceiling > 0.0:
+            failures.append(f"the ceiling is black in BakeGI Preview ({ceiling}, {count} pixels)")
+        light = bpy.data.objects["CeilingLight"]
+        light.location.x += 0.6
+        yield from self.wait_for_viewport()
+        moved = self.screenshot("ui_preview_engine_moved.png")
+        change = float(numpy.abs(moved - first).mean())
+        if not change > 1.0 / 255.0:
+            failures.append(f"moving the light changed the preview by {change:.5f} only")
+        print(f"ui: BakeGI Preview ceiling {ceiling:.4f} over {count} pixels; moving the light "
+              f"changed the picture by {change * 255:.1f}/255 on average")
+        light.location.x -= 0.6
+        space.shading.type = "MATERIAL"
+        scene.render.engine = previous_engine
+        self.record("test_ui.preview_engine_follows_a_moved_light", started, failures)
 
 
 test = UiTest()

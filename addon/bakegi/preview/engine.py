@@ -11,6 +11,7 @@ import time
 import types
 
 import bpy
+import numpy
 
 from .. import native
 from ..export import scene as export_scene_module
@@ -144,15 +145,38 @@ class BakeGIPreviewEngine(bpy.types.RenderEngine):
 
 
 def _draw_image(engine, depsgraph, image, width, height):
+    """Draws the linear image over the viewport region. Blender 3.5+ draws it through the
+    scene's display transform (draw_texture_2d under bind_display_space_shader); older
+    versions lack draw_texture_2d, so the image is encoded to sRGB here and drawn with the
+    built-in image shader (the view transform and exposure are then not applied)."""
     import gpu
-    from gpu_extras.presentation import draw_texture_2d
 
     rows, columns = image.shape[:2]
+    try:
+        from gpu_extras.presentation import draw_texture_2d
+    except ImportError:
+        draw_texture_2d = None
+    if draw_texture_2d is None:
+        linear = numpy.clip(image[..., :3], 0.0, 1.0)
+        image = image.copy()
+        image[..., :3] = numpy.where(linear <= 0.0031308, 12.92 * linear,
+                                     1.055 * numpy.power(linear, 1.0 / 2.4) - 0.055)
     buffer = gpu.types.Buffer("FLOAT", rows * columns * 4, image[::-1].ravel().tolist())
     texture = gpu.types.GPUTexture((columns, rows), format="RGBA16F", data=buffer)
-    engine.bind_display_space_shader(depsgraph.scene)
-    draw_texture_2d(texture, (0, 0), width, height)
-    engine.unbind_display_space_shader()
+    if draw_texture_2d is not None:
+        engine.bind_display_space_shader(depsgraph.scene)
+        draw_texture_2d(texture, (0, 0), width, height)
+        engine.unbind_display_space_shader()
+        return
+    from gpu_extras.batch import batch_for_shader
+
+    shader = gpu.shader.from_builtin("2D_IMAGE")
+    batch = batch_for_shader(shader, "TRI_FAN", {
+        "pos": ((0, 0), (width, 0), (width, height), (0, height)),
+        "texCoord": ((0, 0), (1, 0), (1, 1), (0, 1))})
+    shader.bind()
+    shader.uniform_sampler("image", texture)
+    batch.draw(shader)
 
 
 def _compatible_panels():

@@ -1,0 +1,326 @@
+"""Measures the splatting method (issue 17) on the real-scene suite's rooms and writes
+docs/splatting.json and the pictures of docs/methods/splatting.md (docs/images/splatting_*):
+
+    /usr/bin/python3 tools/splatting_bench.py [--build build] [--work /tmp/bakegi_splatting]
+        [--scenes cornell_box,office,sponza] [--bake-scenes cornell_box,office]
+        [--json docs/splatting.json]
+
+Preview (bakegi preview, 640x480, 256 VPLs, the scene's camera): multiresolution against
+full-resolution splatting of the same VPLs (error and time), the discontinuity tests and
+neighbour rules of the paper, subsplat counts per level against VPL count and finest
+resolution (the shape of its Tables 1-2), the per-VPL refinement of §3.3.1, the upsampling
+artifacts of Fig. 7, and frame times (first frame, and with the G-buffer kept as when only
+lights move). Bake (bakegi bake): method splatting against the path tracer limited to one
+bounce (its own noise from two halves), over VPL count, visibility rays and the near-field
+split. Leak: the two-rooms scene, light in room B over light in room A.
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sweep_cornell import ROOT, addon_environment, log  # noqa: E402
+
+LUMINANCE = numpy.array([0.2126, 0.7152, 0.0722])
+WIDTH, HEIGHT = 640, 480
+
+
+def metrics(values, reference):
+    """NRMSE and the luminance-weighted relative RMSE (points where r > 1% of mean(r))."""
+    y = values[..., :3] @ LUMINANCE
+    r = reference[..., :3] @ LUMINANCE
+    y, r = y.ravel(), r.ravel()
+    mean = r.mean()
+    nrmse = float(numpy.sqrt(numpy.mean((y - r) ** 2)) / mean)
+    keep = r > 0.01 * mean
+    weighted = float(numpy.sqrt(numpy.sum((y[keep] - r[keep]) ** 2 / r[keep]) / numpy.sum(r[keep])))
+    return {"nrmse": nrmse, "weighted_relative_rmse": weighted}
+
+
+def export(work, build, scene):
+    bgs = os.path.join(work, scene + ".bgs")
+    if not os.path.exists(bgs):
+        subprocess.run([sys.executable, os.path.join(ROOT, "tools", "export_scene.py"), "--scene",
+                        scene, "--out", bgs, "--build", build], check=True,
+                       stdout=subprocess.DEVNULL)
+    return bgs
+
+
+CAMERA_SCRIPT = """
+import bpy, json, sys
+from bakegi.preview.camera import scene_camera_values
+print("CAMERA" + json.dumps(scene_camera_values(bpy.context.scene.camera, %d, %d)))
+""" % (WIDTH, HEIGHT)
+
+
+def scene_camera(work, build, scene):
+    blend = os.path.join(work, scene + ".blend")
+    script = os.path.join(work, "camera.py")
+    with open(script, "w") as f:
+        f.write(CAMERA_SCRIPT)
+    env = addon_environment(work, build)
+    out = subprocess.run(["blender", "-b", blend, "--python-expr",
+                          "import addon_utils; addon_utils.enable('bakegi')", "--python", script],
+                         check=True, capture_output=True, text=True, env=env).stdout
+    line = next(li for li in out.splitlines() if li.startswith("CAMERA"))
+    return json.loads(line[len("CAMERA"):])
+
+
+class Previewer:
+    def __init__(self, cli, bgs, camera, work):
+        self.cli, self.bgs, self.work = cli, bgs, work
+        self.camera = ",".join(f"{v:.7g}" for v in camera)
+
+    def frame(self, settings, repeat=3, layers=("indirect",)):
+        """(reports of each frame, arrays by layer) of `repeat` frames with these settings."""
+        args = [self.cli, "preview", self.bgs, "--camera", self.camera, "--width", str(WIDTH),
+                "--height", str(HEIGHT), "--repeat", str(repeat)]
+        paths = {}
+        for layer in layers:
+            paths[layer] = os.path.join(self.work, f"frame_{layer}.npy")
+            args += ["--" + ("out" if layer == "rgba" else layer), paths[layer]]
+        for key, value in settings.items():
+            args += ["--set", f"{key}={value}"]
+        out = subprocess.run(args, check=True, capture_output=True, text=True).stdout
+        reports = [json.loads(line) for line in out.splitlines() if line.startswith("{")]
+        return reports, {layer: numpy.load(path) for layer, path in paths.items()}
+
+
+def splat_seconds(report):
+    s = report["seconds"]
+    return s["mipmap"] + s["refine"] + s["render"] + s["upsample"]
+
+
+def fastest(reports, key=splat_seconds):
+    return min(key(r) for r in reports[1:] or reports)  # the first frame traces the G-buffer
+
+
+def preview_scene(cli, work, build, scene, images):
+    log(f"preview {scene}")
+    bgs = export(work, build, scene)
+    previewer = Previewer(cli, bgs, scene_camera(work, build, scene), work)
+    base = {"direct_samples": 0}
+    full_reports, full = previewer.frame(dict(base, refinement="none"))
+    reference = full["indirect"]
+    result = {"full_resolution": {"subsplats": full_reports[-1]["subsplats"],
+                                  "splat_seconds": fastest(full_reports),
+                                  "render_seconds": fastest(full_reports,
+                                                            lambda r: r["seconds"]["render"])}}
+    variants = {
+        "default (range, components, diagonal)": {},
+        "depth derivative": {"depth_test": "derivative", "depth_threshold": 0.02},
+        "curvature": {"normal_test": "curvature", "normal_threshold": 0.1},
+        "no neighbours": {"refine_neighbours": "none"},
+        "all neighbours": {"refine_neighbours": "all"},
+        "depth threshold 0.1": {"depth_threshold": 0.1},
+        "upsampling nearest": {"upsampling": "nearest"},
+        "upsampling bilinear": {"upsampling": "bilinear"},
+        "per-VPL illumination refinement (3.3.1)": {"refinement": "illumination"},
+    }
+    rows = {}
+    for name, settings in variants.items():
+        reports, arrays = previewer.frame(dict(base, **settings), layers=("indirect", "levels"))
+        seconds = fastest(reports)
+        rows[name] = dict(metrics(arrays["indirect"], reference),
+                          subsplats=reports[-1]["subsplats"],
+                          subsplats_per_level=reports[-1]["subsplats_per_level"],
+                          splat_seconds=seconds,
+                          speedup=result["full_resolution"]["splat_seconds"] / seconds)
+        if name.startswith("default"):
+            images["levels"] = arrays["levels"]
+            images["indirect"] = arrays["indirect"]
+        if name.startswith("upsampling"):
+            images[name] = arrays["indirect"]
+    images["full"] = reference
+    result["variants"] = rows
+
+    # Tables 1-2: subsplats and time over VPL count and finest resolution.
+    table = []
+    for vpls in (64, 256, 1024):
+        for finest in (128, 256, 512, 0):
+            reports, _ = previewer.frame(dict(base, vpl_count=vpls, max_resolution=finest),
+                                         repeat=2)
+            table.append({"vpls": reports[-1]["vpls"], "max_resolution": finest or WIDTH,
+                          "subsplats": reports[-1]["subsplats"],
+                          "splat_seconds": fastest(reports)})
+    result["counts"] = table
+
+    # Frames as the user sees them: direct light and the bounce, first frame and relit ones.
+    reports, arrays = previewer.frame({}, repeat=6, layers=("rgba",))
+    images["frame"] = arrays["rgba"]
+    relit = sorted(r["seconds"]["total"] for r in reports[1:])
+    result["frame"] = {"first_seconds": reports[0]["seconds"]["total"],
+                       "relit_median_seconds": relit[len(relit) // 2],
+                       "relit_steps": reports[-1]["seconds"], "vpls": reports[-1]["vpls"]}
+    reports, _ = previewer.frame({"visibility_clusters": 16}, repeat=4, layers=("rgba",))
+    relit = sorted(r["seconds"]["total"] for r in reports[1:])
+    result["frame_visibility_16"] = {"relit_median_seconds": relit[len(relit) // 2]}
+    return result
+
+
+def bake(cli, bgs, out, arguments):
+    start = time.perf_counter()
+    completed = subprocess.run([cli, "bake", bgs, "--out", out] + arguments, check=True,
+                               capture_output=True, text=True)
+    seconds = time.perf_counter() - start
+    return json.loads(completed.stdout), seconds, numpy.load(out)
+
+
+def bake_scene(cli, work, build, scene, samples):
+    log(f"bake {scene}")
+    bgs = export(work, build, scene)
+    halves = []
+    for seed in (0, 1):
+        _, seconds, values = bake(cli, bgs, os.path.join(work, f"ref{seed}.npy"),
+                                  ["--method", "pathtrace", "--samples", str(samples // 2),
+                                   "--seed", str(seed), "--set", "max_bounces=1",
+                                   "--set", "error_probes=0"])
+        halves.append(values)
+    reference = (halves[0] + halves[1]) / 2
+    noise = metrics(halves[0], halves[1])
+    noise = {k: v / 2 for k, v in noise.items()}  # of the mean of the two halves
+    rows = []
+    for vpls in (256, 1024, 4096):
+        for clusters in (0, 16, 64):
+            for split in (0, 2, 4):
+                arguments = ["--method", "splatting", "--set", f"vpl_count={vpls}", "--set",
+                             f"visibility_clusters={clusters}", "--set",
+                             f"near_field_split={split}", "--set", "error_probes=0"]
+                report, seconds, values = bake(cli, bgs, os.path.join(work, "splat.npy"),
+                                               arguments)
+                rows.append(dict(metrics(values, reference), vpls=vpls,
+                                 visibility_clusters=clusters, near_field_split=split,
+                                 process_seconds=seconds,
+                                 core_seconds=report["seconds"]["total"],
+                                 steps=report["seconds"]))
+    # The one-bounce path tracer's own curve, for the chart.
+    traced = []
+    for spp in (1, 4, 16, 64):
+        report, seconds, values = bake(cli, bgs, os.path.join(work, "traced.npy"),
+                                       ["--method", "pathtrace", "--samples", str(spp), "--seed",
+                                        "7", "--set", "max_bounces=1", "--set", "error_probes=0"])
+        traced.append(dict(metrics(values, reference), samples=spp,
+                           core_seconds=report["seconds"]["total"]))
+    return {"reference": {"method": "pathtrace", "max_bounces": 1, "samples": samples,
+                          "noise": noise}, "runs": rows, "pathtrace_one_bounce": traced}
+
+
+def save_bake_chart(bakes, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, len(bakes), figsize=(6 * len(bakes), 4.5), squeeze=False)
+    for axis, (scene, result) in zip(axes[0], bakes.items()):
+        traced = result["pathtrace_one_bounce"]
+        axis.plot([t["core_seconds"] for t in traced], [t["weighted_relative_rmse"] for t in traced],
+                  "o-", color="black", label="path tracer, 1 bounce (1-64 spp)")
+        for clusters, colour in ((0, "tab:red"), (16, "tab:orange"), (64, "tab:green")):
+            runs = [r for r in result["runs"] if r["visibility_clusters"] == clusters]
+            axis.scatter([r["core_seconds"] for r in runs],
+                         [r["weighted_relative_rmse"] for r in runs], color=colour,
+                         label=f"splatting, {clusters} visibility rays")
+        noise = result["reference"]["noise"]["weighted_relative_rmse"]
+        axis.axhline(noise, color="grey", linestyle=":", label="reference noise")
+        axis.set_xscale("log")
+        axis.set_xlabel("core seconds (2 cores)")
+        axis.set_ylabel("weighted relative RMSE vs 1-bounce reference")
+        axis.set_title(scene)
+        axis.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=70)
+    plt.close(fig)
+
+
+def leak(cli, work, build):
+    log("two rooms")
+    bgs = export(work, build, "two_rooms")
+    with open(os.path.join(work, "two_rooms_objects.json")) as f:
+        objects = json.load(f)["objects"]
+    names = numpy.concatenate([[o["name"]] * o["corners"] for o in objects]).astype(str)
+    room_a, room_b = numpy.char.startswith(names, "RoomA_"), numpy.char.startswith(names, "RoomB_")
+    rows = []
+    for clusters in (0, 16, 64):
+        report, _, values = bake(cli, bgs, os.path.join(work, "leak.npy"),
+                                  ["--method", "splatting", "--set",
+                                   f"visibility_clusters={clusters}", "--set", "error_probes=0"])
+        y = values @ LUMINANCE
+        rows.append({"visibility_clusters": clusters,
+                     "leakage": float(y[room_b].mean() / y[room_a].mean()),
+                     "core_seconds": report["seconds"]["total"]})
+    return rows
+
+
+def save_pictures(scene, images, folder):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    def tone(x):
+        y = x[..., :3]
+        return numpy.clip((y / max(numpy.percentile(y, 99.5), 1e-12)) ** (1 / 2.2), 0, 1)
+
+    levels = images["levels"].astype(float)
+    levels[levels == 255] = numpy.nan
+    fig, axes = plt.subplots(1, 4, figsize=(20, 4.2))
+    axes[0].imshow(tone(images["frame"]))
+    axes[0].set_title("BakeGI Preview: direct + splatted bounce")
+    shown = axes[1].imshow(levels, cmap="viridis")
+    axes[1].set_title("subsplat level (texels of 2^level px)")
+    fig.colorbar(shown, ax=axes[1], fraction=0.035)
+    axes[2].imshow(tone(images["indirect"]))
+    axes[2].set_title("indirect, multiresolution")
+    axes[3].imshow(tone(images["full"]))
+    axes[3].set_title("indirect, full resolution")
+    for a in axes:
+        a.axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, f"splatting_{scene}_refinement.png"), dpi=60)
+    plt.close(fig)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    for a, name in zip(axes, ("upsampling nearest", "upsampling bilinear", "indirect")):
+        a.imshow(tone(images[name]))
+        a.set_title({"indirect": "the paper's upsampling (3.5)"}.get(name, name + " (Fig. 7)"))
+        a.axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, f"splatting_{scene}_upsampling.png"), dpi=60)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--work", default="/tmp/bakegi_splatting")
+    parser.add_argument("--scenes", default="cornell_box,office,sponza")
+    parser.add_argument("--bake-scenes", default="cornell_box,office")
+    parser.add_argument("--samples", type=int, default=1024)
+    parser.add_argument("--json", default=os.path.join(ROOT, "docs", "splatting.json"))
+    args = parser.parse_args()
+    build = os.path.abspath(args.build)
+    cli = os.path.join(build, "bakegi")
+    os.makedirs(args.work, exist_ok=True)
+    images_folder = os.path.join(ROOT, "docs", "images")
+    results = {"command": "/usr/bin/python3 tools/splatting_bench.py " + " ".join(sys.argv[1:]),
+               "machine": "2 cores", "preview": {}, "bake": {}}
+    for scene in filter(None, args.scenes.split(",")):
+        images = {}
+        results["preview"][scene] = preview_scene(cli, args.work, build, scene, images)
+        save_pictures(scene, images, images_folder)
+    for scene in filter(None, args.bake_scenes.split(",")):
+        results["bake"][scene] = bake_scene(cli, args.work, build, scene, args.samples)
+    if results["bake"]:
+        save_bake_chart(results["bake"], os.path.join(ROOT, "docs", "splatting_bake.png"))
+    results["leak"] = leak(cli, args.work, build)
+    with open(args.json, "w") as f:
+        json.dump(results, f, indent=1)
+    log(f"wrote {args.json}")
+
+
+if __name__ == "__main__":
+    main()
