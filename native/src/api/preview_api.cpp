@@ -113,9 +113,11 @@ bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                   "the image must have between 1 and 8192 x 8192 pixels");
     }
-    const bakegi::Settings none;
-    const bakegi::Settings& given = settings ? settings->settings : none;
+    bakegi::Settings given = settings ? settings->settings : bakegi::Settings();
     given.validate(bakegi::method_schema("splatting"), bakegi::setting_keys_of_any_method());
+    // The near-field split costs a frame 5-15x on rooms (every VPL near a wall is near some
+    // pixel): a preview does without it unless asked (docs/methods/splatting.md).
+    if (!given.has("near_field_split")) given.set("near_field_split", 0.0);
     const bakegi::SplattingSettings parsed = bakegi::SplattingSettings::from(given);
     const bakegi::PreviewFrame frame = preview->preview->render(view, width, height, parsed);
     const size_t n = size_t(width) * height;

@@ -134,7 +134,12 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
   for (uint64_t c : statistics.subsplats_per_level) statistics.subsplats += c;
 
   start = std::chrono::steady_clock::now();
-  std::vector<glm::vec3> image = buffer.upsample(full ? Upsampling::kNearest : settings.upsampling);
+  // The per-VPL variant's subsplats differ between VPLs, so a texel's neighbours hold other
+  // VPLs' light: the interpolation, which averages neighbours that hold light, would mix
+  // them; each VPL's subsplats are whole pieces of its light, which nearest upsampling sums.
+  const bool per_vpl = settings.refinement == SubsplatRefinement::kIllumination;
+  std::vector<glm::vec3> image =
+      buffer.upsample(full || per_vpl ? Upsampling::kNearest : settings.upsampling);
   // §4.3: detail the coarse levels smoothed away, from the angle to the eye (equation 3).
   for (size_t i = 0; i < image.size(); ++i) {
     if (!gbuffer.hit[i]) {

@@ -63,7 +63,8 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
                       "the indirect bounce, as in the paper)"),
       number_setting("near_field_split", 2.0, 0.0, 100.0, R::kLighting,
                      "a VPL closer than this many radii of the surface it stands for sends its "
-                     "texels' light instead (the near field the paper clamps); 0: never"),
+                     "texels' light instead (the near field the paper clamps); 0: never. The "
+                     "preview uses 0 unless this is set"),
   };
   return specs;
 }
