@@ -77,7 +77,7 @@ class Previewer:
         self.cli, self.bgs, self.work = cli, bgs, work
         self.camera = ",".join(f"{v:.7g}" for v in camera)
 
-    def frame(self, settings, repeat=3, layers=("indirect",)):
+    def frame(self, settings, repeat=6, layers=("indirect",)):
         """(reports of each frame, arrays by layer) of `repeat` frames with these settings."""
         args = [self.cli, "preview", self.bgs, "--camera", self.camera, "--width", str(WIDTH),
                 "--height", str(HEIGHT), "--repeat", str(repeat)]

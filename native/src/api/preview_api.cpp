@@ -118,7 +118,8 @@ bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera
     // The near-field split costs a frame 5-15x on rooms (every VPL near a wall is near some
     // pixel): a preview does without it unless asked (docs/methods/splatting.md).
     if (!given.has("near_field_split")) given.set("near_field_split", 0.0);
-    const bakegi::SplattingSettings parsed = bakegi::SplattingSettings::from(given);
+    bakegi::SplattingSettings parsed = bakegi::SplattingSettings::from(given);
+    parsed.record_pixel_levels = out_levels != nullptr;
     const bakegi::PreviewFrame frame = preview->preview->render(view, width, height, parsed);
     const size_t n = size_t(width) * height;
     for (size_t i = 0; i < n; ++i) {

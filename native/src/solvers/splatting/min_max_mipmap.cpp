@@ -44,8 +44,12 @@ MipLevel make_level(uint32_t width, uint32_t height, uint32_t cell, const Needs&
   return l;
 }
 
+// Pixels never split, so their own depth and normal ranges are not stored: the first
+// reduction reads the G-buffer (a copy would cost a frame a few milliseconds).
 MipLevel pixel_level(const EyeGBuffer& g, const Needs& needs) {
-  MipLevel l = make_level(g.width, g.height, 1, needs);
+  Needs stored = needs;
+  stored.range = stored.components = false;
+  MipLevel l = make_level(g.width, g.height, 1, stored);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, g.height, 8), [&](const auto& rows) {
     for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
       for (uint32_t x = 0; x < g.width; ++x) {
@@ -53,8 +57,6 @@ MipLevel pixel_level(const EyeGBuffer& g, const Needs& needs) {
         if (!g.hit[i]) continue;
         l.hits[i] = 1;
         l.representative[i] = uint32_t(i);
-        if (needs.range) l.depth_min[i] = l.depth_max[i] = g.depth[i];
-        if (needs.components) l.normal_min[i] = l.normal_max[i] = g.normal[i];
         if (!needs.derivative && !needs.curvature) continue;
         // Forward differences to the right and lower neighbours that are seen.
         float dzdx = 0.0f, dzdy = 0.0f, curvature = 0.0f;
@@ -74,7 +76,9 @@ MipLevel pixel_level(const EyeGBuffer& g, const Needs& needs) {
   return l;
 }
 
-MipLevel reduce(const MipLevel& fine, uint32_t image_width, const Needs& needs) {
+// `gbuffer`: the pixels' depth and normal when `fine` is the pixel level, else null.
+MipLevel reduce(const MipLevel& fine, uint32_t image_width, const Needs& needs,
+                const EyeGBuffer* gbuffer) {
   MipLevel l = make_level((fine.width + 1) / 2, (fine.height + 1) / 2, fine.cell * 2, needs);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, l.height, 8), [&](const auto& rows) {
     for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
@@ -93,8 +97,10 @@ MipLevel reduce(const MipLevel& fine, uint32_t image_width, const Needs& needs) 
           if (fine.hits[i] == 0) continue;
           l.hits[o] += fine.hits[i];
           if (needs.range) {
-            l.depth_min[o] = std::min(l.depth_min[o], fine.depth_min[i]);
-            l.depth_max[o] = std::max(l.depth_max[o], fine.depth_max[i]);
+            l.depth_min[o] =
+                std::min(l.depth_min[o], gbuffer ? gbuffer->depth[i] : fine.depth_min[i]);
+            l.depth_max[o] =
+                std::max(l.depth_max[o], gbuffer ? gbuffer->depth[i] : fine.depth_max[i]);
           }
           if (needs.derivative) {
             l.derivative_max[o] = std::max(l.derivative_max[o], fine.derivative_max[i]);
@@ -103,8 +109,10 @@ MipLevel reduce(const MipLevel& fine, uint32_t image_width, const Needs& needs) 
             l.curvature_max[o] = std::max(l.curvature_max[o], fine.curvature_max[i]);
           }
           if (needs.components) {
-            l.normal_min[o] = glm::min(l.normal_min[o], fine.normal_min[i]);
-            l.normal_max[o] = glm::max(l.normal_max[o], fine.normal_max[i]);
+            l.normal_min[o] =
+                glm::min(l.normal_min[o], gbuffer ? gbuffer->normal[i] : fine.normal_min[i]);
+            l.normal_max[o] =
+                glm::max(l.normal_max[o], gbuffer ? gbuffer->normal[i] : fine.normal_max[i]);
           }
           const uint32_t r = fine.representative[i];
           const float dx = float(r % image_width) - centre_x,
@@ -132,7 +140,7 @@ MinMaxMipmap::MinMaxMipmap(const EyeGBuffer& gbuffer, uint32_t coarsest,
   const Needs needs(test);
   levels_.push_back(pixel_level(gbuffer, needs));
   for (uint32_t k = 1; k <= coarsest; ++k) {
-    levels_.push_back(reduce(levels_.back(), gbuffer.width, needs));
+    levels_.push_back(reduce(levels_.back(), gbuffer.width, needs, k == 1 ? &gbuffer : nullptr));
   }
 }
 

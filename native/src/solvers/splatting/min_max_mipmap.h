@@ -40,6 +40,8 @@ struct MipLevel {
   uint32_t width = 0, height = 0;
   uint32_t cell = 1;           // pixels per side of a texel
   std::vector<uint32_t> hits;  // seen pixels in the texel's area
+  // Empty where the test does not read them, and depth and normal ranges at the pixel level
+  // (pixels never split; the G-buffer holds their values).
   std::vector<float> depth_min, depth_max, derivative_max, curvature_max;
   std::vector<glm::vec3> normal_min, normal_max;
   // A seen pixel near the texel's centre: where a subsplat at this texel reads the G-buffer

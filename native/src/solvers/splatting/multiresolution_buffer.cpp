@@ -35,7 +35,7 @@ void MultiresolutionBuffer::add(const MultiresolutionBuffer& other) {
   }
 }
 
-std::vector<glm::vec3> MultiresolutionBuffer::upsample(Upsampling mode) const {
+std::vector<glm::vec3> MultiresolutionBuffer::upsample(Upsampling mode) {
   switch (mode) {
     case Upsampling::kNearest:
       return upsample_nearest();
@@ -46,16 +46,12 @@ std::vector<glm::vec3> MultiresolutionBuffer::upsample(Upsampling mode) const {
   }
 }
 
-std::vector<glm::vec3> MultiresolutionBuffer::upsample_interpolated() const {
-  const uint32_t top = uint32_t(levels_.size()) - 1;
-  // The light each level holds: rendered there, or interpolated from the coarser levels.
-  std::vector<glm::vec3> data = levels_[top].light;
-  std::vector<uint8_t> has_data = levels_[top].filled;
-  for (int k = int(top); k > 0; --k) {
+std::vector<glm::vec3> MultiresolutionBuffer::upsample_interpolated() {
+  // Each level's own light becomes, in place, its light plus what the coarser levels hand
+  // down: the data of that level.
+  for (int k = int(levels_.size()) - 1; k > 0; --k) {
     const Level& l = levels_[size_t(k)];
-    const Level& fine = levels_[size_t(k) - 1];
-    std::vector<glm::vec3> next = fine.light;
-    std::vector<uint8_t> has_next = fine.filled;
+    Level& fine = levels_[size_t(k) - 1];
     // Each child of a texel with data is interpolated bilinearly from the texel and the
     // neighbours on its side (weights 9, 3, 3, 1 / 16), among those that hold data.
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, fine.height, 16), [&](const auto& rows) {
@@ -63,7 +59,7 @@ std::vector<glm::vec3> MultiresolutionBuffer::upsample_interpolated() const {
         for (uint32_t x = 0; x < fine.width; ++x) {
           const uint32_t px = x / 2, py = y / 2;
           const size_t parent = size_t(py) * l.width + px;
-          if (!has_data[parent]) continue;
+          if (!l.filled[parent]) continue;
           const int sx = (x & 1) ? 1 : -1, sy = (y & 1) ? 1 : -1;
           glm::vec3 sum(0.0f);
           float total = 0.0f;
@@ -72,22 +68,20 @@ std::vector<glm::vec3> MultiresolutionBuffer::upsample_interpolated() const {
               const int nx = int(px) + i * sx, ny = int(py) + j * sy;
               if (nx < 0 || ny < 0 || nx >= int(l.width) || ny >= int(l.height)) continue;
               const size_t n = size_t(ny) * l.width + size_t(nx);
-              if (!has_data[n]) continue;
+              if (!l.filled[n]) continue;
               const float w = (i ? 0.25f : 0.75f) * (j ? 0.25f : 0.75f);
-              sum += w * data[n];
+              sum += w * l.light[n];
               total += w;
             }
           }
           const size_t t = size_t(y) * fine.width + x;
-          next[t] += sum / total;
-          has_next[t] = 1;
+          fine.light[t] += sum / total;
+          fine.filled[t] = 1;
         }
       }
     });
-    data = std::move(next);
-    has_data = std::move(has_next);
   }
-  return data;
+  return std::move(levels_[0].light);
 }
 
 std::vector<glm::vec3> MultiresolutionBuffer::upsample_nearest() const {

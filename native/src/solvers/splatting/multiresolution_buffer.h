@@ -34,8 +34,9 @@ class MultiresolutionBuffer {
   // Adds another buffer of the same size (the per-thread buffers of §3.3.1's variant).
   void add(const MultiresolutionBuffer& other);
 
-  // The combined full-resolution image (row order); pixels no subsplat covers are 0.
-  std::vector<glm::vec3> upsample(Upsampling mode) const;
+  // The combined full-resolution image (row order); pixels no subsplat covers are 0. The
+  // interpolated upsampling works in the buffer's own levels, which it leaves changed.
+  std::vector<glm::vec3> upsample(Upsampling mode);
 
   uint32_t levels() const { return uint32_t(levels_.size()); }
 
@@ -45,7 +46,7 @@ class MultiresolutionBuffer {
     std::vector<glm::vec3> light;
     std::vector<uint8_t> filled;
   };
-  std::vector<glm::vec3> upsample_interpolated() const;
+  std::vector<glm::vec3> upsample_interpolated();
   std::vector<glm::vec3> upsample_nearest() const;
   std::vector<glm::vec3> upsample_bilinear() const;
 

@@ -94,12 +94,14 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
         full ? pixel_subsplats(mipmap)
              : refine_subsplats(mipmap, coarsest, finest, settings.discontinuity);
     statistics.subsplats_per_level = set.per_level;
-    statistics.pixel_levels.assign(gbuffer.size(), 255);
-    for (const Subsplat& sub : set.subsplats) {
-      const uint32_t cell = 1u << sub.level;
-      for (uint32_t y = sub.y * cell; y < std::min(gbuffer.height, (sub.y + 1) * cell); ++y) {
-        for (uint32_t x = sub.x * cell; x < std::min(gbuffer.width, (sub.x + 1) * cell); ++x) {
-          statistics.pixel_levels[gbuffer.index(x, y)] = uint8_t(sub.level);
+    if (settings.record_pixel_levels) {
+      statistics.pixel_levels.assign(gbuffer.size(), 255);
+      for (const Subsplat& sub : set.subsplats) {
+        const uint32_t cell = 1u << sub.level;
+        for (uint32_t y = sub.y * cell; y < std::min(gbuffer.height, (sub.y + 1) * cell); ++y) {
+          for (uint32_t x = sub.x * cell; x < std::min(gbuffer.width, (sub.x + 1) * cell); ++x) {
+            statistics.pixel_levels[gbuffer.index(x, y)] = uint8_t(sub.level);
+          }
         }
       }
     }

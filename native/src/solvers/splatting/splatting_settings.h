@@ -35,6 +35,8 @@ struct SplattingSettings {
   // A VPL closer than this many radii of its surface sends its texels' light (0: never).
   float near_field_split = 2.0f;
   uint64_t seed = 0;
+  // Not a setting: whether SplatStatistics::pixel_levels is filled (the pictures want it).
+  bool record_pixel_levels = false;
 
   static SplattingSettings from(const Settings& settings);
   static const std::vector<SettingSpec>& specs();
