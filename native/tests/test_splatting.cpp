@@ -17,6 +17,7 @@
 #include "solvers/splatting/virtual_point_lights.h"
 #include "solvers/splatting/vpl_visibility.h"
 #include "util/luminance.h"
+#include "util/random.h"
 #include "util/sampling.h"
 
 namespace bakegi {
@@ -325,6 +326,27 @@ TEST(SplattingBake, SphereRoomPointsGetTheAnalyticBounce) {
     sum += v.x;
   }
   EXPECT_NEAR(sum / double(values.size()), expected, 0.02 * expected);
+}
+
+// The preview's direct light (light sampling alone, one ray a light) estimates the same
+// irradiance as the bakes' MIS estimate, for an area light seen at a grazing angle too.
+TEST(SplattingDirect, LampIrradianceAgreesWithTheMisEstimate) {
+  const Light area = test::area_light(BAKEGI_AREA_RECTANGLE, {0, 0, 0.9f}, {0, 0, -1}, {1, 0, 0},
+                                      0.5f, 0.25f, glm::vec3(4.0f));
+  const BuiltScene built(room_with(area));
+  const DirectLight direct(*built.scene, *built.tracer);
+  for (const SurfacePoint& x : {SurfacePoint{{0.2f, 0.1f, -0.999f}, {0, 0, 1}, {0, 0, 1}},
+                                SurfacePoint{{-0.999f, 0.3f, 0.7f}, {1, 0, 0}, {1, 0, 0}}}) {
+    double lamp = 0.0, mis = 0.0;
+    uint64_t rays = 0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      RandomStream a(sample_pcg(1, 0, uint64_t(i))), b(sample_pcg(2, 0, uint64_t(i)));
+      lamp += direct.lamp_irradiance(x, a, rays).x;
+      mis += direct.irradiance_sample(x, b, rays).x;
+    }
+    EXPECT_NEAR(lamp / n, mis / n, 0.02 * mis / n);
+  }
 }
 
 }  // namespace

@@ -102,6 +102,17 @@ glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, RandomStream& rng,
   return light_sample_irradiance(x, rng, rays, [](const glm::vec3&, const glm::vec3&) {});
 }
 
+glm::vec3 DirectLight::lamp_irradiance(const SurfacePoint& x, RandomStream& rng,
+                                       uint64_t& rays) const {
+  glm::vec3 irradiance(0.0f);
+  for_each_light_sample(x, rng, [&](const LightSample& s) {
+    const float cos_receiver = glm::dot(x.shading_normal, s.direction);
+    if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
+    if (unoccluded(x, s, rays)) irradiance += s.contribution * cos_receiver;
+  });
+  return irradiance;
+}
+
 glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf,
                                      RandomStream& rng, uint64_t& rays) const {
   glm::vec3 radiance(0.0f);

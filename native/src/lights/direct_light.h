@@ -45,6 +45,13 @@ class DirectLight {
   // shadow rays into `rays`.
   glm::vec3 sample_lights(const SurfacePoint& x, RandomStream& rng, uint64_t& rays) const;
 
+  // Light sampling alone, unweighted: one sample of every lamp and of the emissive triangles
+  // (one shadow ray each), an unbiased estimate of their direct irradiance E at x; the world
+  // is left out (only a BSDF ray finds it). Half the rays of irradiance_sample where the
+  // world is black, and noisier where a small light is seen at a grazing angle (the preview
+  // uses it; bakes use the MIS estimate).
+  glm::vec3 lamp_irradiance(const SurfacePoint& x, RandomStream& rng, uint64_t& rays) const;
+
   // The same light samples for a general BSDF (glossy materials): the light-sampling
   // estimate of the radiance `bsdf` reflects (Σ contribution · f cos), each sample weighted
   // against the BSDF's own sampling density. Consumes the same random numbers as above.

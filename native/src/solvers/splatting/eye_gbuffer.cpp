@@ -80,6 +80,9 @@ std::vector<glm::vec3> eye_direct_light(const EyeGBuffer& g, const DirectLight& 
                                         uint32_t samples, uint64_t seed) {
   std::vector<glm::vec3> out(g.size(), glm::vec3(0.0f));
   if (samples == 0) return out;
+  // Without a world only lamps and emitters light: light sampling alone finds them all with
+  // one ray each instead of two.
+  const bool world = max_component(direct.world_radiance()) > 0.0f;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, g.size(), 1024), [&](const auto& range) {
     uint64_t rays = 0;
     for (size_t i = range.begin(); i != range.end(); ++i) {
@@ -88,7 +91,7 @@ std::vector<glm::vec3> eye_direct_light(const EyeGBuffer& g, const DirectLight& 
       glm::vec3 sum(0.0f);
       for (uint32_t s = 0; s < samples; ++s) {
         RandomStream rng(sample_pcg(seed, i, s));
-        sum += direct.irradiance_sample(x, rng, rays);
+        sum += world ? direct.irradiance_sample(x, rng, rays) : direct.lamp_irradiance(x, rng, rays);
       }
       out[i] = sum * (kInvPi / float(samples));
     }

@@ -45,8 +45,9 @@ struct EyeGBuffer {
 EyeGBuffer trace_eye_gbuffer(const Scene& scene, const RayTracer& tracer,
                              const PreviewCamera& camera, uint32_t width, uint32_t height);
 
-// Direct irradiance / pi at every seen pixel (0 elsewhere): `samples` light samples per pixel
-// (DirectLight::irradiance_sample, MIS with one cosine ray each), seeded per pixel.
+// Direct irradiance / pi at every seen pixel (0 elsewhere), `samples` samples per pixel
+// seeded per pixel: DirectLight::lamp_irradiance (one shadow ray per light) where the world
+// is black, else irradiance_sample (MIS with one cosine ray that also finds the world).
 std::vector<glm::vec3> eye_direct_light(const EyeGBuffer& gbuffer, const DirectLight& direct,
                                         uint32_t samples, uint64_t seed);
 
