@@ -91,7 +91,8 @@ std::vector<glm::vec3> eye_direct_light(const EyeGBuffer& g, const DirectLight& 
       glm::vec3 sum(0.0f);
       for (uint32_t s = 0; s < samples; ++s) {
         RandomStream rng(sample_pcg(seed, i, s));
-        sum += world ? direct.irradiance_sample(x, rng, rays) : direct.lamp_irradiance(x, rng, rays);
+        sum +=
+            world ? direct.irradiance_sample(x, rng, rays) : direct.lamp_irradiance(x, rng, rays);
       }
       out[i] = sum * (kInvPi / float(samples));
     }

@@ -90,9 +90,42 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
                                          statistics.subsplats_per_level);
     statistics.seconds_render = seconds_since(start);
   } else {
-    const SubsplatSet set =
-        full ? pixel_subsplats(mipmap)
-             : refine_subsplats(mipmap, coarsest, finest, settings.discontinuity);
+    // The light at a pixel: through the clustered shadow rays, or the paper's VPL light.
+    VirtualPointLights clustered;
+    VplClusters clusters;
+    if (tracer && settings.visibility_clusters > 0) {
+      clustered = vpls;
+      clusters = cluster_vpls(clustered, settings.visibility_clusters);
+    }
+    const PixelLight pixel_light = [&](size_t p) {
+      if (clusters.count() > 0) {
+        return visible_vpl_light(clustered, clusters, *tracer, ray_epsilon,
+                                 settings.near_field_split, gbuffer.position[p], gbuffer.normal[p],
+                                 gbuffer.geometric[p]);
+      }
+      if (settings.near_field_split > 0.0f) {
+        return near_field_light(vpls, gbuffer.position[p], gbuffer.normal[p], 0, vpls.size(),
+                                settings.near_field_split);
+      }
+      return vpl_irradiance_over_pi(vpls, gbuffer.position[p], gbuffer.normal[p]);
+    };
+    SubsplatSet set;
+    if (!full && settings.light_threshold > 0.0f) {
+      // Refinement and rendering at once: the light decides the last splits.
+      std::vector<glm::vec3> values;
+      set = refine_subsplats_by_light(
+          mipmap, coarsest, finest, settings.discontinuity, settings.light_threshold,
+          [&](uint32_t p) { return pixel_light(p); }, values);
+      for (size_t i = 0; i < set.subsplats.size(); ++i) buffer.add(set.subsplats[i], values[i]);
+      statistics.seconds_render = seconds_since(start);
+    } else {
+      set = full ? pixel_subsplats(mipmap)
+                 : refine_subsplats(mipmap, coarsest, finest, settings.discontinuity);
+      statistics.seconds_refine = seconds_since(start);
+      start = std::chrono::steady_clock::now();
+      render_subsplats(set, mipmap, pixel_light, buffer);
+      statistics.seconds_render = seconds_since(start);
+    }
     statistics.subsplats_per_level = set.per_level;
     if (settings.record_pixel_levels) {
       statistics.pixel_levels.assign(gbuffer.size(), 255);
@@ -105,32 +138,6 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
         }
       }
     }
-    statistics.seconds_refine = seconds_since(start);
-    start = std::chrono::steady_clock::now();
-    if (tracer && settings.visibility_clusters > 0) {
-      VirtualPointLights clustered = vpls;
-      const VplClusters clusters = cluster_vpls(clustered, settings.visibility_clusters);
-      render_subsplats(
-          set, mipmap,
-          [&](size_t p) {
-            return visible_vpl_light(clustered, clusters, *tracer, ray_epsilon,
-                                     settings.near_field_split, gbuffer.position[p],
-                                     gbuffer.normal[p], gbuffer.geometric[p]);
-          },
-          buffer);
-    } else {
-      render_subsplats(
-          set, mipmap,
-          [&](size_t p) {
-            if (settings.near_field_split > 0.0f) {
-              return near_field_light(vpls, gbuffer.position[p], gbuffer.normal[p], 0, vpls.size(),
-                                      settings.near_field_split);
-            }
-            return vpl_irradiance_over_pi(vpls, gbuffer.position[p], gbuffer.normal[p]);
-          },
-          buffer);
-    }
-    statistics.seconds_render = seconds_since(start);
   }
   statistics.subsplats = 0;
   for (uint64_t c : statistics.subsplats_per_level) statistics.subsplats += c;

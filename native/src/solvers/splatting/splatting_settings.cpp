@@ -50,6 +50,10 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
                    "neighbours whose discontinuity also splits a subsplat (paper 5.2)"),
       number_setting("illumination_threshold", 0.25, 0.0, 100.0, R::kLighting,
                      "refinement 'illumination': relative difference that splits a subsplat"),
+      number_setting("light_threshold", 0.05, 0.0, 100.0, R::kLighting,
+                     "refinement 'shared': also split where the summed light's second "
+                     "difference between neighbouring subsplats exceeds this fraction of it "
+                     "(flat surfaces near bright VPLs); 0: depth and normal tests only"),
       text_setting("upsampling", "interpolated", {"interpolated", "nearest", "bilinear"},
                    R::kLighting,
                    "combining the levels: the paper's interpolation (3.5), or the nearest and "
@@ -97,6 +101,7 @@ SplattingSettings SplattingSettings::from(const Settings& settings) {
                                                     {"none", NeighbourTest::kNone},
                                                     {"all", NeighbourTest::kAll}});
   s.illumination_threshold = float(read.get_float("illumination_threshold"));
+  s.light_threshold = float(read.get_float("light_threshold"));
   s.upsampling =
       pick<Upsampling>(read.get_string("upsampling"), {{"interpolated", Upsampling::kInterpolated},
                                                        {"nearest", Upsampling::kNearest},

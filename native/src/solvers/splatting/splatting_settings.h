@@ -27,6 +27,9 @@ struct SplattingSettings {
   // pixel a subsplat (full-resolution splatting).
   SubsplatRefinement refinement = SubsplatRefinement::kShared;
   float illumination_threshold = 0.25f;
+  // Shared refinement: split also where the summed light curves more than this fraction of
+  // itself between neighbouring subsplats (0: the paper's geometric tests only).
+  float light_threshold = 0.05f;
   Upsampling upsampling = Upsampling::kInterpolated;
   float detail_alpha = 0.0f;  // §4.3, equation 3
   uint32_t direct_samples = 1;

@@ -1,8 +1,14 @@
 #include "solvers/splatting/subsplat_refinement.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "solvers/splatting/virtual_point_lights.h"
+#include "util/luminance.h"
 
 namespace bakegi {
 
@@ -66,6 +72,63 @@ SubsplatSet refine_subsplats(const MinMaxMipmap& mipmap, uint32_t coarsest, uint
     current = std::move(next);
   }
   done.insert(done.end(), current.begin(), current.end());
+  return counted(std::move(done), mipmap.levels());
+}
+
+SubsplatSet refine_subsplats_by_light(const MinMaxMipmap& mipmap, uint32_t coarsest,
+                                      uint32_t finest, const DiscontinuityTest& test,
+                                      float threshold, const SubsplatLight& light,
+                                      std::vector<glm::vec3>& values) {
+  std::vector<Subsplat> current = coarsest_subsplats(mipmap, coarsest);
+  std::vector<Subsplat> done;
+  values.clear();
+  for (uint32_t k = coarsest;; --k) {
+    std::vector<Subsplat> next, kept;
+    for (const Subsplat& s : current) {
+      if (k > finest && mipmap.refines(k, s.x, s.y, test)) {
+        for_each_child(mipmap, s, [&](const Subsplat& c) { next.push_back(c); });
+      } else {
+        kept.push_back(s);
+      }
+    }
+    const MipLevel& l = mipmap.level(k);
+    std::vector<glm::vec3> light_of(kept.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size(), 32), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        light_of[i] = light(l.representative[l.index(kept[i].x, kept[i].y)]);
+      }
+    });
+    // Which texel of this level holds which kept subsplat (-1: none).
+    std::vector<int32_t> at(size_t(l.width) * l.height, -1);
+    for (size_t i = 0; i < kept.size(); ++i) at[l.index(kept[i].x, kept[i].y)] = int32_t(i);
+    const auto y_of = [&](int32_t i) { return float(luminance(light_of[size_t(i)])); };
+    const auto neighbour = [&](const Subsplat& s, int dx, int dy) {
+      const int x = int(s.x) + dx, y = int(s.y) + dy;
+      if (x < 0 || y < 0 || x >= int(l.width) || y >= int(l.height)) return int32_t(-1);
+      return at[l.index(uint32_t(x), uint32_t(y))];
+    };
+    for (size_t i = 0; i < kept.size(); ++i) {
+      const Subsplat& s = kept[i];
+      bool curved = false;
+      if (k > finest && threshold > 0.0f) {
+        const float v = y_of(int32_t(i));
+        for (const auto& axis : {std::pair{1, 0}, std::pair{0, 1}}) {
+          const int32_t a = neighbour(s, -axis.first, -axis.second);
+          const int32_t b = neighbour(s, axis.first, axis.second);
+          if (a < 0 || b < 0) continue;
+          if (std::abs(y_of(a) + y_of(b) - 2.0f * v) > threshold * v) curved = true;
+        }
+      }
+      if (curved) {
+        for_each_child(mipmap, s, [&](const Subsplat& c) { next.push_back(c); });
+      } else {
+        done.push_back(s);
+        values.push_back(light_of[i]);
+      }
+    }
+    current = std::move(next);
+    if (current.empty() || k == 0) break;
+  }
   return counted(std::move(done), mipmap.levels());
 }
 
