@@ -92,24 +92,27 @@ std::vector<int64_t> parse_int_list(const std::string& text, const std::string& 
   return list;
 }
 
+float parse_float(const std::string& text, const std::string& what) {
+  size_t used = 0;
+  float value = 0.0f;
+  try {
+    value = std::stof(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || !std::isfinite(value)) {
+    throw UsageError(what + ": '" + text + "' is not a finite number");
+  }
+  return value;
+}
+
 std::vector<float> parse_float_list(const std::string& text, const std::string& what,
                                     size_t count) {
   std::vector<float> values;
   size_t begin = 0;
   while (begin <= text.size()) {
     const size_t comma = std::min(text.find(',', begin), text.size());
-    const std::string part = text.substr(begin, comma - begin);
-    size_t used = 0;
-    float value = 0.0f;
-    try {
-      value = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != part.size() || part.empty() || !std::isfinite(value)) {
-      throw UsageError(what + ": '" + part + "' is not a number");
-    }
-    values.push_back(value);
+    values.push_back(parse_float(text.substr(begin, comma - begin), what));
     begin = comma + 1;
   }
   if (values.size() != count) {
@@ -118,4 +121,5 @@ std::vector<float> parse_float_list(const std::string& text, const std::string& 
   }
   return values;
 }
+
 }  // namespace bakegi::cli

@@ -41,6 +41,8 @@ int64_t parse_int(const std::string& text, const std::string& what, int64_t lo, 
 // Parses "1,2,4,8" into integers in [lo, hi].
 std::vector<int64_t> parse_int_list(const std::string& text, const std::string& what, int64_t lo,
                                     int64_t hi);
+// One finite number ("--cell: 'x' is not a finite number").
+float parse_float(const std::string& text, const std::string& what);
 // A comma-separated list of exactly `count` finite numbers ("--camera: 'x' is not a number").
 std::vector<float> parse_float_list(const std::string& text, const std::string& what,
                                     size_t count);

@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "arguments.h"
 #include "bake_run.h"
@@ -23,29 +22,6 @@
 namespace bakegi::cli {
 
 namespace {
-
-float parse_float(const std::string& text, const std::string& what) {
-  size_t used = 0;
-  float value = 0.0f;
-  try {
-    value = std::stof(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(value)) {
-    throw UsageError(what + ": '" + text + "' is not a finite number");
-  }
-  return value;
-}
-
-std::vector<float> parse_bounds(const std::string& text) {
-  std::vector<float> values;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, ',')) values.push_back(parse_float(part, "--bounds"));
-  if (values.size() != 6) throw UsageError("--bounds expects six numbers x0,y0,z0,x1,y1,z1");
-  return values;
-}
 
 GridHandle read_grid(const std::string& path) {
   bakegi_grid* raw = nullptr;
@@ -81,7 +57,7 @@ int run_grid_bake(const std::vector<std::string>& words) {
   const SceneFile file = load_scene_file(args.positional()[0]);
   float lo[3], hi[3];
   if (const auto bounds = args.value("bounds")) {
-    const std::vector<float> b = parse_bounds(*bounds);
+    const std::vector<float> b = parse_float_list(*bounds, "--bounds (x0,y0,z0,x1,y1,z1)", 6);
     std::copy(b.begin(), b.begin() + 3, lo);
     std::copy(b.begin() + 3, b.end(), hi);
   } else {

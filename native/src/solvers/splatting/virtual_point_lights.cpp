@@ -157,6 +157,30 @@ glm::vec3 vpl_term_over_pi(const VirtualPointLights& vpls, size_t v, const glm::
 
 namespace {
 
+// The VPLs [begin, end) at least sqrt(split2) radii of their surface away (all for 0), written
+// out over plain floats so that the compiler vectorizes the loop.
+glm::vec3 far_vpl_light(const VirtualPointLights& vpls, const glm::vec3& position,
+                        const glm::vec3& normal, size_t begin, size_t end, float split2) {
+  const glm::vec3* p = vpls.positions.data();
+  const glm::vec3* n = vpls.normals.data();
+  const glm::vec3* f = vpls.fluxes.data();
+  const float* a = vpls.disk_areas.data();
+  float sr = 0.0f, sg = 0.0f, sb = 0.0f;
+  for (size_t v = begin; v < end; ++v) {
+    const float dx = p[v].x - position.x, dy = p[v].y - position.y, dz = p[v].z - position.z;
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float cr = std::max(0.0f, normal.x * dx + normal.y * dy + normal.z * dz);
+    const float cv = std::max(0.0f, -(n[v].x * dx + n[v].y * dy + n[v].z * dz));
+    // cos_r cos_v / (r^2 + A/pi) with both cosines' 1/r folded into r^2.
+    const bool far = r2 > 0.0f && r2 >= split2 * a[v];
+    const float w = far ? cr * cv / (r2 * (r2 + a[v])) : 0.0f;
+    sr += w * f[v].x;
+    sg += w * f[v].y;
+    sb += w * f[v].z;
+  }
+  return glm::vec3(sr, sg, sb) * (1.0f / (kPi * kPi));
+}
+
 glm::vec3 texel_term_over_pi(const RsmTexel& t, const glm::vec3& position,
                              const glm::vec3& normal) {
   const glm::vec3 d = t.position - position;
@@ -175,28 +199,11 @@ glm::vec3 near_field_light(const VirtualPointLights& vpls, const glm::vec3& posi
     return vpl_irradiance_over_pi(vpls, position, normal, begin, end);
   }
   const float split2 = split * split;
-  const glm::vec3* p = vpls.positions.data();
-  const glm::vec3* n = vpls.normals.data();
-  const glm::vec3* f = vpls.fluxes.data();
-  const float* a = vpls.disk_areas.data();
-  // The far VPLs in one branch-free pass (vectorizable), as vpl_irradiance_over_pi ...
-  float sr = 0.0f, sg = 0.0f, sb = 0.0f;
+  // The far VPLs in one branch-free pass, then the texels of the few near ones.
+  glm::vec3 sum = far_vpl_light(vpls, position, normal, begin, end, split2);
   for (size_t v = begin; v < end; ++v) {
-    const float dx = p[v].x - position.x, dy = p[v].y - position.y, dz = p[v].z - position.z;
-    const float r2 = dx * dx + dy * dy + dz * dz;
-    const float cr = std::max(0.0f, normal.x * dx + normal.y * dy + normal.z * dz);
-    const float cv = std::max(0.0f, -(n[v].x * dx + n[v].y * dy + n[v].z * dz));
-    const bool far = r2 >= split2 * a[v] && r2 > 0.0f;
-    const float w = far ? cr * cv / (r2 * (r2 + a[v])) : 0.0f;
-    sr += w * f[v].x;
-    sg += w * f[v].y;
-    sb += w * f[v].z;
-  }
-  glm::vec3 sum = glm::vec3(sr, sg, sb) * (1.0f / (kPi * kPi));
-  // ... then the texels of the few near ones.
-  for (size_t v = begin; v < end; ++v) {
-    const glm::vec3 d = p[v] - position;
-    if (!(glm::dot(d, d) < split2 * a[v])) continue;
+    const glm::vec3 d = vpls.positions[v] - position;
+    if (!(glm::dot(d, d) < split2 * vpls.disk_areas[v])) continue;
     for (uint32_t t = vpls.texel_begin[v]; t < vpls.texel_begin[v + 1]; ++t) {
       sum += texel_term_over_pi(vpls.texels[t], position, normal);
     }
@@ -206,25 +213,7 @@ glm::vec3 near_field_light(const VirtualPointLights& vpls, const glm::vec3& posi
 
 glm::vec3 vpl_irradiance_over_pi(const VirtualPointLights& vpls, const glm::vec3& position,
                                  const glm::vec3& normal, size_t begin, size_t end) {
-  // Written out over plain floats so the compiler can vectorize the loop.
-  const glm::vec3* p = vpls.positions.data();
-  const glm::vec3* n = vpls.normals.data();
-  const glm::vec3* f = vpls.fluxes.data();
-  const float* a = vpls.disk_areas.data();
-  float sr = 0.0f, sg = 0.0f, sb = 0.0f;
-  for (size_t v = begin; v < end; ++v) {
-    const float dx = p[v].x - position.x, dy = p[v].y - position.y, dz = p[v].z - position.z;
-    const float r2 = dx * dx + dy * dy + dz * dz;
-    const float cr = std::max(0.0f, normal.x * dx + normal.y * dy + normal.z * dz);
-    const float cv = std::max(0.0f, -(n[v].x * dx + n[v].y * dy + n[v].z * dz));
-    // cos_r cos_v / (r^2 + A/pi) with both cosines' 1/r folded into r^2.
-    const float w = r2 > 0.0f ? cr * cv / (r2 * (r2 + a[v])) : 0.0f;
-    sr += w * f[v].x;
-    sg += w * f[v].y;
-    sb += w * f[v].z;
-  }
-  constexpr float kInvPiSquared = 1.0f / (kPi * kPi);
-  return glm::vec3(sr, sg, sb) * kInvPiSquared;
+  return far_vpl_light(vpls, position, normal, begin, end, 0.0f);
 }
 
 }  // namespace bakegi
