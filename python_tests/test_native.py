@@ -35,7 +35,7 @@ def test_a_mismatched_struct_is_refused_with_its_name(native, monkeypatch):
 
 def test_every_method_describes_its_settings(native):
     methods = native.describe_settings()["methods"]
-    assert methods == ["pathtrace", "direct", "antiradiance", "meshless", "grid"]
+    assert methods == ["pathtrace", "direct", "antiradiance", "meshless", "splatting", "grid"]
     for method in methods:
         schema = native.describe_settings(method)
         keys = [s["key"] for s in schema["settings"]]

@@ -22,7 +22,8 @@ def test_the_defaults_are_a_valid_request(native):
 
 
 def test_the_methods_are_the_cores(native):
-    assert native.method_names() == ("pathtrace", "direct", "antiradiance", "meshless", "grid")
+    assert native.method_names() == ("pathtrace", "direct", "antiradiance", "meshless", "splatting",
+                                    "grid")
     for method in native.method_names():
         BakeRequest(method=method).validate()
 

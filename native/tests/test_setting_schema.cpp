@@ -83,10 +83,10 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
     for (const std::string& k : schema.keys_with_role(SettingRole::kExecution)) keys.push_back(k);
     return sorted(keys);
   };
-  EXPECT_EQ(changeable("antiradiance"),
-            sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
-                    "target_error", "threads", "cache_dir", "residual", "residual_fraction",
-                    "denoise"}));
+  EXPECT_EQ(
+      changeable("antiradiance"),
+      sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
+              "target_error", "threads", "cache_dir", "residual", "residual_fraction", "denoise"}));
   EXPECT_EQ(changeable("meshless"),
             sorted({"direct_samples", "sender_cutoff", "bounces", "cache_dir", "samples",
                     "target_error", "threads", "denoise"}));
@@ -103,12 +103,12 @@ TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {
   EXPECT_EQ(std::get<int64_t>(method_schema("meshless").find("direct_samples")->fallback), 4);
 }
 
-// Each solver folder registers its method while the library loads (no central list): all five
+// Each solver folder registers its method while the library loads (no central list): all six
 // are there, in listing order, and the default method is one of them and the "method"
 // setting's default in every schema.
 TEST(SettingSchema, EverySolverFolderRegistersItsMethod) {
-  EXPECT_EQ(method_names(),
-            (std::vector<std::string>{"pathtrace", "direct", "antiradiance", "meshless", "grid"}));
+  EXPECT_EQ(method_names(), (std::vector<std::string>{"pathtrace", "direct", "antiradiance",
+                                                      "meshless", "splatting", "grid"}));
   EXPECT_NE(std::find(method_names().begin(), method_names().end(), kDefaultMethod),
             method_names().end());
   for (const std::string& method : method_names()) {
@@ -126,7 +126,8 @@ TEST(SettingSchema, TheCApiDescribesEachMethod) {
   ASSERT_EQ(bakegi_settings_describe("", all.data(), all.size(), nullptr), BAKEGI_OK);
   all.resize(length);
   EXPECT_EQ(all,
-            "{\"methods\": [\"pathtrace\", \"direct\", \"antiradiance\", \"meshless\", \"grid\"], "
+            "{\"methods\": [\"pathtrace\", \"direct\", \"antiradiance\", \"meshless\", "
+            "\"splatting\", \"grid\"], "
             "\"default\": \"pathtrace\", \"default_settings\": {\"denoise\": 1, "
             "\"samples\": 65536, \"target_error\": 0.050000000000000003}}");
 
