@@ -127,11 +127,11 @@ class PreviewEngineCase(common.SmallCornellCase):
         nrmse = numpy.sqrt(numpy.mean((draft - one_bounce) ** 2)) / one_bounce.mean()
         print(f"splatting against the one-bounce path tracer: NRMSE {nrmse:.3f}, means "
               f"{draft.mean():.4f} / {one_bounce.mean():.4f}")
-        # Measured 0.33 on this small box with 256 VPLs and no visibility, the mean 3% high
-        # (docs/methods/splatting.md: light through the blocks, the near field at the walls'
-        # junctions); the bound leaves room for the reference's own noise (256 paths).
-        self.assertLess(nrmse, 0.45)
-        self.assertLess(abs(draft.mean() / one_bounce.mean() - 1.0), 0.20)
+        # Measured 0.117 on this small box, the mean 2% low (1024 VPLs, 64 visibility rays, 32
+        # gather rays; docs/methods/splatting.md); the bounds leave room for the reference's
+        # own noise (256 paths, about 4%) and for the exports of other Blender versions.
+        self.assertLess(nrmse, 0.20)
+        self.assertLess(abs(draft.mean() / one_bounce.mean() - 1.0), 0.10)
 
     def test_bad_settings_are_refused_with_a_message(self):
         depsgraph = bpy.context.evaluated_depsgraph_get()

@@ -188,14 +188,14 @@ def bake_scene(cli, work, build, scene, samples):
     rows = []
     for vpls in (256, 1024, 4096):
         for clusters in (0, 16, 64):
-            for split in (0, 2, 4):
+            for gather in (0, 32):
                 arguments = ["--method", "splatting", "--set", f"vpl_count={vpls}", "--set",
                              f"visibility_clusters={clusters}", "--set",
-                             f"near_field_split={split}", "--set", "error_probes=0"]
+                             f"gather_rays={gather}", "--set", "error_probes=0"]
                 report, seconds, values = bake(cli, bgs, os.path.join(work, "splat.npy"),
                                                arguments)
                 rows.append(dict(metrics(values, reference), vpls=vpls,
-                                 visibility_clusters=clusters, near_field_split=split,
+                                 visibility_clusters=clusters, gather_rays=gather,
                                  process_seconds=seconds,
                                  core_seconds=report["seconds"]["total"],
                                  steps=report["seconds"]))
@@ -222,17 +222,21 @@ def save_bake_chart(bakes, path):
         axis.plot([t["core_seconds"] for t in traced], [t["weighted_relative_rmse"] for t in traced],
                   "o-", color="black", label="path tracer, 1 bounce (1-64 spp)")
         for clusters, colour in ((0, "tab:red"), (16, "tab:orange"), (64, "tab:green")):
-            runs = [r for r in result["runs"] if r["visibility_clusters"] == clusters]
-            axis.scatter([r["core_seconds"] for r in runs],
-                         [r["weighted_relative_rmse"] for r in runs], color=colour,
-                         label=f"splatting, {clusters} visibility rays")
+            for gather, marker in ((0, "o"), (32, "^")):
+                runs = [r for r in result["runs"]
+                        if r["visibility_clusters"] == clusters and r["gather_rays"] == gather]
+                axis.scatter([r["core_seconds"] for r in runs],
+                             [r["weighted_relative_rmse"] for r in runs], color=colour,
+                             marker=marker,
+                             label=f"splatting, {clusters} visibility, {gather} gather rays")
         noise = result["reference"]["noise"]["weighted_relative_rmse"]
         axis.axhline(noise, color="grey", linestyle=":", label="reference noise")
         axis.set_xscale("log")
+        axis.set_yscale("log")
         axis.set_xlabel("core seconds (2 cores)")
         axis.set_ylabel("weighted relative RMSE vs 1-bounce reference")
         axis.set_title(scene)
-        axis.legend(fontsize=8)
+        axis.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=70)
     plt.close(fig)

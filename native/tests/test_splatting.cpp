@@ -299,7 +299,9 @@ TEST(SplattingVisibility, ClusteredShadowRaysStopLightThroughAWall) {
   const glm::vec3 leak = vpl_irradiance_over_pi(vpls, p, n);
   EXPECT_GT(leak.x, 0.0f);  // the paper's VPL light passes the wall
   const VplClusters clusters = cluster_vpls(vpls, 64);
-  const glm::vec3 seen = visible_vpl_light(vpls, clusters, *built.tracer, 1e-4f, 0.0f, p, n, n);
+  const glm::vec3 seen = visible_vpl_light(
+      clusters, *built.tracer, 1e-4f, p, n,
+      [&](size_t begin, size_t end) { return vpl_irradiance_over_pi(vpls, p, n, begin, end); });
   EXPECT_LT(seen.x, 0.05f * leak.x);
 }
 

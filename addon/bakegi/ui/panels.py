@@ -31,8 +31,7 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             col.prop(settings, "iterations")
             col.prop(settings, "seed")
         elif method == "splatting":
-            col.prop(settings, "preview_vpl_count")
-            col.prop(settings, "preview_visibility_clusters")
+            col.label(text="One bounce from 1024 VPLs, 64 visibility rays, 32 gather rays")
         elif method == "meshless":
             col.prop(settings, "meshless_levels")
             col.prop(settings, "meshless_epsilon")

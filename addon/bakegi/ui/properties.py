@@ -269,9 +269,6 @@ class BakeGISettings(bpy.types.PropertyGroup):
                 settings["target_error"] = QUALITY_TARGETS[self.quality]
             if self.denoise:
                 settings["denoise"] = 1
-        elif method == "splatting":
-            settings.update(vpl_count=self.preview_vpl_count,
-                            visibility_clusters=self.preview_visibility_clusters)
         elif method == "meshless":
             settings.update(levels=self.meshless_levels, epsilon=self.meshless_epsilon)
             if self.use_cache:

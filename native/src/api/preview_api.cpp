@@ -115,8 +115,11 @@ bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera
     }
     bakegi::Settings given = settings ? settings->settings : bakegi::Settings();
     given.validate(bakegi::method_schema("splatting"), bakegi::setting_keys_of_any_method());
-    // The near-field split costs a frame 5-15x on rooms (every VPL near a wall is near some
-    // pixel): a preview does without it unless asked (docs/methods/splatting.md).
+    // The method's defaults are the bake's; a frame takes the paper's (docs/methods/
+    // splatting.md) unless asked: 256 VPLs, no visibility rays, and no near-field split
+    // (5-15x a frame on rooms: every VPL near a wall is near some pixel).
+    if (!given.has("vpl_count")) given.set("vpl_count", int64_t(256));
+    if (!given.has("visibility_clusters")) given.set("visibility_clusters", int64_t(0));
     if (!given.has("near_field_split")) given.set("near_field_split", 0.0);
     bakegi::SplattingSettings parsed = bakegi::SplattingSettings::from(given);
     parsed.record_pixel_levels = out_levels != nullptr;

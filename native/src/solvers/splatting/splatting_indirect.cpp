@@ -99,9 +99,12 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
     }
     const PixelLight pixel_light = [&](size_t p) {
       if (clusters.count() > 0) {
-        return visible_vpl_light(clustered, clusters, *tracer, ray_epsilon,
-                                 settings.near_field_split, gbuffer.position[p], gbuffer.normal[p],
-                                 gbuffer.geometric[p]);
+        return visible_vpl_light(clusters, *tracer, ray_epsilon, gbuffer.position[p],
+                                 gbuffer.geometric[p], [&](size_t begin, size_t end) {
+                                   return near_field_light(clustered, gbuffer.position[p],
+                                                           gbuffer.normal[p], begin, end,
+                                                           settings.near_field_split);
+                                 });
       }
       if (settings.near_field_split > 0.0f) {
         return near_field_light(vpls, gbuffer.position[p], gbuffer.normal[p], 0, vpls.size(),

@@ -21,8 +21,9 @@ Enum pick(const std::string& value, const std::vector<std::pair<const char*, Enu
 
 const std::vector<SettingSpec>& SplattingSettings::specs() {
   static const std::vector<SettingSpec> specs = {
-      integer_setting("vpl_count", 256, 1, 65536, R::kLighting,
-                      "virtual point lights taken from the reflective shadow maps"),
+      integer_setting("vpl_count", 1024, 1, 65536, R::kLighting,
+                      "virtual point lights taken from the reflective shadow maps (the preview: "
+                      "256 unless set)"),
       text_setting("vpl_sampling", "regular", {"regular", "importance"}, R::kLighting,
                    "regular: the paper's fixed grid over each map; importance: texels drawn "
                    "by reflected flux"),
@@ -62,13 +63,19 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
                      "surface detail from the view angle (paper 4.3, equation 3); 0: off"),
       integer_setting("direct_samples", 1, 0, 4096, R::kLighting,
                       "preview: light samples per pixel for direct light"),
-      integer_setting("visibility_clusters", 0, 0, 4096, R::kLighting,
+      integer_setting("visibility_clusters", 64, 0, 4096, R::kLighting,
                       "shadow rays per receiver towards clustered VPLs (0: no visibility for "
-                      "the indirect bounce, as in the paper)"),
+                      "the indirect bounce, as in the paper; the preview: 0 unless set)"),
       number_setting("near_field_split", 2.0, 0.0, 100.0, R::kLighting,
                      "a VPL closer than this many radii of the surface it stands for sends its "
                      "texels' light instead (the near field the paper clamps); 0: never. The "
                      "preview uses 0 unless this is set"),
+      integer_setting("gather_rays", 32, 0, 4096, R::kLighting,
+                      "bake: cosine rays per point that add the near field the VPLs leave out "
+                      "(their geometry term is clamped there; bias compensation); 0: none, the "
+                      "VPLs bounded by their own surface (and near_field_split)"),
+      number_setting("gather_radii", 4.0, 0.1, 100.0, R::kLighting,
+                     "bake: where the clamp starts, in radii of a VPL's mean surface"),
   };
   return specs;
 }
@@ -110,6 +117,8 @@ SplattingSettings SplattingSettings::from(const Settings& settings) {
   s.direct_samples = uint32_t(read.get_int("direct_samples"));
   s.visibility_clusters = uint32_t(read.get_int("visibility_clusters"));
   s.near_field_split = float(read.get_float("near_field_split"));
+  s.gather_rays = uint32_t(read.get_int("gather_rays"));
+  s.gather_radii = float(read.get_float("gather_radii"));
   s.seed = uint64_t(read.get_int("seed"));
   return s;
 }

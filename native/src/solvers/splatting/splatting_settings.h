@@ -18,7 +18,7 @@ enum class SubsplatRefinement { kShared, kIllumination, kNone };
 
 struct SplattingSettings {
   RsmOptions rsm;
-  uint32_t vpl_count = 256;
+  uint32_t vpl_count = 1024;
   VplSampling vpl_sampling = VplSampling::kRegular;
   uint32_t base_resolution = 16;  // texels of the coarsest level along the larger side
   uint32_t max_resolution = 0;    // finest level's texels along the larger side, 0: pixels
@@ -34,9 +34,13 @@ struct SplattingSettings {
   float detail_alpha = 0.0f;  // §4.3, equation 3
   uint32_t direct_samples = 1;
   // Shadow rays per receiver towards clustered VPLs (0: none, the paper's approximation).
-  uint32_t visibility_clusters = 0;
+  uint32_t visibility_clusters = 64;
   // A VPL closer than this many radii of its surface sends its texels' light (0: never).
   float near_field_split = 2.0f;
+  // Bake: cosine rays per point that add the near field the clamped VPLs leave out
+  // (near_field_gather.h); 0: VPLs bounded by their surface and near_field_split instead.
+  uint32_t gather_rays = 32;
+  float gather_radii = 4.0f;  // the clamp's distance in radii of a VPL's mean surface
   uint64_t seed = 0;
   // Not a setting: whether SplatStatistics::pixel_levels is filled (the pictures want it).
   bool record_pixel_levels = false;

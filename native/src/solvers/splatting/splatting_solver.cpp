@@ -2,6 +2,7 @@
 
 #include "lights/direct_light.h"
 #include "scene/scene.h"
+#include "solvers/splatting/near_field_gather.h"
 #include "solvers/splatting/point_subsplats.h"
 #include "solvers/splatting/reflective_shadow_map.h"
 #include "solvers/splatting/splatting_settings.h"
@@ -18,9 +19,14 @@ namespace {
 // point (refinement "none").
 class SplattingField : public IndirectField {
  public:
-  SplattingField(VirtualPointLights vpls, const SplattingSettings& settings,
-                 const RayTracer& tracer, float ray_epsilon)
-      : vpls_(std::move(vpls)), settings_(settings), tracer_(tracer), epsilon_(ray_epsilon) {
+  SplattingField(VirtualPointLights vpls, const SplattingSettings& settings, const Scene& scene,
+                 const RayTracer& tracer, const DirectLight& direct)
+      : vpls_(std::move(vpls)),
+        settings_(settings),
+        scene_(scene),
+        tracer_(tracer),
+        direct_(direct),
+        bound_(settings.gather_rays > 0 ? geometry_bound(vpls_, settings.gather_radii) : 0.0f) {
     if (settings_.visibility_clusters > 0) {
       clusters_ = cluster_vpls(vpls_, settings_.visibility_clusters);
     }
@@ -29,14 +35,22 @@ class SplattingField : public IndirectField {
   void evaluate(const BakePoints& points, std::span<glm::vec3> out,
                 JobContext& context) const override {
     const PointLightFunction light = [&](const glm::vec3& position, const glm::vec3& normal,
-                                         size_t) {
-      if (clusters_.count() == 0) {
-        return near_field_light(vpls_, position, normal, 0, vpls_.size(),
-                                settings_.near_field_split);
-      }
+                                         size_t point) {
+      // The VPLs: clamped where the gather takes over, else bounded by their own surface.
+      const auto range_light = [&](size_t begin, size_t end) {
+        if (bound_ > 0.0f) return clamped_vpl_light(vpls_, position, normal, begin, end, bound_);
+        return near_field_light(vpls_, position, normal, begin, end, settings_.near_field_split);
+      };
       // Bake points carry one normal: it stands for the geometric one too.
-      return visible_vpl_light(vpls_, clusters_, tracer_, epsilon_, settings_.near_field_split,
-                               position, normal, normal);
+      glm::vec3 value = clusters_.count() > 0
+                            ? visible_vpl_light(clusters_, tracer_, direct_.ray_epsilon(), position,
+                                                normal, range_light)
+                            : range_light(0, vpls_.size());
+      if (bound_ > 0.0f) {
+        value += near_field_residual(scene_, tracer_, direct_, position, normal, bound_,
+                                     settings_.gather_rays, settings_.seed, point);
+      }
+      return value;
     };
     PointSubsplatOptions options;
     options.base_resolution = settings_.base_resolution;
@@ -53,8 +67,10 @@ class SplattingField : public IndirectField {
   VirtualPointLights vpls_;
   SplattingSettings settings_;
   VplClusters clusters_;
+  const Scene& scene_;
   const RayTracer& tracer_;
-  float epsilon_;
+  const DirectLight& direct_;
+  float bound_;
 };
 
 }  // namespace
@@ -77,8 +93,8 @@ std::unique_ptr<IndirectField> SplattingSolver::solve(const SolveInputs& inputs,
       render_reflective_shadow_maps(inputs.scene, inputs.tracer, rsm);
   context.throw_if_cancelled();
   return std::make_unique<SplattingField>(
-      select_vpls(maps, settings.vpl_count, settings.vpl_sampling), settings, inputs.tracer,
-      inputs.direct.ray_epsilon());
+      select_vpls(maps, settings.vpl_count, settings.vpl_sampling), settings, inputs.scene,
+      inputs.tracer, inputs.direct);
 }
 
 }  // namespace bakegi

@@ -79,15 +79,13 @@ VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count) {
   return clusters;
 }
 
-glm::vec3 visible_vpl_light(const VirtualPointLights& vpls, const VplClusters& clusters,
-                            const RayTracer& tracer, float epsilon, float split,
-                            const glm::vec3& position, const glm::vec3& normal,
-                            const glm::vec3& geometric_normal) {
+glm::vec3 visible_vpl_light(const VplClusters& clusters, const RayTracer& tracer, float epsilon,
+                            const glm::vec3& position, const glm::vec3& geometric_normal,
+                            const VplRangeLight& range_light) {
   glm::vec3 sum(0.0f);
   const glm::vec3 origin = position + geometric_normal * epsilon;
   for (size_t c = 0; c < clusters.count(); ++c) {
-    const glm::vec3 light =
-        near_field_light(vpls, position, normal, clusters.begin[c], clusters.begin[c + 1], split);
+    const glm::vec3 light = range_light(clusters.begin[c], clusters.begin[c + 1]);
     if (!(max_component(light) > 0.0f)) continue;
     const glm::vec3 to = clusters.anchor[c] - origin;
     const float distance = glm::length(to);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -27,11 +28,13 @@ struct VplClusters {
 // size (fewer when there are fewer VPLs).
 VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count);
 
-// Light at a receiver (near_field_light with `split`) with one shadow ray per cluster;
-// `epsilon` offsets both ends.
-glm::vec3 visible_vpl_light(const VirtualPointLights& vpls, const VplClusters& clusters,
-                            const RayTracer& tracer, float epsilon, float split,
-                            const glm::vec3& position, const glm::vec3& normal,
-                            const glm::vec3& geometric_normal);
+// The light of the VPLs [begin, end) at the receiver, as the caller computes it.
+using VplRangeLight = std::function<glm::vec3(size_t begin, size_t end)>;
+
+// Light at a receiver with one shadow ray per cluster: each unblocked cluster adds
+// range_light over its VPLs; `epsilon` offsets the ray's start off the receiver.
+glm::vec3 visible_vpl_light(const VplClusters& clusters, const RayTracer& tracer, float epsilon,
+                            const glm::vec3& position, const glm::vec3& geometric_normal,
+                            const VplRangeLight& range_light);
 
 }  // namespace bakegi
