@@ -10,6 +10,7 @@
 #include "solvers/splatting/eye_gbuffer.h"
 #include "solvers/splatting/min_max_mipmap.h"
 #include "solvers/splatting/multiresolution_buffer.h"
+#include "solvers/splatting/near_field_gather.h"
 #include "solvers/splatting/reflective_shadow_map.h"
 #include "solvers/splatting/splatting_indirect.h"
 #include "solvers/splatting/splatting_preview.h"
@@ -349,6 +350,32 @@ TEST(SplattingDirect, LampIrradianceAgreesWithTheMisEstimate) {
     }
     EXPECT_NEAR(lamp / n, mis / n, 0.02 * mis / n);
   }
+}
+
+// Bias compensation is unbiased: in the sphere room (G = 1 / (4 R^2) between any two points)
+// with the clamp well below G, the clamped VPLs carry b / G of the bounce and the gather rays
+// the rest; together the analytic one bounce.
+TEST(SplattingGather, ClampedVplsPlusGatherRaysGiveTheAnalyticBounce) {
+  SceneDescription d;
+  const uint32_t m = add_material(d, glm::vec3(0.6f));
+  d.meshes.push_back(make_icosphere({0, 0, 0}, 1.0f, 4, m));
+  d.lights.push_back(test::point_light({0, 0, 0}, glm::vec3(5.0f)));
+  const BuiltScene built(d);
+  const DirectLight direct(*built.scene, *built.tracer);
+  const VirtualPointLights vpls =
+      select_vpls(render_reflective_shadow_maps(*built.scene, *built.tracer, RsmOptions{}), 1024,
+                  VplSampling::kRegular);
+  const float bound = 0.1f;  // G = 0.25 everywhere: 40% by the VPLs, 60% by the rays
+  const double expected = 0.6 * 5.0 / kPiD;
+  const glm::vec3 p = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f)) * 0.995f;
+  const glm::vec3 n = -glm::normalize(p);
+  const glm::vec3 clamped = clamped_vpl_light(vpls, p, n, 0, vpls.size(), bound);
+  EXPECT_NEAR(clamped.x, expected * 0.4, 0.04 * expected * 0.4);
+  const glm::vec3 residual =
+      near_field_residual(*built.scene, *built.tracer, direct, p, n, bound, 4096, 1, 0);
+  EXPECT_NEAR(clamped.x + residual.x, expected, 0.03 * expected);
+  // Where G never reaches the bound the rays add nothing.
+  EXPECT_EQ(near_field_residual(*built.scene, *built.tracer, direct, p, n, 1.0f, 64, 1, 0).x, 0.0f);
 }
 
 }  // namespace

@@ -22,22 +22,10 @@ float geometry_bound(const VirtualPointLights& vpls, float radii) {
 
 glm::vec3 clamped_vpl_light(const VirtualPointLights& vpls, const glm::vec3& position,
                             const glm::vec3& normal, size_t begin, size_t end, float bound) {
-  const glm::vec3* p = vpls.positions.data();
-  const glm::vec3* n = vpls.normals.data();
-  const glm::vec3* f = vpls.fluxes.data();
-  float sr = 0.0f, sg = 0.0f, sb = 0.0f;
-  for (size_t v = begin; v < end; ++v) {
-    const float dx = p[v].x - position.x, dy = p[v].y - position.y, dz = p[v].z - position.z;
-    const float r2 = dx * dx + dy * dy + dz * dz;
-    const float cr = std::max(0.0f, normal.x * dx + normal.y * dy + normal.z * dz);
-    const float cv = std::max(0.0f, -(n[v].x * dx + n[v].y * dy + n[v].z * dz));
-    const float g = r2 > 0.0f ? cr * cv / (r2 * r2) : 0.0f;
-    const float w = std::min(g, bound);
-    sr += w * f[v].x;
-    sg += w * f[v].y;
-    sb += w * f[v].z;
-  }
-  return glm::vec3(sr, sg, sb) * (1.0f / (kPi * kPi));
+  return sum_over_vpls(vpls, position, normal, begin, end,
+                       [bound](float r2, float cr, float cv, float) {
+                         return r2 > 0.0f ? std::min(cr * cv / (r2 * r2), bound) : 0.0f;
+                       });
 }
 
 glm::vec3 near_field_residual(const Scene& scene, const RayTracer& tracer,

@@ -157,28 +157,15 @@ glm::vec3 vpl_term_over_pi(const VirtualPointLights& vpls, size_t v, const glm::
 
 namespace {
 
-// The VPLs [begin, end) at least sqrt(split2) radii of their surface away (all for 0), written
-// out over plain floats so that the compiler vectorizes the loop.
+// The VPLs [begin, end) at least sqrt(split2) radii of their surface away (all for 0).
 glm::vec3 far_vpl_light(const VirtualPointLights& vpls, const glm::vec3& position,
                         const glm::vec3& normal, size_t begin, size_t end, float split2) {
-  const glm::vec3* p = vpls.positions.data();
-  const glm::vec3* n = vpls.normals.data();
-  const glm::vec3* f = vpls.fluxes.data();
-  const float* a = vpls.disk_areas.data();
-  float sr = 0.0f, sg = 0.0f, sb = 0.0f;
-  for (size_t v = begin; v < end; ++v) {
-    const float dx = p[v].x - position.x, dy = p[v].y - position.y, dz = p[v].z - position.z;
-    const float r2 = dx * dx + dy * dy + dz * dz;
-    const float cr = std::max(0.0f, normal.x * dx + normal.y * dy + normal.z * dz);
-    const float cv = std::max(0.0f, -(n[v].x * dx + n[v].y * dy + n[v].z * dz));
-    // cos_r cos_v / (r^2 + A/pi) with both cosines' 1/r folded into r^2.
-    const bool far = r2 > 0.0f && r2 >= split2 * a[v];
-    const float w = far ? cr * cv / (r2 * (r2 + a[v])) : 0.0f;
-    sr += w * f[v].x;
-    sg += w * f[v].y;
-    sb += w * f[v].z;
-  }
-  return glm::vec3(sr, sg, sb) * (1.0f / (kPi * kPi));
+  return sum_over_vpls(vpls, position, normal, begin, end,
+                       [split2](float r2, float cr, float cv, float a) {
+                         // cos_r cos_v / (r^2 + A/pi), both cosines' 1/r folded into r^2.
+                         const bool far = r2 > 0.0f && r2 >= split2 * a;
+                         return far ? cr * cv / (r2 * (r2 + a)) : 0.0f;
+                       });
 }
 
 glm::vec3 texel_term_over_pi(const RsmTexel& t, const glm::vec3& position,
