@@ -84,43 +84,38 @@ std::vector<glm::vec3> MultiresolutionBuffer::upsample_interpolated() {
   return std::move(levels_[0].light);
 }
 
-std::vector<glm::vec3> MultiresolutionBuffer::upsample_nearest() const {
+template <typename Sample>
+std::vector<glm::vec3> MultiresolutionBuffer::sum_levels(Sample&& sample) const {
   std::vector<glm::vec3> out(size_t(width_) * height_, glm::vec3(0.0f));
   for (uint32_t y = 0; y < height_; ++y) {
     for (uint32_t x = 0; x < width_; ++x) {
       glm::vec3 sum(0.0f);
-      for (size_t k = 0; k < levels_.size(); ++k) {
-        const Level& l = levels_[k];
-        sum += l.light[size_t(y >> k) * l.width + (x >> k)];
-      }
+      for (uint32_t k = 0; k < levels_.size(); ++k) sum += sample(levels_[k], k, x, y);
       out[size_t(y) * width_ + x] = sum;
     }
   }
   return out;
 }
 
+std::vector<glm::vec3> MultiresolutionBuffer::upsample_nearest() const {
+  return sum_levels([](const Level& l, uint32_t k, uint32_t x, uint32_t y) {
+    return l.light[size_t(y >> k) * l.width + (x >> k)];
+  });
+}
+
 std::vector<glm::vec3> MultiresolutionBuffer::upsample_bilinear() const {
-  std::vector<glm::vec3> out(size_t(width_) * height_, glm::vec3(0.0f));
-  for (uint32_t y = 0; y < height_; ++y) {
-    for (uint32_t x = 0; x < width_; ++x) {
-      glm::vec3 sum(0.0f);
-      for (size_t k = 0; k < levels_.size(); ++k) {
-        const Level& l = levels_[k];
-        // The pixel centre in this level's texel coordinates (texel centres at +0.5).
-        const float scale = 1.0f / float(1u << k);
-        const float fx = std::clamp((float(x) + 0.5f) * scale - 0.5f, 0.0f, float(l.width - 1));
-        const float fy = std::clamp((float(y) + 0.5f) * scale - 0.5f, 0.0f, float(l.height - 1));
-        const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy);
-        const uint32_t x1 = std::min(x0 + 1, l.width - 1), y1 = std::min(y0 + 1, l.height - 1);
-        const float ax = fx - float(x0), ay = fy - float(y0);
-        const auto at = [&](uint32_t u, uint32_t v) { return l.light[size_t(v) * l.width + u]; };
-        sum += (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) +
-               (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
-      }
-      out[size_t(y) * width_ + x] = sum;
-    }
-  }
-  return out;
+  return sum_levels([](const Level& l, uint32_t k, uint32_t x, uint32_t y) {
+    // The pixel centre in this level's texel coordinates (texel centres at +0.5).
+    const float scale = 1.0f / float(1u << k);
+    const float fx = std::clamp((float(x) + 0.5f) * scale - 0.5f, 0.0f, float(l.width - 1));
+    const float fy = std::clamp((float(y) + 0.5f) * scale - 0.5f, 0.0f, float(l.height - 1));
+    const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy);
+    const uint32_t x1 = std::min(x0 + 1, l.width - 1), y1 = std::min(y0 + 1, l.height - 1);
+    const float ax = fx - float(x0), ay = fy - float(y0);
+    const auto at = [&](uint32_t u, uint32_t v) { return l.light[size_t(v) * l.width + u]; };
+    return (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) +
+           (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
+  });
 }
 
 void render_subsplats(const SubsplatSet& set, const MinMaxMipmap& mipmap,

@@ -47,6 +47,9 @@ class MultiresolutionBuffer {
     std::vector<uint8_t> filled;
   };
   std::vector<glm::vec3> upsample_interpolated();
+  // Σ over levels of sample(level, k, x, y) at every pixel (the two Fig. 7 combinations).
+  template <typename Sample>
+  std::vector<glm::vec3> sum_levels(Sample&& sample) const;
   std::vector<glm::vec3> upsample_nearest() const;
   std::vector<glm::vec3> upsample_bilinear() const;
 

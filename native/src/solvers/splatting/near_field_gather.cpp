@@ -31,12 +31,11 @@ glm::vec3 clamped_vpl_light(const VirtualPointLights& vpls, const glm::vec3& pos
 glm::vec3 near_field_residual(const Scene& scene, const RayTracer& tracer,
                               const DirectLight& direct, const glm::vec3& position,
                               const glm::vec3& normal, float bound, uint32_t rays, uint64_t seed,
-                              uint64_t point) {
+                              uint64_t point, uint64_t& traced) {
   if (rays == 0 || !(bound > 0.0f)) return glm::vec3(0.0f);
   const Frame frame(normal);
   const SurfacePoint x{position, normal, normal};
   glm::vec3 sum(0.0f);
-  uint64_t traced = 0;
   for (uint32_t k = 0; k < rays; ++k) {
     RandomStream rng(sample_pcg(seed ^ 0x5eed5eedull, point, k));
     const glm::vec3 local = sample_cosine_hemisphere(rng.next_float(), rng.next_float());
@@ -44,6 +43,7 @@ glm::vec3 near_field_residual(const Scene& scene, const RayTracer& tracer,
     ray.origin = direct.ray_origin(x);
     ray.direction = frame.to_world(local);
     const Hit hit = tracer.intersect(ray);
+    ++traced;
     if (!hit.hit) continue;
     const SurfacePoint y = surface_at_hit(scene, hit, ray.direction);
     const float cos_y = std::max(0.0f, -glm::dot(ray.direction, y.shading_normal));

@@ -28,10 +28,10 @@ glm::vec3 clamped_vpl_light(const VirtualPointLights& vpls, const glm::vec3& pos
                             const glm::vec3& normal, size_t begin, size_t end, float bound);
 
 // What the clamp left out, irradiance / pi, from `rays` cosine-weighted rays (seeded by
-// seed and point).
+// seed and point); the rays traced (gather and shadow rays) are added to `traced`.
 glm::vec3 near_field_residual(const Scene& scene, const RayTracer& tracer,
                               const DirectLight& direct, const glm::vec3& position,
                               const glm::vec3& normal, float bound, uint32_t rays, uint64_t seed,
-                              uint64_t point);
+                              uint64_t point, uint64_t& traced);
 
 }  // namespace bakegi

@@ -98,19 +98,20 @@ void splat_at_points(std::span<const glm::vec3> positions, std::span<const glm::
     uint32_t level;
     size_t begin, end;
   };
-  const auto sort_by_cell = [&](size_t begin, size_t end, uint32_t level) {
-    std::sort(ids.begin() + begin, ids.begin() + end, [&](uint32_t a, uint32_t b) {
-      return grid.key(positions[a], level) < grid.key(positions[b], level);
-    });
-  };
+  // Sorts ids[begin, end) by their cell at `level` (each key computed once) and appends one
+  // range per cell.
+  std::vector<std::pair<uint64_t, uint32_t>> keyed;
   const auto push_cells = [&](size_t begin, size_t end, uint32_t level,
                               std::vector<Range>& out_ranges) {
-    sort_by_cell(begin, end, level);
-    for (size_t i = begin; i < end;) {
-      const uint64_t key = grid.key(positions[ids[i]], level);
+    keyed.clear();
+    for (size_t i = begin; i < end; ++i)
+      keyed.push_back({grid.key(positions[ids[i]], level), ids[i]});
+    std::sort(keyed.begin(), keyed.end());
+    for (size_t i = 0; i < keyed.size(); ++i) ids[begin + i] = keyed[i].second;
+    for (size_t i = 0; i < keyed.size();) {
       size_t j = i + 1;
-      while (j < end && grid.key(positions[ids[j]], level) == key) ++j;
-      out_ranges.push_back({level, i, j});
+      while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+      out_ranges.push_back({level, begin + i, begin + j});
       i = j;
     }
   };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
@@ -63,17 +64,16 @@ float scene_extent_of(const EyeGBuffer& g) {
   return e > 0.0f ? e : 1.0f;
 }
 
-}  // namespace
-
-std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
-                                      const SplattingSettings& settings,
-                                      SplatStatistics& statistics, const RayTracer* tracer,
-                                      float ray_epsilon) {
+// Steps 3-6 with the multiresolution buffer (refinement shared, by light, or per VPL).
+std::vector<glm::vec3> splat_multiresolution(const EyeGBuffer& gbuffer,
+                                             const VirtualPointLights& vpls,
+                                             const SplattingSettings& settings,
+                                             const PixelLight& pixel_light,
+                                             SplatStatistics& statistics) {
   auto start = std::chrono::steady_clock::now();
-  const bool full = settings.refinement == SubsplatRefinement::kNone;
   const uint32_t coarsest =
-      full ? 0 : coarsest_level_for(gbuffer.width, gbuffer.height, settings.base_resolution);
-  const uint32_t finest = settings.max_resolution == 0 || full
+      coarsest_level_for(gbuffer.width, gbuffer.height, settings.base_resolution);
+  const uint32_t finest = settings.max_resolution == 0
                               ? 0
                               : std::min(coarsest, coarsest_level_for(gbuffer.width, gbuffer.height,
                                                                       settings.max_resolution));
@@ -84,36 +84,15 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
 
   start = std::chrono::steady_clock::now();
   MultiresolutionBuffer buffer(gbuffer.width, gbuffer.height, mipmap.levels());
-  if (settings.refinement == SubsplatRefinement::kIllumination) {
+  const bool per_vpl = settings.refinement == SubsplatRefinement::kIllumination;
+  if (per_vpl) {
     buffer = render_illumination_refined(mipmap, gbuffer, vpls, coarsest, finest,
                                          settings.illumination_threshold, scene_extent_of(gbuffer),
                                          statistics.subsplats_per_level);
     statistics.seconds_render = seconds_since(start);
   } else {
-    // The light at a pixel: through the clustered shadow rays, or the paper's VPL light.
-    VirtualPointLights clustered;
-    VplClusters clusters;
-    if (tracer && settings.visibility_clusters > 0) {
-      clustered = vpls;
-      clusters = cluster_vpls(clustered, settings.visibility_clusters);
-    }
-    const PixelLight pixel_light = [&](size_t p) {
-      if (clusters.count() > 0) {
-        return visible_vpl_light(clusters, *tracer, ray_epsilon, gbuffer.position[p],
-                                 gbuffer.geometric[p], [&](size_t begin, size_t end) {
-                                   return near_field_light(clustered, gbuffer.position[p],
-                                                           gbuffer.normal[p], begin, end,
-                                                           settings.near_field_split);
-                                 });
-      }
-      if (settings.near_field_split > 0.0f) {
-        return near_field_light(vpls, gbuffer.position[p], gbuffer.normal[p], 0, vpls.size(),
-                                settings.near_field_split);
-      }
-      return vpl_irradiance_over_pi(vpls, gbuffer.position[p], gbuffer.normal[p]);
-    };
     SubsplatSet set;
-    if (!full && settings.light_threshold > 0.0f) {
+    if (settings.light_threshold > 0.0f) {
       // Refinement and rendering at once: the light decides the last splits.
       std::vector<glm::vec3> values;
       set = refine_subsplats_by_light(
@@ -122,8 +101,7 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
       for (size_t i = 0; i < set.subsplats.size(); ++i) buffer.add(set.subsplats[i], values[i]);
       statistics.seconds_render = seconds_since(start);
     } else {
-      set = full ? pixel_subsplats(mipmap)
-                 : refine_subsplats(mipmap, coarsest, finest, settings.discontinuity);
+      set = refine_subsplats(mipmap, coarsest, finest, settings.discontinuity);
       statistics.seconds_refine = seconds_since(start);
       start = std::chrono::steady_clock::now();
       render_subsplats(set, mipmap, pixel_light, buffer);
@@ -142,17 +120,75 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
       }
     }
   }
-  statistics.subsplats = 0;
-  for (uint64_t c : statistics.subsplats_per_level) statistics.subsplats += c;
 
   start = std::chrono::steady_clock::now();
   // The per-VPL variant's subsplats differ between VPLs, so a texel's neighbours hold other
   // VPLs' light: the interpolation, which averages neighbours that hold light, would mix
   // them; each VPL's subsplats are whole pieces of its light, which nearest upsampling sums.
-  const bool per_vpl = settings.refinement == SubsplatRefinement::kIllumination;
   std::vector<glm::vec3> image =
-      buffer.upsample(full || per_vpl ? Upsampling::kNearest : settings.upsampling);
+      buffer.upsample(per_vpl ? Upsampling::kNearest : settings.upsampling);
+  statistics.seconds_upsample = seconds_since(start);
+  return image;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
+                                      const SplattingSettings& settings,
+                                      SplatStatistics& statistics, const RayTracer* tracer,
+                                      float ray_epsilon) {
+  // The light at a pixel: through the clustered shadow rays, or the paper's VPL light.
+  VirtualPointLights clustered;
+  VplClusters clusters;
+  if (tracer && settings.visibility_clusters > 0) {
+    clustered = vpls;
+    clusters = cluster_vpls(clustered, settings.visibility_clusters);
+  }
+  const PixelLight pixel_light = [&](size_t p) {
+    if (clusters.count() > 0) {
+      uint64_t rays = 0;  // a frame reports times, not rays
+      return visible_vpl_light(
+          clusters, *tracer, ray_epsilon, gbuffer.position[p], gbuffer.geometric[p],
+          [&](size_t begin, size_t end) {
+            return near_field_light(clustered, gbuffer.position[p], gbuffer.normal[p], begin, end,
+                                    settings.near_field_split);
+          },
+          rays);
+    }
+    if (settings.near_field_split > 0.0f) {
+      return near_field_light(vpls, gbuffer.position[p], gbuffer.normal[p], 0, vpls.size(),
+                              settings.near_field_split);
+    }
+    return vpl_irradiance_over_pi(vpls, gbuffer.position[p], gbuffer.normal[p]);
+  };
+
+  std::vector<glm::vec3> image;
+  if (settings.refinement == SubsplatRefinement::kNone) {
+    // Full-resolution splatting, the baseline: every seen pixel gathers, nothing else.
+    const auto start = std::chrono::steady_clock::now();
+    image.assign(gbuffer.size(), glm::vec3(0.0f));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, gbuffer.size(), 256), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        if (gbuffer.hit[i]) image[i] = pixel_light(i);
+      }
+    });
+    statistics.seconds_render = seconds_since(start);
+    const uint64_t seen = uint64_t(std::count(gbuffer.hit.begin(), gbuffer.hit.end(), 1));
+    statistics.subsplats_per_level = {seen};
+    if (settings.record_pixel_levels) {
+      statistics.pixel_levels.assign(gbuffer.size(), 255);
+      for (size_t i = 0; i < gbuffer.size(); ++i) {
+        if (gbuffer.hit[i]) statistics.pixel_levels[i] = 0;
+      }
+    }
+  } else {
+    image = splat_multiresolution(gbuffer, vpls, settings, pixel_light, statistics);
+  }
+  statistics.subsplats = 0;
+  for (uint64_t c : statistics.subsplats_per_level) statistics.subsplats += c;
+
   // §4.3: detail the coarse levels smoothed away, from the angle to the eye (equation 3).
+  const auto start = std::chrono::steady_clock::now();
   for (size_t i = 0; i < image.size(); ++i) {
     if (!gbuffer.hit[i]) {
       image[i] = glm::vec3(0.0f);
@@ -163,7 +199,7 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
       image[i] *= settings.detail_alpha * facing + (1.0f - settings.detail_alpha);
     }
   }
-  statistics.seconds_upsample = seconds_since(start);
+  statistics.seconds_upsample += seconds_since(start);
   return image;
 }
 

@@ -1,5 +1,7 @@
 #include "solvers/splatting/splatting_solver.h"
 
+#include <atomic>
+
 #include "lights/direct_light.h"
 #include "scene/scene.h"
 #include "solvers/splatting/near_field_gather.h"
@@ -9,6 +11,7 @@
 #include "solvers/splatting/virtual_point_lights.h"
 #include "solvers/splatting/vpl_visibility.h"
 #include "util/job_context.h"
+#include "util/report.h"
 
 namespace bakegi {
 
@@ -34,6 +37,7 @@ class SplattingField : public IndirectField {
 
   void evaluate(const BakePoints& points, std::span<glm::vec3> out,
                 JobContext& context) const override {
+    std::atomic<uint64_t> rays{0};
     const PointLightFunction light = [&](const glm::vec3& position, const glm::vec3& normal,
                                          size_t point) {
       // The VPLs: clamped where the gather takes over, else bounded by their own surface.
@@ -41,15 +45,17 @@ class SplattingField : public IndirectField {
         if (bound_ > 0.0f) return clamped_vpl_light(vpls_, position, normal, begin, end, bound_);
         return near_field_light(vpls_, position, normal, begin, end, settings_.near_field_split);
       };
+      uint64_t traced = 0;
       // Bake points carry one normal: it stands for the geometric one too.
       glm::vec3 value = clusters_.count() > 0
                             ? visible_vpl_light(clusters_, tracer_, direct_.ray_epsilon(), position,
-                                                normal, range_light)
+                                                normal, range_light, traced)
                             : range_light(0, vpls_.size());
       if (bound_ > 0.0f) {
         value += near_field_residual(scene_, tracer_, direct_, position, normal, bound_,
-                                     settings_.gather_rays, settings_.seed, point);
+                                     settings_.gather_rays, settings_.seed, point, traced);
       }
+      rays.fetch_add(traced, std::memory_order_relaxed);
       return value;
     };
     PointSubsplatOptions options;
@@ -61,6 +67,11 @@ class SplattingField : public IndirectField {
     }
     PointSubsplatStatistics statistics;
     splat_at_points(points.positions, points.normals, options, light, out, statistics, context);
+    Report& report = context.report();
+    report.add_count("rays", rays.load());
+    report.add_count("splatting_vpls", vpls_.size());
+    report.add_count("splatting_evaluations", statistics.evaluations);
+    report.add_count("splatting_single_points", statistics.single_points);
   }
 
  private:
@@ -91,6 +102,9 @@ std::unique_ptr<IndirectField> SplattingSolver::solve(const SolveInputs& inputs,
   rsm.ray_epsilon = inputs.direct.ray_epsilon();
   const std::vector<ReflectiveShadowMap> maps =
       render_reflective_shadow_maps(inputs.scene, inputs.tracer, rsm);
+  uint64_t texels = 0;  // one ray each
+  for (const ReflectiveShadowMap& map : maps) texels += map.texels.size();
+  context.report().add_count("rays", texels);
   context.throw_if_cancelled();
   return std::make_unique<SplattingField>(
       select_vpls(maps, settings.vpl_count, settings.vpl_sampling), settings, inputs.scene,

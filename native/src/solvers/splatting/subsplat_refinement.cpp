@@ -132,17 +132,6 @@ SubsplatSet refine_subsplats_by_light(const MinMaxMipmap& mipmap, uint32_t coars
   return counted(std::move(done), mipmap.levels());
 }
 
-SubsplatSet pixel_subsplats(const MinMaxMipmap& mipmap) {
-  std::vector<Subsplat> all;
-  const MipLevel& l = mipmap.level(0);
-  for (uint32_t y = 0; y < l.height; ++y) {
-    for (uint32_t x = 0; x < l.width; ++x) {
-      if (l.hits[l.index(x, y)] > 0) all.push_back({0, x, y});
-    }
-  }
-  return counted(std::move(all), mipmap.levels());
-}
-
 uint64_t illumination_refined_subsplats(
     const MinMaxMipmap& mipmap, const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
     size_t vpl, uint32_t coarsest, uint32_t finest, float threshold, float floor,

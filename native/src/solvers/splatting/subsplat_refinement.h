@@ -33,10 +33,6 @@ struct SubsplatSet {
 SubsplatSet refine_subsplats(const MinMaxMipmap& mipmap, uint32_t coarsest, uint32_t finest,
                              const DiscontinuityTest& test);
 
-// Every seen pixel as its own subsplat: full-resolution splatting, the reference the
-// multiresolution buffer is measured against.
-SubsplatSet pixel_subsplats(const MinMaxMipmap& mipmap);
-
 // The shared set with a test on the summed light as well (the paper's §3.3.1 idea applied to
 // all VPLs at once, for flat surfaces near bright VPLs, which no depth or normal test
 // splits): level by level, each subsplat that the geometry keeps reads its light

@@ -81,7 +81,7 @@ VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count) {
 
 glm::vec3 visible_vpl_light(const VplClusters& clusters, const RayTracer& tracer, float epsilon,
                             const glm::vec3& position, const glm::vec3& geometric_normal,
-                            const VplRangeLight& range_light) {
+                            const VplRangeLight& range_light, uint64_t& rays) {
   glm::vec3 sum(0.0f);
   const glm::vec3 origin = position + geometric_normal * epsilon;
   for (size_t c = 0; c < clusters.count(); ++c) {
@@ -98,6 +98,7 @@ glm::vec3 visible_vpl_light(const VplClusters& clusters, const RayTracer& tracer
     ray.direction = to / distance;
     ray.tnear = 0.0f;
     ray.tfar = distance - 2.0f * epsilon;
+    ++rays;
     if (!tracer.occluded(ray)) sum += light;
   }
   return sum;

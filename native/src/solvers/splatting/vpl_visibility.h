@@ -32,9 +32,10 @@ VplClusters cluster_vpls(VirtualPointLights& vpls, uint32_t count);
 using VplRangeLight = std::function<glm::vec3(size_t begin, size_t end)>;
 
 // Light at a receiver with one shadow ray per cluster: each unblocked cluster adds
-// range_light over its VPLs; `epsilon` offsets the ray's start off the receiver.
+// range_light over its VPLs; `epsilon` offsets the ray's start off the receiver. Counts the
+// shadow rays into `rays`.
 glm::vec3 visible_vpl_light(const VplClusters& clusters, const RayTracer& tracer, float epsilon,
                             const glm::vec3& position, const glm::vec3& geometric_normal,
-                            const VplRangeLight& range_light);
+                            const VplRangeLight& range_light, uint64_t& rays);
 
 }  // namespace bakegi
