@@ -15,6 +15,7 @@ import numpy
 
 from .. import native
 from ..export import scene as export_scene_module
+from ..export.targets import MESH_LIKE
 from . import camera as preview_camera
 
 
@@ -58,8 +59,9 @@ def _geometry_changed(depsgraph):
         data = update.id
         if isinstance(data, (bpy.types.Mesh, bpy.types.Material)):
             return True
-        if isinstance(data, bpy.types.Object):
-            if data.type != "LIGHT" and (update.is_updated_geometry or update.is_updated_transform):
+        # Only what is exported as geometry: a moved camera or light needs no re-export.
+        if isinstance(data, bpy.types.Object) and data.type in MESH_LIKE:
+            if update.is_updated_geometry or update.is_updated_transform:
                 return True
     return False
 
