@@ -3,7 +3,7 @@
 to a .bgs scene file for the CLI (benchmarks, convergence studies, leakage tables).
 
     /usr/bin/python3 tools/export_scene.py --scene office --out /tmp/office.bgs [--build build]
-        [-- extra arguments for the scene script, e.g. --zero-thickness]
+        [--target CORNER|POINT|LIGHTMAP] [--texels-per-meter T] [-- extra arguments for the scene script, e.g. --zero-thickness]
 
 Writes next to the .bgs: <name>.blend (the built scene) and <name>_objects.json (the baked
 objects' names in export order, and the corner count of each, so CLI results can be split
@@ -29,8 +29,11 @@ def main():
     parser.add_argument("--scene", required=True, help="a script name in scenes/ (without .py)")
     parser.add_argument("--out", required=True, help="the .bgs file to write")
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build directory with libbakegi.so")
-    parser.add_argument("--target", default="CORNER", choices=("CORNER", "POINT"),
-                        help="bake points: face corners (default) or vertices")
+    parser.add_argument("--target", default="CORNER", choices=("CORNER", "POINT", "LIGHTMAP"),
+                        help="bake points: face corners (default), vertices, or lightmap texels "
+                             "(also writes the layout, <out without .bgs>.bgl)")
+    parser.add_argument("--texels-per-meter", type=float, default=40.0,
+                        help="lightmap density for --target LIGHTMAP")
     args = parser.parse_args(argv)
 
     out = os.path.abspath(args.out)
@@ -46,7 +49,8 @@ def main():
     info = stem + "_objects.json"
     expression = (
         "import bpy, bakegi, json; from bakegi.export import targets as export; "
-        f"r = bakegi.export_scene_file({out!r}, target={args.target!r}, objects='VISIBLE'); "
+        f"r = bakegi.export_scene_file({out!r}, target={args.target!r}, objects='VISIBLE', "
+        f"texels_per_meter={args.texels_per_meter!r}); "
         "objs = export.resolve_targets(bpy.context, 'VISIBLE')[0]; "
         f"info = [{{'name': o.name, 'corners': len(o.data.loops), 'vertices': len(o.data.vertices)}} for o in objs]; "
         f"json.dump({{'objects': info, 'export': r}}, open({info!r}, 'w'), default=str)"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up (tools/setup.sh) and runs every test: the native GoogleTest suite (Release), the
 # add-on's bpy-free modules under pytest (python_tests/, no Blender), the native suite under
-# AddressSanitizer + UBSan, and the tests inside real Blender: Debian's
+# AddressSanitizer + UBSan, the readers under libFuzzer (.ci/fuzz, 15 s per fuzzer), and the
+# tests inside real Blender: Debian's
 # Blender 3.4 (blender_tests/, the UI test under Xvfb) and Blender 4.2 LTS, 4.5 LTS and 5.0
 # as Python modules (tools/setup_bpy.sh; every test but the UI one). One line per Blender
 # version, then one line "N passed, N failed, N skipped" over everything.
@@ -30,6 +31,10 @@ python_rc=$?
 echo "== native tests (AddressSanitizer + UBSan)"
 BAKEGI_JUNIT="$results/asan.xml" bash .ci/asan
 asan_rc=$?
+
+echo "== fuzzers (libFuzzer with ASan + UBSan on the readers: .ci/fuzz)"
+BAKEGI_JUNIT="$results/fuzz.xml" BAKEGI_BUILD_DIR="$build_dir" bash .ci/fuzz
+fuzz_rc=$?
 
 echo "== tests in Blender"
 /usr/bin/python3 blender_tests/run.py --library "$build_dir/libbakegi.so" --junit "$results/blender.xml" \
@@ -98,8 +103,8 @@ PY
   fi
 fi
 
-if [ $native_rc -ne 0 ] || [ $python_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $web_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
-  echo "FAILED (exit codes: native $native_rc, python $python_rc, asan $asan_rc, blender $blender_rc, web $web_rc, portable $portable_rc)"
+if [ $native_rc -ne 0 ] || [ $python_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $fuzz_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $web_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
+  echo "FAILED (exit codes: native $native_rc, python $python_rc, asan $asan_rc, fuzz $fuzz_rc, blender $blender_rc, web $web_rc, portable $portable_rc)"
   status=1
 else
   status=0

@@ -13,6 +13,7 @@ packages=(cmake ninja-build g++ pkg-config
           libembree-dev libglm-dev libtbb-dev libopenexr-dev libeigen3-dev libboost-dev
           libmeshoptimizer-dev libcpp-httplib-dev libstb-dev
           googletest libgtest-dev libgmock-dev libbenchmark-dev
+          clang  # libFuzzer (.ci/fuzz)
           blender python3 python3-numpy python3-matplotlib python3-venv python3-pytest xvfb xauth
           # what the bpy wheels of tools/setup_bpy.sh link to (ldd of bpy/__init__.so)
           libgl1 libsm6 libice6 libxxf86vm1 libxi6 libxkbcommon0 libxfixes3 libxrender1 libgomp1)
