@@ -132,6 +132,22 @@ class ErrorPaths(common.SmallCornellCase):
                     self.bakegi.bake(objects="VISIBLE", **arguments)
         self.assertSceneUnchanged(before)
 
+    def test_bad_method_settings_are_refused_before_the_export(self):
+        """A setting the core refuses (the path tracer's max_bounces beyond 65536, read by
+        antiradiance's fallback) is refused before the scene is exported or a lightmap UV map
+        made: it used to fail only when the job started, after the texels were rasterized."""
+        before = common.scene_snapshot()
+        uv_maps = {name: [uv.name for uv in obj.data.uv_layers] for name, obj in self.objects.items()
+                   if obj.type == "MESH"}
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="antiradiance", target="LIGHTMAP", objects="VISIBLE",
+                             method_settings={"max_bounces": 2 ** 20})
+        self.assertIn("max_bounces", str(caught.exception))
+        self.assertIn("65536", str(caught.exception))
+        self.assertEqual(uv_maps, {name: [uv.name for uv in obj.data.uv_layers]
+                                   for name, obj in self.objects.items() if obj.type == "MESH"})
+        self.assertSceneUnchanged(before)
+
 
 if __name__ == "__main__":
     common.run_tests(__name__)

@@ -142,6 +142,22 @@ class Meshless(common.SmallCornellCase):
             self.assertEqual(third["meshless_cache"], "miss")
             self.assertEqual(len(os.listdir(folder)), 2)
 
+    def test_a_blend_relative_cache_dir_is_not_the_filesystem_root(self):
+        """method_settings={"cache_dir": "//x"} is Blender's "next to the .blend" (for an
+        unsaved file: the add-on's user folder), as the panel's folders are; the core used to
+        take it for /x and write the cache at the filesystem root."""
+        compat = sys.modules["bakegi.compat"]
+        report = self.bakegi.bake(method="meshless", target="CORNER", objects="VISIBLE",
+                                  method_settings={**QUICK, "cache_dir": "//bakegi_test_cache"})
+        path = report["meshless_cache_path"]
+        self.assertFalse(path.startswith("//"), path)
+        self.assertFalse(os.path.exists("/bakegi_test_cache"), "the cache went to the root")
+        if not bpy.data.filepath:
+            folder = os.path.realpath(compat.user_folder("bakegi_cache"))
+            self.assertTrue(os.path.realpath(path).startswith(folder + os.sep), (path, folder))
+        self.assertTrue(os.path.isfile(path), path)
+        os.remove(path)
+
     def test_live_needs_a_method_that_relights(self):
         before = common.scene_snapshot()
         with self.assertRaises(self.bakegi.BakeGIError) as raised:

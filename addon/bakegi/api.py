@@ -96,6 +96,12 @@ def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
     method_settings = dict(method_settings or {})
     if not estimate_error:
         method_settings["error_probes"] = 0
+    cache_dir = method_settings.get("cache_dir")
+    if isinstance(cache_dir, str) and cache_dir:
+        # Blender's // (next to the .blend), as every folder setting of the add-on reads it:
+        # the core would take "//cache" for the folder /cache at the filesystem root.
+        method_settings["cache_dir"] = properties.blend_relative_directory(cache_dir,
+                                                                           "bakegi_cache")
     lightmap = LightmapOptions(uv_map=lightmap_uv_map, texels_per_meter=texels_per_meter,
                                max_side=lightmap_max_size, padding=lightmap_padding,
                                uv_method=lightmap_uv_method,

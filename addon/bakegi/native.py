@@ -115,6 +115,7 @@ _SIGNATURES = {
     "bakegi_abi_version": (c_uint32, []),
     "bakegi_struct_size": (c_size_t, [c_char_p]),
     "bakegi_settings_describe": (c_int, [c_char_p, c_char_p, c_size_t, POINTER(c_size_t)]),
+    "bakegi_settings_check": (c_int, [c_void_p]),
     "bakegi_version_string": (c_char_p, []),
     "bakegi_status_string": (c_char_p, [c_int]),
     "bakegi_last_error": (c_char_p, []),
@@ -919,6 +920,11 @@ class Settings(_Handle):
             raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
                               f"setting {key!r}: unsupported value type {type(value).__name__}")
         _check(status, f"setting {key!r}")
+
+    def check(self):
+        """Raises BakeGIError naming the first setting a bake would refuse (bakegi_settings_check:
+        the method's schema and its own reading), before any scene is exported."""
+        _check(load_library().bakegi_settings_check(self.handle), "checking the settings")
 
 
 class Preview(_Handle):

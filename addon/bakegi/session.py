@@ -70,6 +70,10 @@ class BakeSession:
         self.method_settings = dict(request.method_settings)
         if machine.memory_budget_mb > 0:
             self.method_settings.setdefault("memory_budget_mb", machine.memory_budget_mb)
+        # The core's own checks of every setting, now: a bad value must not wait until the
+        # scene is exported (or its lightmap texels rasterized) to be refused.
+        with native.Settings(**self.settings) as settings:
+            settings.check()
         budget = self.method_settings.get("memory_budget_mb")
         # The texel samples are held to the bake's budget too (a bad value is the core's to
         # refuse when the job starts).

@@ -5,7 +5,6 @@
 //                        [--compression zip|piz|none]]
 // At least one of --out and --exr-dir.
 #include <cstdio>
-#include <fstream>
 #include <optional>
 
 #include "arguments.h"
@@ -49,9 +48,7 @@ int run_bake_command(const std::vector<std::string>& words) {
 
   if (out_path) write_npy_float32(*out_path, run.values.data(), {count, 3});
   if (const auto report_path = args.value("report")) {
-    std::ofstream report(*report_path, std::ios::trunc);
-    report << run.report_json << "\n";
-    if (!report) throw FileError(*report_path + ": cannot write the report");
+    write_output_file(*report_path, run.report_json + "\n");
   }
   std::printf("%s\n", run.report_json.c_str());
   std::fprintf(stderr, "baked %llu points with %s in %.3f s%s%s\n",

@@ -9,19 +9,18 @@
 // the result (a diverging symmetric run is solved again by the asymmetric scheme) and, for
 // the last k, the core's residual history (the flux each iteration added, relative).
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "arguments.h"
 #include "bake_run.h"
 #include "bake_settings.h"
 #include "commands.h"
+#include "error_metric.h"
 #include "exit_codes.h"
 #include "file_error.h"
 #include "json_value.h"
 #include "scene_file.h"
 #include "usage_error.h"
-#include "error_metric.h"
 
 namespace bakegi::cli {
 
@@ -114,9 +113,7 @@ int run_converge_command(const std::vector<std::string>& words) {
   }
   json += "}}";
 
-  std::ofstream out(out_path, std::ios::trunc);
-  out << json << "\n";
-  if (!out) throw FileError(out_path + ": cannot write");
+  write_output_file(out_path, json + "\n");
   std::fprintf(stderr, "wrote %s\n", out_path.c_str());
   return kExitOk;
 }

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 
 #include "arguments.h"
@@ -84,9 +83,7 @@ int run_grid_bake(const std::vector<std::string>& words) {
                                info.c_str()),
         "writing " + out_path);
   if (const auto report_path = args.value("report")) {
-    std::ofstream report(*report_path, std::ios::trunc);
-    report << run.report_json << "\n";
-    if (!report) throw FileError(*report_path + ": cannot write the report");
+    write_output_file(*report_path, run.report_json + "\n");
   }
   bakegi_grid_info grid_info{};
   check(bakegi_grid_get_info(grid.get(), &grid_info), "the grid's info");

@@ -71,18 +71,14 @@ void write_npy_float32(const std::string& path, const float* data,
   dict += '\n';
   if (dict.size() > 0xFFFF) throw FileError(path + ": shape too long for a .npy header");
 
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file) throw FileError(path + ": cannot open for writing: " + std::strerror(errno));
+  std::string bytes(kMagic, kMagicSize);
   const uint16_t header_length = static_cast<uint16_t>(dict.size());
-  file.write(kMagic, kMagicSize);
-  file.put(1);
-  file.put(0);
-  file.write(reinterpret_cast<const char*>(&header_length), 2);
-  file.write(dict.data(), static_cast<std::streamsize>(dict.size()));
-  file.write(reinterpret_cast<const char*>(data),
-             static_cast<std::streamsize>(element_count(shape) * sizeof(float)));
-  file.close();
-  if (!file) throw FileError(path + ": write failed: " + std::strerror(errno));
+  bytes += char(1);
+  bytes += char(0);
+  bytes.append(reinterpret_cast<const char*>(&header_length), 2);
+  bytes += dict;
+  bytes.append(reinterpret_cast<const char*>(data), element_count(shape) * sizeof(float));
+  write_output_file(path, bytes);  // atomically: a kill leaves the previous file whole
 }
 
 NpyArray read_npy_float32(const std::string& path) {

@@ -5,12 +5,13 @@
 // fastest wall time is kept (the machine is shared; the minimum is the least disturbed).
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "arguments.h"
 #include "bake_run.h"
 #include "commands.h"
+#include "error_metric.h"
 #include "exit_codes.h"
 #include "file_error.h"
 #include "json_value.h"
@@ -18,7 +19,6 @@
 #include "report_summary.h"
 #include "scene_file.h"
 #include "usage_error.h"
-#include "error_metric.h"
 
 namespace bakegi::cli {
 namespace {
@@ -65,7 +65,7 @@ int run_sweep_command(const std::vector<std::string>& words) {
       if (r == 0 || run.wall_seconds < best.wall_seconds) best = std::move(run);
     }
     const auto metrics = error_metrics(best.values.data(), reference.data(), count);
-    const auto metric = [&](double ErrorMetrics::*field) {
+    const auto metric = [&](double ErrorMetrics::* field) {
       return metrics ? std::optional<double>((*metrics).*field) : std::nullopt;
     };
     const std::optional<double> error = metric(&ErrorMetrics::relative_rmse);
@@ -93,7 +93,7 @@ int run_sweep_command(const std::vector<std::string>& words) {
     std::fflush(stdout);
   }
 
-  std::ofstream out(out_path, std::ios::trunc);
+  std::ostringstream out;
   out << "{\n  \"scene\": " << json_quote(scene_path)
       << ",\n  \"reference\": " << json_quote(reference_path)
       << ",\n  \"metric\": \"relative RMSE over bake points, luminance-weighted (Rec. 709: "
@@ -102,8 +102,7 @@ int run_sweep_command(const std::vector<std::string>& words) {
       << ",\n  \"hardware_threads\": " << std::thread::hardware_concurrency()
       << ",\n  \"bake_points\": " << count << ",\n  \"runs\": [\n"
       << runs_json << "\n  ]\n}\n";
-  out.close();
-  if (!out) throw FileError(out_path + ": cannot write the sweep");
+  write_output_file(out_path, out.str());
   std::fprintf(stderr, "wrote %s\n", out_path.c_str());
   return kExitOk;
 }

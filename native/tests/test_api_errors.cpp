@@ -271,10 +271,11 @@ TEST(ApiErrors, NoLightAtAll) {
   const std::string no_light =
       "no light: the scene has no lights, no emissive material and a black world";
   EXPECT_ERROR(bakegi_scene_validate(scene.get()), BAKEGI_ERROR_INVALID_SCENE, no_light);
-  // A black lamp is no light either.
+  // A black (0 W) lamp is no light either, and the message says it is the lamp.
   const bakegi_light_desc black = point_light(0.5f, 0.5f, 0.5f, 0.0f);
   EXPECT_EQ(bakegi_scene_add_light(scene.get(), &black, nullptr), BAKEGI_OK);
-  EXPECT_ERROR(bakegi_scene_validate(scene.get()), BAKEGI_ERROR_INVALID_SCENE, no_light);
+  EXPECT_ERROR(bakegi_scene_validate(scene.get()), BAKEGI_ERROR_INVALID_SCENE,
+               "no light: the scene's 1 light has zero power or a black color");
   // The world alone lights the scene.
   const float sky[3] = {0.1f, 0.2f, 0.3f};
   EXPECT_EQ(bakegi_scene_set_world(scene.get(), sky), BAKEGI_OK);
@@ -286,6 +287,28 @@ TEST(ApiErrors, NoLightAtAll) {
   EXPECT_EQ(bakegi_scene_add_material(scene.get(), &glowing, nullptr), BAKEGI_OK);
   EXPECT_EQ(bakegi_scene_add_mesh(scene.get(), &mesh, nullptr), BAKEGI_OK);
   EXPECT_EQ(bakegi_scene_validate(scene.get()), BAKEGI_OK) << bakegi_last_error();
+}
+
+// Light values up to FLT_MAX used to pass and overflow inside the solvers (antiradiance
+// failed with an internal error, meshless returned zeros): anything above 1e15 is refused
+// where it enters, naming the element.
+TEST(ApiErrors, LightTooBrightToBake) {
+  ScenePtr scene = new_scene();
+  bakegi_material_desc glowing = grey_material();
+  glowing.emission[1] = 3.4e38f;
+  EXPECT_ERROR(bakegi_scene_add_material(scene.get(), &glowing, nullptr),
+               BAKEGI_ERROR_INVALID_SCENE, "emission is");
+  EXPECT_NE(std::string(bakegi_last_error()).find("above the brightest value"), std::string::npos);
+  const bakegi_light_desc lamp = point_light(0.5f, 0.5f, 0.5f, 2e15f);
+  EXPECT_ERROR(bakegi_scene_add_light(scene.get(), &lamp, nullptr), BAKEGI_ERROR_INVALID_SCENE,
+               "above the brightest value");
+  const float sky[3] = {0.0f, 0.0f, 1e30f};
+  EXPECT_ERROR(bakegi_scene_set_world(scene.get(), sky), BAKEGI_ERROR_INVALID_SCENE,
+               "world radiance");
+  // The brightest accepted lamp still validates.
+  const bakegi_light_desc bright = point_light(0.5f, 0.5f, 0.5f, 1e15f);
+  EXPECT_EQ(bakegi_scene_add_light(scene.get(), &bright, nullptr), BAKEGI_OK)
+      << bakegi_last_error();
 }
 
 // Stores a value outside an enum the way a C caller can (loading it as the enum type
@@ -413,16 +436,47 @@ TEST(ApiErrors, BadBakePoints) {
   EXPECT_EQ(ids[1], 0u);
 }
 
+// The message without its "bakegi_<function>: " prefix.
+std::string without_function(const std::string& message) {
+  const size_t colon = message.find(": ");
+  return colon == std::string::npos ? message : message.substr(colon + 2);
+}
+
+// Every case is also asked of bakegi_settings_check first, which must give the same answer
+// without a scene (the add-on asks it before exporting).
 TEST(ApiErrors, SettingsAreCheckedWhenAJobStarts) {
   ScenePtr scene = new_box_scene();
   PointsPtr points = new_floor_points(4);
   const auto A = BAKEGI_ERROR_INVALID_ARGUMENT;
   auto start = [&](bakegi_settings* settings) {
+    const bakegi_status checked = bakegi_settings_check(settings);
+    const std::string check_message = bakegi_last_error();
     bakegi_job* job = nullptr;
     const bakegi_status status = bakegi_job_start(scene.get(), points.get(), settings, &job);
+    const std::string start_message = bakegi_last_error();
     bakegi_job_destroy(job);
+    EXPECT_EQ(checked, status) << check_message;
+    if (status != BAKEGI_OK) {
+      EXPECT_EQ(without_function(check_message), without_function(start_message));
+    }
     return status;
   };
+
+  SettingsPtr good = new_settings("meshless");
+  EXPECT_EQ(bakegi_settings_set_int(good.get(), "levels", 1), BAKEGI_OK);
+  EXPECT_EQ(bakegi_settings_check(good.get()), BAKEGI_OK) << bakegi_last_error();
+  EXPECT_ERROR(bakegi_settings_check(nullptr), A, "settings");
+
+  // Path-tracer settings of a method that hands bakes to it are checked as its own.
+  SettingsPtr bounces = new_settings("antiradiance");
+  EXPECT_EQ(bakegi_settings_set_int(bounces.get(), "max_bounces", 1 << 20), BAKEGI_OK);
+  EXPECT_ERROR(start(bounces.get()), A, "setting \"max_bounces\" must be in [1, 65536]");
+  // What only the solver reads (a viewpoint that is not "x,y,z") is checked too.
+  SettingsPtr viewpoint = new_settings("meshless");
+  EXPECT_EQ(bakegi_settings_set_string(viewpoint.get(), "viewpoint", "north"), BAKEGI_OK);
+  EXPECT_NE(bakegi_settings_check(viewpoint.get()), BAKEGI_OK);
+  EXPECT_NE(std::string(bakegi_last_error()).find("viewpoint"), std::string::npos)
+      << bakegi_last_error();
 
   SettingsPtr settings = new_settings();
   EXPECT_EQ(bakegi_settings_set_int(settings.get(), "sampels", 16), BAKEGI_OK);

@@ -49,8 +49,8 @@ BAKEGI_API const char* bakegi_version_string(void);
 #define BAKEGI_ABI_VERSION 1
 BAKEGI_API uint32_t bakegi_abi_version(void);
 /* sizeof a public struct by its name ("bakegi_material_desc", "bakegi_mesh_desc",
- * "bakegi_light_desc", "bakegi_lightmap_info", "bakegi_grid_info"), 0 for another name: a binding checks its own
- * layouts against the library's. */
+ * "bakegi_light_desc", "bakegi_lightmap_info", "bakegi_grid_info"), 0 for another name: a binding
+ * checks its own layouts against the library's. */
 BAKEGI_API size_t bakegi_struct_size(const char* name);
 
 /* ---- errors ----------------------------------------------------------------------------- */
@@ -230,20 +230,17 @@ BAKEGI_API bakegi_status bakegi_points_get(const bakegi_points* points, float* p
  * keeps the points apart. count must equal the number of points; each candidate must be
  * <= its index and name a point that is its own candidate. Stored in scene files. */
 BAKEGI_API bakegi_status bakegi_points_set_share_candidates(bakegi_points* points,
-                                                           const uint32_t* candidates,
-                                                           uint64_t count);
+                                                            const uint32_t* candidates,
+                                                            uint64_t count);
 /* Optional "display probes": points inside the targets' faces where a job also estimates the
  * error of what a viewer shows between bake points (see "error_probes" below). The value
  * shown at probe k is sum_j weights[4k+j] * result[indices[4k+j]], j < 4 (the barycentric
  * weights of the corners of the face it lies in; unused entries weigh 0). object_ids may be
  * NULL (0 for all). Replaces the probes set before; count 0 removes them. Not stored in
  * scene files. */
-BAKEGI_API bakegi_status bakegi_points_set_display_probes(bakegi_points* points,
-                                                          const float* positions,
-                                                          const float* normals,
-                                                          const uint32_t* object_ids,
-                                                          const uint32_t* indices,
-                                                          const float* weights, uint64_t count);
+BAKEGI_API bakegi_status bakegi_points_set_display_probes(
+    bakegi_points* points, const float* positions, const float* normals, const uint32_t* object_ids,
+    const uint32_t* indices, const float* weights, uint64_t count);
 
 /* Which points lie inside or under geometry of `scene` (the test lightmaps' reject_inside
  * uses: from each point `rays` (1..4096; 0 = 32) fixed rays over the hemisphere of its normal;
@@ -311,10 +308,16 @@ BAKEGI_API bakegi_status bakegi_settings_set_float(bakegi_settings* settings, co
  * setting uses, the same for the C API, the CLI and the add-on}. Writes at most
  * capacity bytes including the NUL and stores the full length (without NUL) in *out_length;
  * call with capacity 0 to ask for the length. An unknown method is INVALID_ARGUMENT. */
-BAKEGI_API bakegi_status bakegi_settings_describe(const char* method, char* buffer,
-                                                  size_t capacity, size_t* out_length);
+BAKEGI_API bakegi_status bakegi_settings_describe(const char* method, char* buffer, size_t capacity,
+                                                  size_t* out_length);
 BAKEGI_API bakegi_status bakegi_settings_set_string(bakegi_settings* settings, const char* key,
                                                     const char* value);
+/* Checks `settings` as bakegi_job_start will, without a scene: the method (the default
+ * when none is named), every key, type, range and choice against its schema, and what the
+ * method itself reads (e.g. meshless "viewpoint" must be "x,y,z"). BAKEGI_OK, or
+ * INVALID_ARGUMENT with the message naming the first bad setting (bakegi_last_error), so a
+ * caller can refuse a bake before exporting the scene. */
+BAKEGI_API bakegi_status bakegi_settings_check(const bakegi_settings* settings);
 
 /* ---- bake jobs -------------------------------------------------------------------------- */
 
@@ -443,17 +446,16 @@ BAKEGI_API bakegi_status bakegi_lightmaps_add_to(bakegi_lightmaps* lightmaps, ui
  * *out_rejected (may be NULL) gets the number of samples dropped. */
 BAKEGI_API bakegi_status bakegi_lightmaps_reject_inside(bakegi_lightmaps* lightmaps,
                                                         const bakegi_scene* scene, uint32_t rays,
-                                                        float backface_fraction,
-                                                        float max_distance,
+                                                        float backface_fraction, float max_distance,
                                                         uint64_t* out_rejected);
 
 typedef struct bakegi_lightmap_info {
   uint32_t width, height;
-  uint64_t first_point;        /* its samples are points [first_point, first_point + */
-  uint64_t point_count;        /*   point_count) of bakegi_lightmaps_get_points */
-  uint64_t covered_texels;     /* texels with at least one sample */
-  uint64_t rejected_samples;   /* dropped by bakegi_lightmaps_reject_inside */
-  uint64_t skipped_triangles;  /* zero UV area or zero world area */
+  uint64_t first_point;       /* its samples are points [first_point, first_point + */
+  uint64_t point_count;       /*   point_count) of bakegi_lightmaps_get_points */
+  uint64_t covered_texels;    /* texels with at least one sample */
+  uint64_t rejected_samples;  /* dropped by bakegi_lightmaps_reject_inside */
+  uint64_t skipped_triangles; /* zero UV area or zero world area */
 } bakegi_lightmap_info;
 
 BAKEGI_API uint32_t bakegi_lightmaps_count(const bakegi_lightmaps* lightmaps);
@@ -537,7 +539,7 @@ typedef struct bakegi_grid bakegi_grid;
 
 typedef struct bakegi_grid_info {
   float bounds_min[3], bounds_max[3];
-  uint32_t resolution[3];    /* vertices along x, y, z */
+  uint32_t resolution[3]; /* vertices along x, y, z */
   uint64_t vertex_count;
   uint64_t invalid_vertices; /* inside geometry: filled from their neighbours */
 } bakegi_grid_info;
@@ -585,8 +587,7 @@ typedef enum bakegi_grid_directional {
  * directional: a bakegi_grid_directional value (docs/ivg.md measures both). */
 BAKEGI_API bakegi_status bakegi_grid_evaluate(const bakegi_grid* grid, const float* positions,
                                               const float* normals, uint64_t count,
-                                              int interpolation, int directional,
-                                              float* out_rgb);
+                                              int interpolation, int directional, float* out_rgb);
 
 typedef enum bakegi_grid_encoding {
   BAKEGI_GRID_FLOAT = 0,     /* the 3x3 float matrices: exact, 216 bytes a vertex */
@@ -602,26 +603,26 @@ typedef enum bakegi_grid_encoding {
  * sees); with BAKEGI_GRID_DARKEN_BURIED points inside or under geometry (as
  * bakegi_points_flag_inside finds them, 32 rays) read 0, as a bake sees them. out_codes (may
  * be NULL): per point 0 = read, 1 = unsure (it saw no grid vertex near it: 0 written; a face
- * outside the grid's rooms, or a grid too coarse for the place), 2 = buried. The scene is validated and its BVH built (the cost of a bake's first step). */
+ * outside the grid's rooms, or a grid too coarse for the place), 2 = buried. The scene is validated
+ * and its BVH built (the cost of a bake's first step). */
 typedef enum bakegi_grid_scene_flags {
   BAKEGI_GRID_VISIBILITY = 1,
   BAKEGI_GRID_DARKEN_BURIED = 2
 } bakegi_grid_scene_flags;
 BAKEGI_API bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid,
                                                        const bakegi_scene* scene,
-                                                       const float* positions,
-                                                       const float* normals, uint64_t count,
-                                                       int interpolation, int directional,
-                                                       uint32_t flags, float* out_rgb,
-                                                       uint8_t* out_codes);
+                                                       const float* positions, const float* normals,
+                                                       uint64_t count, int interpolation,
+                                                       int directional, uint32_t flags,
+                                                       float* out_rgb, uint8_t* out_codes);
 
 /* The .bgivg file (format in native/src/grid/grid_file.h). encoding: a bakegi_grid_encoding
  * value. info_json (may be NULL: the grid's own, "{}" unless read from a file): a JSON object
  * stored with the grid (what made it). Written atomically; BAKEGI_ERROR_IO if it cannot be. */
 BAKEGI_API bakegi_status bakegi_grid_write_file(const bakegi_grid* grid, const char* path,
                                                 int encoding, const char* info_json);
-/* Reads a .bgivg file (a quantized or factored one comes back expanded to matrices). BAKEGI_ERROR_IO if unreadable,
- * BAKEGI_ERROR_BAD_FILE naming what is wrong. */
+/* Reads a .bgivg file (a quantized or factored one comes back expanded to matrices).
+ * BAKEGI_ERROR_IO if unreadable, BAKEGI_ERROR_BAD_FILE naming what is wrong. */
 BAKEGI_API bakegi_status bakegi_grid_read_file(const char* path, bakegi_grid** out_grid);
 /* The JSON stored with a grid read from a file ("{}" otherwise), like bakegi_job_get_report:
  * writes at most capacity bytes (NUL included) and the full length to *out_length (may be

@@ -8,6 +8,7 @@
 #include "api/api_guard.h"
 #include "api/handles.h"
 #include "api/text_output.h"
+#include "bake/settings_check.h"
 #include "settings/setting_schema.h"
 #include "solvers/solver.h"
 #include "util/report.h"
@@ -66,6 +67,14 @@ bakegi_status bakegi_settings_set_string(bakegi_settings* settings, const char* 
     require_key(key);
     require(value, "value");
     settings->settings.set(key, std::string(value));
+  });
+}
+
+bakegi_status bakegi_settings_check(const bakegi_settings* settings) {
+  return guarded(__func__, [&] {
+    require(settings, "settings");
+    bakegi::Settings copy = settings->settings;  // the defaults it adds are not the caller's
+    bakegi::check_bake_settings(copy);
   });
 }
 

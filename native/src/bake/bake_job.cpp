@@ -12,11 +12,12 @@
 #include "bake/error_estimate.h"
 #include "bake/point_denoiser.h"
 #include "bake/point_sharing.h"
+#include "bake/settings_check.h"
 #include "bake/solver_run.h"
 #include "grid/grid_error_probes.h"
 #include "grid/grid_hit_radiance.h"
-#include "grid/grid_visibility.h"
 #include "grid/grid_push_pull.h"
+#include "grid/grid_visibility.h"
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
@@ -46,7 +47,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // same 10%: error_check.THRESHOLD).
 constexpr double kGridErrorWarning = 0.10;
 
-std::string megabytes(size_t bytes) { return MemoryBudget::megabytes(bytes); }
+std::string megabytes(size_t bytes) {
+  return MemoryBudget::megabytes(bytes);
+}
 
 std::string percent(double fraction) {
   char text[32];
@@ -129,18 +132,8 @@ BakeJob::BakeJob(SceneDescription description, BakePoints points,
 
 void BakeJob::start() {
   // The method picks the schema; every given value is then checked at once (before any work).
-  apply_default_method_settings(settings_);
-  const auto method = settings_.values().find("method");
-  if (method != settings_.values().end() && !std::holds_alternative<std::string>(method->second)) {
-    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "setting \"method\" must be a string, got " +
-                                                   std::string(method->second.index() == 0
-                                                                   ? "an integer"
-                                                                   : "a float"));
-  }
-  method_ = method == settings_.values().end() ? std::string(kDefaultMethod)
-                                               : std::get<std::string>(method->second);
+  method_ = validated_method(settings_);
   const SettingSchema& schema = method_schema(method_);
-  settings_.validate(schema, setting_keys_of_any_method());
   const SettingReader settings(settings_, schema);
   settings.get_string("method");  // remembered: the report and cache keys name the method
   threads_ = int(settings.get_int("threads"));
@@ -318,11 +311,11 @@ void BakeJob::gather_grid_from(const IndirectField& field, Report& report) {
   const size_t bytes = IrradianceVectorGrid::bytes_for(layout.vertex_count());
   const MemoryBudget budget = solver_memory();
   if (bytes > budget.remaining()) {
-    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
-                "the grid of " + std::to_string(layout.vertex_count()) + " vertices needs " +
-                    megabytes(bytes) + ", more than the " + megabytes(budget.remaining()) +
-                    " left of the budget of " + budget.describe() +
-                    "; use larger cells or fewer vertices");
+    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, "the grid of " + std::to_string(layout.vertex_count()) +
+                                                " vertices needs " + megabytes(bytes) +
+                                                ", more than the " + megabytes(budget.remaining()) +
+                                                " left of the budget of " + budget.describe() +
+                                                "; use larger cells or fewer vertices");
   }
   context_.set_stage("gathering the grid", context_.progress(), 1.0);
   const auto start = std::chrono::steady_clock::now();
@@ -345,15 +338,15 @@ void BakeJob::gather_grid_from(const IndirectField& field, Report& report) {
   report.add_seconds("grid_gather", seconds_since(start));
   if (error_probes_ > 0) estimate_grid_error(*grid, options.seed, report);
   if (statistics.invalid_vertices == layout.vertex_count()) {
-    report.warn("grid: every vertex lies inside geometry (its rays hit back faces); the grid "
-                "is black. Check the grid's bounds against the scene");
+    report.warn(
+        "grid: every vertex lies inside geometry (its rays hit back faces); the grid "
+        "is black. Check the grid's bounds against the scene");
   }
   std::lock_guard lock(mutex_);
   grid_ = std::move(grid);
 }
 
-void BakeJob::estimate_grid_error(const IrradianceVectorGrid& grid, uint64_t seed,
-                                  Report& report) {
+void BakeJob::estimate_grid_error(const IrradianceVectorGrid& grid, uint64_t seed, Report& report) {
   context_.set_stage("estimating the error", context_.progress(), 1.0);
   const auto start = std::chrono::steady_clock::now();
   ErrorEstimateSettings settings;
@@ -378,9 +371,9 @@ void BakeJob::estimate_grid_error(const IrradianceVectorGrid& grid, uint64_t see
   report_error_estimate(estimate, report, start);
   const ProbeErrorStatistics& e = estimate.at_points;
   if (e.nrmse > kGridErrorWarning) {
-    report.warn("grid: Apply Grid's light is about " + percent(e.nrmse) + " (90%: " +
-                percent(e.low) + " to " + percent(e.high) + ") off the path tracer's at " +
-                std::to_string(e.probes) +
+    report.warn("grid: Apply Grid's light is about " + percent(e.nrmse) +
+                " (90%: " + percent(e.low) + " to " + percent(e.high) +
+                ") off the path tracer's at " + std::to_string(e.probes) +
                 " points on the surfaces in its box. Smaller cells and more rays lower it; "
                 "light that changes within a cell (sun patches, corners, contact shadows) the "
                 "grid cannot hold: bake those surfaces directly");
@@ -501,7 +494,7 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
       method_used = "pathtrace";
       solver_ = make_solver("pathtrace");
       fallback_settings_ = std::make_unique<Settings>(std::move(fallback_settings));
-      const SolveInputs fallback_inputs{scene,     *tracer_, *direct_, *fallback_settings_,
+      const SolveInputs fallback_inputs{scene,    *tracer_,       *direct_, *fallback_settings_,
                                         &points_, solver_memory()};
       run = run_solver(*solver_, method_used, fallback_inputs, context_);
     }

@@ -1,6 +1,5 @@
 #include "lightmap/exr_writer.h"
 
-#include <atomic>
 #include <cmath>
 #include <exception>
 #include <filesystem>
@@ -17,8 +16,8 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <unistd.h>
 
+#include "atomic_file.h"
 #include "util/error.h"
 
 namespace bakegi {
@@ -52,18 +51,10 @@ std::vector<float> top_down_rgb(const RgbImage& image) {
   return rgb;
 }
 
-// A name beside path that no other writer (thread or process) picks at the same time.
 // OpenEXR takes UTF-8 file names on every platform (it widens them itself on Windows).
 std::string utf8_name(const fs::path& path) {
   const std::u8string name = path.u8string();
   return std::string(name.begin(), name.end());
-}
-
-fs::path temporary_path_beside(const fs::path& path) {
-  static std::atomic<uint64_t> counter{0};
-  fs::path temporary = path;
-  temporary += ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  return temporary;
 }
 
 }  // namespace
@@ -83,6 +74,7 @@ void write_exr(const std::string& path, const RgbImage& image, const ExrWriteOpt
   }
   const std::vector<float> rgb = top_down_rgb(image);
   const fs::path target = fs::u8path(path);
+  remove_stale_temporaries(target);  // of writers killed mid-write
   const fs::path temporary = temporary_path_beside(target);
   try {
     const int width = int(image.width), height = int(image.height);

@@ -1,18 +1,20 @@
 #include "scene/scene_file.h"
 
 #include <bit>
-#include <cerrno>
 #include <cstring>
-#include <fstream>
 
 #include "scene/scene_validation.h"
 #include "util/byte_stream.h"
 #include "util/error.h"
+#include "util/file_bytes.h"
 #include "util/framed_file.h"
 
 namespace bakegi {
 
 namespace {
+
+// A larger file is refused before it is read (the reader also bounds every count by it).
+constexpr uint64_t kMaxSceneFileBytes = uint64_t(16) << 30;
 
 constexpr char kMagic[8] = {'B', 'A', 'K', 'E', 'G', 'I', '\0', 'S'};
 
@@ -202,8 +204,7 @@ BakePoints read_points(Reader& r, uint32_t version) {
   if (version >= 5) {
     const uint64_t candidates = r.u64();
     r.need(candidates, 4, "share candidates");
-    r.array(points.share_candidates, candidates, 4, "share candidates",
-            [&] { return r.u32(); });
+    r.array(points.share_candidates, candidates, 4, "share candidates", [&] { return r.u32(); });
   }
   return points;
 }
@@ -265,26 +266,12 @@ SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& n
 
 void write_scene_file(const std::string& path, const SceneDescription& scene,
                       const BakePoints* points) {
-  const std::vector<uint8_t> bytes = encode_scene_file(scene, points);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) {
-    throw Error(BAKEGI_ERROR_IO, "cannot write " + path + ": " + std::strerror(errno));
-  }
-  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-  out.close();
-  if (!out) throw Error(BAKEGI_ERROR_IO, "writing " + path + " failed: " + std::strerror(errno));
+  // Atomic: a kill mid-write leaves the previous file whole.
+  write_file_atomically(utf8_path(path), encode_scene_file(scene, points));
 }
 
 SceneFile read_scene_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(BAKEGI_ERROR_IO, "cannot open " + path + ": " + std::strerror(errno));
-  const std::streamoff size = in.tellg();
-  if (size < 0) throw Error(BAKEGI_ERROR_IO, "cannot read " + path);
-  std::vector<uint8_t> bytes(static_cast<size_t>(size));
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(bytes.data()), size);
-  if (!in) throw Error(BAKEGI_ERROR_IO, "reading " + path + " failed: " + std::strerror(errno));
-  return decode_scene_file(bytes, path);
+  return decode_scene_file(read_file_bytes(utf8_path(path), kMaxSceneFileBytes), path);
 }
 
 }  // namespace bakegi

@@ -53,7 +53,6 @@ bool finite(const glm::vec2& v) {
 // be baked, and Blender stores an infinite coordinate as FLT_MAX (3.4e38), which is finite.
 constexpr float kMaxCoordinate = 1e12f;
 
-
 const char* non_finite_word(const glm::vec3& v) {
   return std::isnan(v.x) || std::isnan(v.y) || std::isnan(v.z) ? "NaN" : "infinite";
 }
@@ -79,10 +78,20 @@ const char* light_type_name(bakegi_light_type type) {
   return "unknown";
 }
 
+// The brightest light value (W, W/m^2 or W/(m^2 sr)) accepted: 12 orders of magnitude above
+// the sun's irradiance, and low enough that a million such lights seen from a millimetre
+// stay below FLT_MAX (3.4e38) through every solver's sums. A FLT_MAX emission used to pass
+// and then overflow into an internal error or zeros.
+constexpr float kMaxLightValue = 1e15f;
+
 void check_color(const glm::vec3& color, const std::string& what) {
   if (!finite(color)) invalid(what + " is " + non_finite_word(color));
   if (color.x < 0 || color.y < 0 || color.z < 0) {
     invalid(what + " must not be negative, got " + vec(color));
+  }
+  if (color.x > kMaxLightValue || color.y > kMaxLightValue || color.z > kMaxLightValue) {
+    invalid(what + " is " + vec(color) + ", above the brightest value bakegi bakes (" +
+            num(kMaxLightValue) + "): float sums of it would overflow");
   }
 }
 
@@ -167,7 +176,8 @@ void check_mesh(const Mesh& mesh, size_t index) {
               non_finite_word(mesh.positions[v]));
     }
     if (!position_in_range(mesh.positions[v])) {
-      invalid(name + ", vertex " + std::to_string(v) + ": " + position_out_of_range_text(mesh.positions[v]));
+      invalid(name + ", vertex " + std::to_string(v) + ": " +
+              position_out_of_range_text(mesh.positions[v]));
     }
   }
   for (size_t i = 0; i < mesh.indices.size(); ++i) {
@@ -474,8 +484,10 @@ Scene build_relit_scene(const Scene& previous, const SceneDescription& descripti
 void normalize_lights_and_require_one(Scene& scene) {
   bool has_light =
       is_positive(scene.description.world_radiance) || !scene.emissive_triangles.empty();
+  size_t dark_lights = 0;
   for (Light& light : scene.description.lights) {
     has_light = has_light || is_positive(light.color);
+    dark_lights += is_positive(light.color) ? 0 : 1;
     if (light.type != BAKEGI_LIGHT_POINT) {
       light.direction = glm::vec3(glm::normalize(glm::dvec3(light.direction)));
     }
@@ -487,6 +499,11 @@ void normalize_lights_and_require_one(Scene& scene) {
         light.size_y = light.size_x;
       }
     }
+  }
+  if (!has_light && dark_lights > 0) {
+    invalid("no light: the scene's " + std::to_string(dark_lights) +
+            (dark_lights == 1 ? " light has" : " lights have") +
+            " zero power or a black color, and it has no emissive material and a black world");
   }
   if (!has_light) {
     invalid("no light: the scene has no lights, no emissive material and a black world");
