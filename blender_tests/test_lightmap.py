@@ -233,6 +233,30 @@ class LightmapFiles(LightmapCase):
         sides = [self.tile_side(report, name) for name in walls]
         self.assertAlmostEqual(sides[0] / sides[1], 2.0, delta=0.05)
 
+    def test_lightmap_files_are_named_per_blend_file_and_scene(self):
+        """Two .blend files with the default scene name baking into one folder (or two unsaved
+        files in the temporary folder) used to write the same BakeGI_Lightmap_<scene>.exr and
+        overwrite each other's lightmaps. The name now holds the .blend's name, the scene's
+        and an identifier the scene keeps: a second bake of the same scene replaces its own
+        file, another file's scene of the same name writes another."""
+        first = self.bake_lightmap()["lightmap"]["path"]
+        scene = bpy.context.scene
+        self.assertEqual(os.path.dirname(first), self.folder)
+        self.assertIn("_" + scene.name + "_", os.path.basename(first))
+        self.assertIn(scene["bakegi_file_id"], os.path.basename(first))
+        self.assertEqual(self.bake_lightmap()["lightmap"]["path"], first)
+        # Another .blend's scene of the same name: what a second file would hold.
+        identity = scene["bakegi_file_id"]
+        scene["bakegi_file_id"] = "0" * 8 if identity != "0" * 8 else "1" * 8
+        second = self.bake_lightmap()["lightmap"]["path"]
+        self.assertNotEqual(second, first)
+        self.assertTrue(os.path.isfile(first) and os.path.isfile(second))
+        # A scene name that climbs folders stays in the folder the user chose.
+        self.addCleanup(setattr, scene, "name", scene.name)
+        scene.name = "../../escape"
+        third = self.bake_lightmap()["lightmap"]["path"]
+        self.assertEqual(os.path.dirname(os.path.realpath(third)), os.path.realpath(self.folder))
+
     def test_objects_sharing_a_mesh_get_a_tile_each(self):
         """A linked duplicate shares the mesh (and its lightmap UV map) but not the light
         it receives: each object is baked into its own tile."""
@@ -253,8 +277,7 @@ class LightmapFiles(LightmapCase):
 
     def test_cancel_keeps_the_finished_texture(self):
         from bakegi import request, session
-        self.bake_lightmap()
-        path = os.path.join(self.folder, "BakeGI_Lightmap_" + bpy.context.scene.name + ".exr")
+        path = self.bake_lightmap()["lightmap"]["path"]
         with open(path, "rb") as f:
             written = f.read()
         before = common.scene_snapshot()

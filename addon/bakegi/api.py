@@ -51,8 +51,8 @@ def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
     Lightmaps: each target's UV map lightmap_uv_map (made with lightmap_uv_method, 'SMART'
     or 'LIGHTMAP_PACK', where missing) gets a square tile of texels_per_meter texels per
     metre (at most lightmap_max_size) in one atlas, written as
-    <lightmap_folder>/BakeGI_Lightmap_<scene>.exr (// = next to the .blend) and loaded as
-    the image BakeGI_Lightmap_<scene>; report["lightmap"] holds its size, texel counts and
+    <lightmap_folder>/BakeGI_Lightmap_<blend>_<scene>_<id>.exr (// = next to the .blend;
+    write/file_names.py) and loaded as the image BakeGI_Lightmap_<scene>; report["lightmap"] holds its size, texel counts and
     path. lightmap_reject_inside: drop texels that lie inside other geometry (off for
     single-sided foliage, which it rejects too).
 
@@ -85,8 +85,8 @@ def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
     Empty, whose display cube is the box, or any object's bounding box; or its name), or the
     visible scene's bounds when None; cells of about grid_cell_size metres (0: 32 on the
     longest axis), at most grid_max_vertices (0: 64^3), grid_rays rays per vertex hemisphere.
-    Written to <grid_folder>/BakeGI_Grid_<scene>.bgivg (quantized: 42 bytes a vertex, else
-    216); report["grid"] holds its path, resolution, bounds and counts. objects and
+    Written to <grid_folder>/BakeGI_Grid_<blend>_<scene>_<id>.bgivg (quantized: 42 bytes a
+    vertex, else 216); report["grid"] holds its path, resolution, bounds and counts. objects and
     hook_materials do not apply; apply_grid() lights meshes from it.
     Raises bakegi.BakeGIError with the core's message; on error (or cancel) nothing in the
     scene is changed.

@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 from . import error_check, live, native
 from .export import points as export_points, scene as export_scene, targets as export_targets
 from .ui import preferences
-from .write import attributes, grid_file, lightmap_image, material_hook, uv_maps
+from .write import attributes, file_names, grid_file, lightmap_image, material_hook, uv_maps
 from .native import BakeGIError
 
 
@@ -287,8 +287,10 @@ class BakeSession:
 
     def _write_grid(self):
         """Writes the grid job's grid next to the .blend (atomically, by the core)."""
+        import bpy
         os.makedirs(self.grid_folder, exist_ok=True)
-        path = os.path.join(self.grid_folder, grid_file.grid_file_name(self.scene_name))
+        path = os.path.join(self.grid_folder, grid_file.grid_file_name(
+            bpy.data.filepath, self.scene_name, self._file_identity(bpy.data)))
         with self.job.grid() as grid:
             info = grid.info()
             grid.write(path, quantized=self.grid.quantized,
@@ -301,8 +303,8 @@ class BakeSession:
 
     def _write_lightmap(self, data, rgb):
         import bpy  # the session runs inside Blender; the rest of this module does not need it
-        path = os.path.join(self.lightmap_folder,
-                            lightmap_image.lightmap_file_name(self.scene_name))
+        path = os.path.join(self.lightmap_folder, lightmap_image.lightmap_file_name(
+            bpy.data.filepath, self.scene_name, self._file_identity(data)))
         image, dropped = lightmap_image.write_lightmap(
             data, self.exported, rgb, path, self.scene_name, self.lightmap_full_float,
             bpy.data.filepath)
@@ -312,6 +314,11 @@ class BakeSession:
                 "bake them together with these objects to keep their lightmaps")
         return {"path": path, "image": image.name,
                 "file_bytes": os.path.getsize(path) if os.path.exists(path) else 0}
+
+    def _file_identity(self, data):
+        """The baked scene's identifier in its file names (write/file_names.py)."""
+        scene = data.scenes.get(self.scene_name)
+        return file_names.file_identity(scene) if scene is not None else "unnamed"
 
     @staticmethod
     def _lightmap_counts(exported_lightmaps):

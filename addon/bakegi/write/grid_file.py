@@ -12,15 +12,16 @@ from .. import native
 from ..export import materials, points as export_points
 from ..export.targets import BakeTarget
 from . import attributes, material_hook
-from .file_names import safe_name
+from .file_names import baked_file_name
 
 # The custom property of the scene that names its newest grid file (what apply_grid reads
 # when no path is given); set by every successful GRID bake.
 GRID_PATH_PROPERTY = "bakegi_grid_path"
 
 
-def grid_file_name(scene_name):
-    return f"BakeGI_Grid_{safe_name(scene_name)}.bgivg"
+def grid_file_name(blend_path, scene_name, identity):
+    """See file_names.baked_file_name: unique per .blend file and scene."""
+    return baked_file_name("BakeGI_Grid", blend_path, scene_name, identity, ".bgivg")
 
 
 def object_bounds(obj):

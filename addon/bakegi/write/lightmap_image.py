@@ -7,7 +7,7 @@ import os
 
 from ..native import BakeGIError
 from .attributes import drop_lightmap, look_up_targets
-from .file_names import safe_name
+from .file_names import baked_file_name
 from .material_hook import ATTRIBUTE_NAME, LIGHTMAP_OFFSET, LIGHTMAP_SCALE, LIGHTMAP_WEIGHT
 
 
@@ -15,8 +15,9 @@ def lightmap_image_name(scene_name):
     return f"BakeGI_Lightmap_{scene_name}"
 
 
-def lightmap_file_name(scene_name):
-    return f"BakeGI_Lightmap_{safe_name(scene_name)}.exr"
+def lightmap_file_name(blend_path, scene_name, identity):
+    """See file_names.baked_file_name: unique per .blend file and scene."""
+    return baked_file_name("BakeGI_Lightmap", blend_path, scene_name, identity, ".exr")
 
 
 def write_lightmap(data, exported, rgb, path, scene_name, full_float=False, blend_path=""):
