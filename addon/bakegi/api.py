@@ -53,8 +53,8 @@ def bake(method=None, samples=None, seed=0, target="CORNER", objects="SELECTED",
     metre (at most lightmap_max_size) in one atlas, written as
     <lightmap_folder>/BakeGI_Lightmap_<blend>_<scene>_<id>.exr (// = next to the .blend;
     write/file_names.py) and loaded as the image BakeGI_Lightmap_<scene>; report["lightmap"]
-    holds its size, texel counts and path. lightmap_reject_inside: drop texels that lie inside other geometry (off for
-    single-sided foliage, which it rejects too).
+    holds its size, texel counts and path. lightmap_reject_inside: drop texels that lie
+    inside other geometry (off for single-sided foliage, which it rejects too).
 
     objects: 'SELECTED', 'VISIBLE', or a list of objects (or their names). Every visible
     object takes part in the light transport; only the targets receive the attribute.
