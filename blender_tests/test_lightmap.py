@@ -189,12 +189,27 @@ class Lightmap(LightmapCase):
         self.assertIn("1 MiB budget", str(caught.exception))
         self.assertEqual(common.snapshot_difference(before, common.scene_snapshot()), [])
 
+    def test_an_atlas_over_budget_is_refused_before_any_texel_is_rasterized(self):
+        """16.7 million texels (a 4096^2 atlas) under a 256 MB budget: refused from the
+        charts' area (every texel a chart covers holds at least one sample) before the core
+        rasterizes anything; it used to be refused after 32 s of rasterizing 1.3 GB."""
+        before = common.scene_snapshot()
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bake_lightmap(method="pathtrace", samples=1, texels_per_meter=4096.0,
+                               lightmap_max_size=4096, method_settings={"memory_budget_mb": 256})
+        self.assertEqual(caught.exception.status, "BAKEGI_ERROR_OUT_OF_MEMORY")
+        message = str(caught.exception)
+        self.assertIn("at least", message)  # the add-on's bound, not the core's "up to"
+        self.assertIn("256 MiB budget", message)
+        self.assertEqual(common.snapshot_difference(before, common.scene_snapshot()), [])
+
     def test_a_failed_bake_takes_back_the_uv_maps_it_made(self):
         before = common.scene_snapshot()
         uv_maps = {n: [l.name for l in self.objects[n].data.uv_layers] for n in NAMES}
         with self.assertRaises(self.bakegi.BakeGIError):
-            # A setting the core refuses, found after the UV maps were made.
-            self.bake_lightmap(method_settings={"bins": -1})
+            # A memory budget the texels exceed, found after the UV maps were made (bad
+            # settings are refused before: test_errors).
+            self.bake_lightmap(texels_per_meter=200.0, method_settings={"memory_budget_mb": 1})
         self.assertEqual(uv_maps, {n: [l.name for l in self.objects[n].data.uv_layers]
                                    for n in NAMES})
         self.assertEqual(common.snapshot_difference(before, common.scene_snapshot()), [])

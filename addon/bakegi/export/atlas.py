@@ -55,6 +55,26 @@ class ExportedLightmaps:
         self.lightmaps.close()
 
 
+# Bytes a texel sample takes in the core (kBytesPerSample, native/src/lightmap/lightmap_set.cpp).
+SAMPLE_BYTES = 76
+
+
+def check_sample_budget(uv_areas, tile_sides, budget_mb):
+    """Refuses an atlas whose texel samples surely exceed the memory budget, before any is
+    rasterized (the core checks each object's upper bound as it rasterizes it, which refused a
+    16.7-million-texel atlas only after 32 s of work). Every (texel, triangle) overlap is one
+    sample of weight at most 1, and a triangle's weights sum to its area in texels, so the
+    samples are at least the charts' area in texels."""
+    least = sum(area * side * side for area, side in zip(uv_areas, tile_sides))
+    if least * SAMPLE_BYTES > budget_mb * 2 ** 20:
+        raise BakeGIError(
+            "BAKEGI_ERROR_OUT_OF_MEMORY",
+            f"the lightmaps need at least {least:,.0f} texel samples "
+            f"({least * SAMPLE_BYTES / 2 ** 20:,.0f} MiB), more than the {budget_mb} MiB budget "
+            "(memory_budget_mb); lower the texel density or the lightmap size, or raise the "
+            "budget")
+
+
 def lightmap_points(exporter, targets, options, warnings):
     """Lays the targets' lightmaps out in one atlas (their texels are rasterized by
     ExportedLightmaps.build()). Returns (ExportedLightmaps, [BakeTarget])."""
@@ -85,6 +105,7 @@ def lightmap_points(exporter, targets, options, warnings):
         warnings.append(f"the lightmaps did not fit one {lightmap_layout.MAX_ATLAS_SIDE}-texel "
                         f"atlas; every object got {atlas.density_scale:.0%} of the asked "
                         "density")
+    check_sample_budget(uv_areas, [tile.side for tile in atlas.tiles], options.memory_budget_mb)
     samples = native.Lightmaps()
     samples.set_memory_budget(options.memory_budget_mb)
     result = ExportedLightmaps(samples, atlas.width, atlas.height, options,
