@@ -162,6 +162,7 @@ _SIGNATURES = {
     "bakegi_job_start_relight": (c_int, [_P, _P, _P, _P, _PP]),
     "bakegi_lightmaps_create": (c_int, [_PP]),
     "bakegi_lightmaps_set_memory_budget": (c_int, [c_void_p, c_uint64]),
+    "bakegi_lightmaps_cancel": (c_int, [c_void_p]),
     "bakegi_lightmaps_destroy": (None, [_P]),
     "bakegi_lightmaps_add": (c_int, [_P, _P, c_uint32, POINTER(c_float), c_uint32, c_uint32,
                                      POINTER(c_uint32)]),
@@ -694,6 +695,11 @@ class Lightmaps(_Handle):
         """What the texel samples may take (MB): refused before they are made beyond it."""
         _check(load_library().bakegi_lightmaps_set_memory_budget(self.handle, int(megabytes)),
                "bakegi_lightmaps_set_memory_budget")
+
+    def cancel(self):
+        """From any thread: a running or later add/add_to/reject_inside stops with
+        BAKEGI_ERROR_CANCELLED (bakegi_lightmaps_cancel)."""
+        _check(load_library().bakegi_lightmaps_cancel(self.handle), "bakegi_lightmaps_cancel")
 
     def add(self, scene, mesh, uvs, width, height):
         """A width x height lightmap for core mesh `mesh` of `scene`; uvs: (3*T, 2) lightmap

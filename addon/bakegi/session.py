@@ -179,7 +179,7 @@ class BakeSession:
 
     def poll(self):
         if self._starter is not None and self._starter.is_alive():
-            return Progress(0.0, "rasterizing lightmap texels", -1.0, False)
+            return Progress(0.0, self.exported.lightmaps.stage, -1.0, False)
         if self.job is None:  # the worker failed: finish() raises its error
             return Progress(1.0, "", -1.0, True)
         job = self.job
@@ -196,7 +196,9 @@ class BakeSession:
         self._take_back_changes()  # bpy: here, on the main thread
         starter, self._starter = self._starter, None
         if starter is not None and starter.is_alive():
-            # The lightmap worker may still start a job: wind both down behind it.
+            # The core stops the worker's texel work within a texel row (it used to run on
+            # for seconds after Esc); the worker may still start a job: wind both down.
+            self.exported.lightmaps.lightmaps.cancel()
             def wind_down():
                 starter.join()
                 self._stop_job(True)

@@ -2,17 +2,20 @@
 // bake result (a constant per lightmap) written as EXR reads back per lightmap within half
 // precision, rejection drops the floor texels under a box, and misuse returns
 // INVALID_ARGUMENT with a message (never a throw).
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "bakegi/bakegi.h"
 #include "bakegi/bakegi_handles.hpp"
-#include "lightmap_test_scene.h"
 #include "lightmap/exr_writer.h"
+#include "lightmap_test_scene.h"
 
 namespace bakegi::test {
 namespace {
@@ -103,9 +106,9 @@ TEST_F(LightmapApi, ResolveIntoMemoryIsWhatTheExrHolds) {
   const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
   const uint32_t mesh = floor.add_to(scene.get(), 10);
   LightmapsPtr lightmaps = new_lightmaps();
-  ASSERT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 6, 5,
-                                 nullptr),
-            BAKEGI_OK)
+  ASSERT_EQ(
+      bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 6, 5, nullptr),
+      BAKEGI_OK)
       << bakegi_last_error();
   bakegi_lightmap_info info{};
   ASSERT_EQ(bakegi_lightmaps_get_info(lightmaps.get(), 0, &info), BAKEGI_OK);
@@ -134,8 +137,8 @@ TEST_F(LightmapApi, ResolveIntoMemoryIsWhatTheExrHolds) {
             BAKEGI_OK)
       << bakegi_last_error();
   std::vector<float> rgb_image(3 * pixels, -1.0f);
-  ASSERT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 3,
-                                     rgb_image.data(), rgb_image.size()),
+  ASSERT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 3, rgb_image.data(),
+                                     rgb_image.size()),
             BAKEGI_OK);
   ASSERT_EQ(file.pixels.size(), pixels);
   for (size_t i = 0; i < pixels; ++i) {
@@ -149,11 +152,11 @@ TEST_F(LightmapApi, ResolveIntoMemoryIsWhatTheExrHolds) {
   EXPECT_GT(rgba[4 * (pixels - 1) + 1], rgba[1]);
 
   std::vector<float> untouched(4 * pixels, -1.0f);
-  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 2,
-                                     untouched.data(), untouched.size()),
+  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 2, untouched.data(),
+                                     untouched.size()),
             BAKEGI_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 4,
-                                     untouched.data(), untouched.size() - 1),
+  EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count, 2, 4, untouched.data(),
+                                     untouched.size() - 1),
             BAKEGI_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(bakegi_last_error()).find("needs"), std::string::npos);
   EXPECT_EQ(bakegi_lightmaps_resolve(lightmaps.get(), 0, rgb.data(), count - 1, 2, 4,
@@ -188,6 +191,38 @@ TEST_F(LightmapApi, TheSampleBudgetIsTheBakes) {
       << bakegi_last_error();
   EXPECT_EQ(bakegi_lightmaps_set_memory_budget(lightmaps.get(), 0), BAKEGI_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(bakegi_lightmaps_set_memory_budget(nullptr, 64), BAKEGI_ERROR_INVALID_ARGUMENT);
+}
+
+// Esc during a lightmap bake's texel work: bakegi_lightmaps_cancel from another thread stops
+// a running add (a 2048^2 floor, about 4.2 M samples) within a texel row, adds nothing, and
+// refuses every later add and rejection. The flag is sticky, so the outcome does not depend
+// on when the worker gets to run.
+TEST_F(LightmapApi, CancelStopsTheTexelWorkFromAnotherThread) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
+  const uint32_t mesh = floor.add_to(scene.get(), 10);
+  LightmapsPtr lightmaps = new_lightmaps();
+  bakegi_status added = BAKEGI_OK;
+  std::chrono::steady_clock::time_point returned;
+  std::thread worker([&] {
+    added = bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 2048, 2048,
+                                 nullptr);
+    returned = std::chrono::steady_clock::now();
+  });
+  ASSERT_EQ(bakegi_lightmaps_cancel(lightmaps.get()), BAKEGI_OK);
+  const auto cancelled = std::chrono::steady_clock::now();
+  worker.join();
+  EXPECT_EQ(added, BAKEGI_ERROR_CANCELLED);
+  std::printf("lightmap add returned %.1f ms after the cancel\n",
+              1e3 * std::chrono::duration<double>(returned - cancelled).count());
+  EXPECT_EQ(bakegi_lightmaps_count(lightmaps.get()), 0u);  // nothing half added
+  EXPECT_EQ(
+      bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 8, 8, nullptr),
+      BAKEGI_ERROR_CANCELLED);
+  uint64_t rejected = 0;
+  EXPECT_EQ(bakegi_lightmaps_reject_inside(lightmaps.get(), scene.get(), 0, 0, 0, &rejected),
+            BAKEGI_ERROR_CANCELLED);
+  EXPECT_EQ(bakegi_lightmaps_cancel(nullptr), BAKEGI_ERROR_INVALID_ARGUMENT);
 }
 
 TEST_F(LightmapApi, PaddingAroundAChart) {

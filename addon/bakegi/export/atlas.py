@@ -31,6 +31,7 @@ class ExportedLightmaps:
     # Before build(): the core scene and, per target, (core mesh id, atlas UVs (3T, 2)).
     scene: native.Scene = None
     pending: list = field(default_factory=list)
+    stage: str = "rasterizing lightmap texels"  # what build() does now (the progress text)
 
     def build(self):
         """Rasterizes every target's texels into the atlas and drops those inside geometry
@@ -38,6 +39,7 @@ class ExportedLightmaps:
         Returns the bake points (a new native.Points)."""
         t0 = time.perf_counter()
         for i, (mesh_id, uvs) in enumerate(self.pending):
+            self.stage = f"rasterizing lightmap texels ({i + 1}/{len(self.pending)} objects)"
             if i == 0:
                 self.lightmaps.add(self.scene, mesh_id, uvs, self.width, self.height)
             else:
@@ -46,6 +48,7 @@ class ExportedLightmaps:
         self.seconds["rasterize"] = time.perf_counter() - t0
         if self.options.reject_inside:
             t1 = time.perf_counter()
+            self.stage = "rejecting lightmap texels inside geometry"
             self.rejected_samples = self.lightmaps.reject_inside(self.scene)
             self.seconds["reject_inside"] = time.perf_counter() - t1
         self.covered_texels = self.lightmaps.info(0)["covered_texels"]

@@ -406,6 +406,11 @@ BAKEGI_API bakegi_status bakegi_lightmaps_create(bakegi_lightmaps** out_lightmap
  * bake's memory_budget_mb. */
 BAKEGI_API bakegi_status bakegi_lightmaps_set_memory_budget(bakegi_lightmaps* lightmaps,
                                                             uint64_t megabytes);
+/* Callable from any thread while another runs bakegi_lightmaps_add, _add_to or
+ * _reject_inside on the same handle (not while it is destroyed): that call stops within a
+ * texel row or 64 samples with BAKEGI_ERROR_CANCELLED, adding no partial samples, and so does
+ * every later one. For a bake's Esc during its texel work. */
+BAKEGI_API bakegi_status bakegi_lightmaps_cancel(bakegi_lightmaps* lightmaps);
 BAKEGI_API void bakegi_lightmaps_destroy(bakegi_lightmaps* lightmaps);
 
 /* Adds a width x height lightmap (each 1..8192) for mesh `mesh` of `scene` (its index as

@@ -67,11 +67,17 @@ bakegi_status bakegi_lightmaps_create(bakegi_lightmaps** out_lightmaps) {
   });
 }
 
-bakegi_status bakegi_lightmaps_set_memory_budget(bakegi_lightmaps* lightmaps,
-                                                uint64_t megabytes) {
+bakegi_status bakegi_lightmaps_set_memory_budget(bakegi_lightmaps* lightmaps, uint64_t megabytes) {
   return guarded(__func__, [&] {
     require(lightmaps, "lightmaps");
     lightmaps->set.set_sample_budget_megabytes(megabytes);
+  });
+}
+
+bakegi_status bakegi_lightmaps_cancel(bakegi_lightmaps* lightmaps) {
+  return guarded(__func__, [&] {
+    require(lightmaps, "lightmaps");
+    lightmaps->set.cancel();
   });
 }
 
@@ -86,8 +92,7 @@ bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_sce
     require(lightmaps, "lightmaps");
     require(scene, "scene");
     require(lightmap_uvs, "lightmap_uvs");
-    const uint32_t index =
-        lightmaps->set.add(mesh_at(scene, mesh), lightmap_uvs, width, height);
+    const uint32_t index = lightmaps->set.add(mesh_at(scene, mesh), lightmap_uvs, width, height);
     if (out_lightmap) *out_lightmap = index;
   });
 }

@@ -16,7 +16,8 @@ std::vector<uint8_t> flag_samples_inside_geometry(const Scene& scene, const RayT
                                                   const std::vector<glm::vec3>& positions,
                                                   const std::vector<glm::vec3>& geometric_normals,
                                                   const std::vector<glm::vec3>& shading_normals,
-                                                  const BackfaceRejectionOptions& options) {
+                                                  const BackfaceRejectionOptions& options,
+                                                  const CancelFlag* cancel) {
   if (options.rays == 0 || options.rays > 4096) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "backface rejection rays " + std::to_string(options.rays) + " not in 1..4096");
@@ -49,6 +50,7 @@ std::vector<uint8_t> flag_samples_inside_geometry(const Scene& scene, const RayT
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, positions.size(), 64),
       [&](const tbb::blocked_range<size_t>& range) {
+        throw_if_cancelled(cancel, "rejecting texels inside geometry");
         for (size_t i = range.begin(); i != range.end(); ++i) {
           glm::vec3 normal = geometric_normals[i];
           if (glm::dot(normal, shading_normals[i]) < 0) normal = -normal;

@@ -19,6 +19,7 @@
 
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
+#include "util/cancel_flag.h"
 
 namespace bakegi {
 
@@ -33,11 +34,13 @@ struct BackfaceRejectionOptions {
 };
 
 // One flag per sample (1 = inside or under geometry). positions, geometric normals and
-// shading normals have one entry per sample. Throws Error(INVALID_ARGUMENT) for bad options.
+// shading normals have one entry per sample. Throws Error(INVALID_ARGUMENT) for bad options,
+// Error(CANCELLED) when `cancel` is raised (checked every 64 samples).
 std::vector<uint8_t> flag_samples_inside_geometry(const Scene& scene, const RayTracer& tracer,
                                                   const std::vector<glm::vec3>& positions,
                                                   const std::vector<glm::vec3>& geometric_normals,
                                                   const std::vector<glm::vec3>& shading_normals,
-                                                  const BackfaceRejectionOptions& options = {});
+                                                  const BackfaceRejectionOptions& options = {},
+                                                  const CancelFlag* cancel = nullptr);
 
 }  // namespace bakegi

@@ -51,7 +51,8 @@ struct EdgeUse {
 
 std::vector<LightmapSeam> find_lightmap_seams(std::span<const uint32_t> indices,
                                               const std::vector<LightmapTriangle>& triangles,
-                                              uint32_t width, uint32_t height) {
+                                              uint32_t width, uint32_t height,
+                                              const CancelFlag* cancel) {
   if (indices.size() != 3 * triangles.size()) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "find_lightmap_seams: " + std::to_string(indices.size()) + " indices for " +
@@ -61,6 +62,7 @@ std::vector<LightmapSeam> find_lightmap_seams(std::span<const uint32_t> indices,
   std::vector<glm::vec3> face_normals(count);
   std::vector<uint8_t> baked(count);
   for (size_t t = 0; t < count; ++t) {
+    if (t % 4096 == 0) throw_if_cancelled(cancel, "finding the lightmap seams");
     baked[t] = rasterized(triangles[t], width, height, face_normals[t]);
   }
 
@@ -68,6 +70,7 @@ std::vector<LightmapSeam> find_lightmap_seams(std::span<const uint32_t> indices,
   std::unordered_map<uint64_t, EdgeUse> edges;
   edges.reserve(3 * count);
   for (size_t t = 0; t < count; ++t) {
+    if (t % 4096 == 0) throw_if_cancelled(cancel, "finding the lightmap seams");
     if (!baked[t]) continue;
     for (int k = 0; k < 3; ++k) {
       const int next = (k + 1) % 3;

@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "lightmap/texel_rasterizer.h"
+#include "util/cancel_flag.h"
 
 namespace bakegi {
 
@@ -38,9 +39,10 @@ struct LightmapSeam {
 // triangles as given to rasterize_texels (UVs, positions and normals per corner); the
 // lightmap size decides (as in the rasterizer) which triangles have zero UV area. Each seam
 // is listed once, in the order of its first triangle. Throws Error(INVALID_ARGUMENT) if
-// the counts differ.
+// the counts differ, Error(CANCELLED) when `cancel` is raised.
 std::vector<LightmapSeam> find_lightmap_seams(std::span<const uint32_t> indices,
                                               const std::vector<LightmapTriangle>& triangles,
-                                              uint32_t width, uint32_t height);
+                                              uint32_t width, uint32_t height,
+                                              const CancelFlag* cancel = nullptr);
 
 }  // namespace bakegi

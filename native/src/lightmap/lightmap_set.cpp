@@ -87,8 +87,8 @@ uint32_t LightmapSet::add(const Mesh& mesh, const float* uvs, uint32_t width, ui
   const std::vector<LightmapTriangle> triangles = lightmap_triangles(mesh, uvs);
   check_sample_budget(triangles, width, height);
   LightmapLayout::Lightmap added;
-  added.samples = rasterize_texels(triangles, width, height, mesh.object_id);
-  added.seams = find_lightmap_seams(mesh.indices, triangles, width, height);
+  added.samples = rasterize_texels(triangles, width, height, mesh.object_id, cancel_.get());
+  added.seams = find_lightmap_seams(mesh.indices, triangles, width, height, cancel_.get());
   layout_.lightmaps.push_back(std::move(added));
   return uint32_t(layout_.lightmaps.size() - 1);
 }
@@ -103,9 +103,9 @@ void LightmapSet::add_to(uint32_t index, const Mesh& mesh, const float* uvs) {
   const std::vector<LightmapTriangle> triangles = lightmap_triangles(mesh, uvs);
   const uint32_t width = target.samples.width, height = target.samples.height;
   check_sample_budget(triangles, width, height);
-  TexelSamples samples = rasterize_texels(triangles, width, height, mesh.object_id);
-  const std::vector<LightmapSeam> seams = find_lightmap_seams(mesh.indices, triangles, width,
-                                                              height);
+  TexelSamples samples = rasterize_texels(triangles, width, height, mesh.object_id, cancel_.get());
+  const std::vector<LightmapSeam> seams =
+      find_lightmap_seams(mesh.indices, triangles, width, height, cancel_.get());
   // Room first, so that nothing after the samples are appended can fail.
   target.seams.reserve(target.seams.size() + seams.size());
   append_samples(target.samples, std::move(samples));
@@ -114,14 +114,16 @@ void LightmapSet::add_to(uint32_t index, const Mesh& mesh, const float* uvs) {
 
 uint64_t LightmapSet::reject_inside(const SceneDescription& scene,
                                     const BackfaceRejectionOptions& options) {
+  throw_if_cancelled(cancel_.get(), "rejecting texels inside geometry");
   const Scene built = build_scene(scene);
+  throw_if_cancelled(cancel_.get(), "rejecting texels inside geometry");
   const RayTracer tracer(built);
   uint64_t rejected = 0;
   for (LightmapLayout::Lightmap& each : layout_.lightmaps) {
     TexelSamples& samples = each.samples;
-    const std::vector<uint8_t> flags = flag_samples_inside_geometry(
-        built, tracer, samples.points.positions, samples.face_normals, samples.points.normals,
-        options);
+    const std::vector<uint8_t> flags =
+        flag_samples_inside_geometry(built, tracer, samples.points.positions, samples.face_normals,
+                                     samples.points.normals, options, cancel_.get());
     // Samples are dropped from here on: refuse later additions even if this call then
     // fails (a call refused for its options above has changed nothing).
     layout_.rejected_inside = true;

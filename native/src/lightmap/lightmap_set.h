@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "lightmap/backface_rejection.h"
@@ -14,6 +15,7 @@
 #include "lightmap/lightmap_layout.h"
 #include "scene/bake_points.h"
 #include "scene/scene.h"
+#include "util/cancel_flag.h"
 
 namespace bakegi {
 
@@ -41,6 +43,11 @@ class LightmapSet {
   // All lightmaps' samples, concatenated in the order added: the bake's points.
   BakePoints points() const;
 
+  // Raised from any thread: a running or later add, add_to or reject_inside stops with
+  // Error(CANCELLED) within a texel row or 64 samples, and the set keeps no partial samples
+  // of it. (The add-on cancels a lightmap bake's texel work on Esc.) Sticky.
+  void cancel() { cancel_->store(true, std::memory_order_relaxed); }
+
   // Lightmap `lightmap` as an image (bottom-up, like Blender's): rgb holds 3 floats for
   // each of the count points of points() (the whole bake result); texels get the mean of
   // their samples, `padding` rounds of dilation fill the gutters, and UV seams are
@@ -58,6 +65,8 @@ class LightmapSet {
 
   LightmapLayout layout_;
   uint64_t sample_budget_bytes_ = kDefaultSampleBudgetBytes;
+  // Held apart so that the set stays movable (a layout read from a file is moved in).
+  std::shared_ptr<CancelFlag> cancel_ = std::make_shared<CancelFlag>(false);
 };
 
 }  // namespace bakegi

@@ -113,7 +113,7 @@ uint64_t max_texel_samples(const std::vector<LightmapTriangle>& triangles, uint3
 }
 
 TexelSamples rasterize_texels(const std::vector<LightmapTriangle>& triangles, uint32_t width,
-                              uint32_t height, uint32_t object_id) {
+                              uint32_t height, uint32_t object_id, const CancelFlag* cancel) {
   if (width == 0 || height == 0) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "lightmap size " + std::to_string(width) + " x " +
                                                    std::to_string(height) + " is empty");
@@ -167,6 +167,7 @@ TexelSamples rasterize_texels(const std::vector<LightmapTriangle>& triangles, ui
     const int x0 = first_texel(lo.x, width), y0 = first_texel(lo.y, height);
     const int x1 = last_texel(hi.x, width), y1 = last_texel(hi.y, height);
     for (int y = y0; y <= y1; ++y) {
+      throw_if_cancelled(cancel, "rasterizing the lightmap texels");
       // Clip the triangle to the row first: the per-texel clip then needs only x.
       Polygon row;
       row.count = 3;

@@ -22,6 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/bake_points.h"
+#include "util/cancel_flag.h"
 
 namespace bakegi {
 
@@ -58,8 +59,10 @@ struct TexelSamples {
 uint64_t max_texel_samples(const std::vector<LightmapTriangle>& triangles, uint32_t width,
                            uint32_t height);
 
+// `cancel` (optional) is checked at every texel row: Error(CANCELLED) when raised.
 TexelSamples rasterize_texels(const std::vector<LightmapTriangle>& triangles, uint32_t width,
-                              uint32_t height, uint32_t object_id = 0);
+                              uint32_t height, uint32_t object_id = 0,
+                              const CancelFlag* cancel = nullptr);
 
 // Keeps only the samples where keep[i] is true, and recomputes the coverage mask (a texel
 // whose samples were all dropped becomes uncovered, to be filled from its neighbours).
