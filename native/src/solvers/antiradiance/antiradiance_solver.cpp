@@ -15,6 +15,7 @@
 
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
+#include "settings/settings.h"
 #include "solvers/antiradiance/antiradiance_precomputation.h"
 #include "solvers/antiradiance/back_sides.h"
 #include "solvers/antiradiance/bin_spreading.h"
@@ -32,9 +33,8 @@
 #include "util/byte_stream.h"
 #include "util/error.h"
 #include "util/job_context.h"
-#include "util/report.h"
-#include "settings/settings.h"
 #include "util/luminance.h"
+#include "util/report.h"
 
 namespace bakegi {
 namespace {
@@ -121,7 +121,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string megabytes(uint64_t bytes) { return MemoryBudget::megabytes(bytes); }
+std::string megabytes(uint64_t bytes) {
+  return MemoryBudget::megabytes(bytes);
+}
 
 std::string metres(double value) {
   char text[64];
@@ -163,7 +165,8 @@ std::optional<float> patch_size_within(const PatchCount& count, float max_edge, 
   const uint64_t elements = std::max<uint64_t>(count.elements(max_edge), 1);
   const uint64_t bytes = estimated_bytes(count, max_edge, bins);
   const uint64_t per_element = std::max<uint64_t>(bytes / elements, 1);
-  float edge = count.max_edge_within_budget(max_edge, std::max<uint64_t>(available / per_element, 1));
+  float edge =
+      count.max_edge_within_budget(max_edge, std::max<uint64_t>(available / per_element, 1));
   // The per-element cost is an average; step on by doubling while the estimate is still over.
   for (int step = 0; step < 64 && estimated_bytes(count, edge, bins) > available; ++step) {
     const float next = edge * 2.0f;
@@ -194,8 +197,7 @@ double flux_bound(const ElementHierarchy& hierarchy, std::span<const glm::vec3> 
     const glm::vec3 reflectance = patch.albedo + patch.glossy;
     rho = std::max({rho, double(reflectance.x), double(reflectance.y), double(reflectance.z)});
     const glm::vec3 e = direct[p];
-    direct_flux += double(hierarchy.elements()[patch.element].area) *
-                   luminance(e);
+    direct_flux += double(hierarchy.elements()[patch.element].area) * luminance(e);
   }
   if (rho >= 1.0 || !std::isfinite(direct_flux)) return std::numeric_limits<double>::infinity();
   return 2.0 * std::max(direct_flux, 0.0) * rho / (1.0 - rho);
@@ -280,6 +282,8 @@ void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> 
                       if (context.is_cancelled()) return;
                       uint64_t local_rays = 0;
                       for (size_t i = range.begin(); i != range.end(); ++i) {
+                        // Per point: a near-field gather of many rays takes milliseconds.
+                        if (context.is_cancelled()) return;
                         const glm::vec3 splat =
                             interpolation_.evaluate(points.positions[i], points.normals[i]);
                         out[i] = near_field_.evaluate(points.positions[i], points.normals[i], i,
@@ -355,17 +359,16 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
   // What the job's holdings (ray tracer, ...) and the spreading tables leave of the budget.
   const uint64_t available = inputs.memory.remaining_after(system->spreading.memory_bytes());
   const bool automatic = settings.patch_size == 0.0;
-  // Automatic: extent / 16 (default_max_edge, element_hierarchy.cpp), coarsened while the estimate exceeds kAutomaticElementLimit
-  // elements (a detailed scene otherwise multiplies elements and links for little gain; the
-  // paper's office had 18k elements).
+  // Automatic: extent / 16 (default_max_edge, element_hierarchy.cpp), coarsened while the estimate
+  // exceeds kAutomaticElementLimit elements (a detailed scene otherwise multiplies elements and
+  // links for little gain; the paper's office had 18k elements).
   const PatchCount count(scene);
   // The limit is a target, not a budget: it counts no back sides (the upper bound gives one to
   // every patch of an open mesh, and most get none: Sponza, 169 open meshes, 478 back sides
   // of 8,610 patches; counting them coarsened its patches to 8 m).
-  float max_edge =
-      automatic
-          ? count.max_edge_within_budget(default_max_edge(scene), kAutomaticElementLimit, false)
-          : float(settings.patch_size);
+  float max_edge = automatic ? count.max_edge_within_budget(default_max_edge(scene),
+                                                            kAutomaticElementLimit, false)
+                             : float(settings.patch_size);
   if (!(max_edge > 0.0f) || !std::isfinite(max_edge)) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "antiradiance: the scene has no extent to choose a patch size from");
@@ -375,13 +378,12 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
     const std::optional<float> fitting = patch_size_within(count, max_edge, m, available);
     if (!fitting) {
       const float coarsest = count.max_edge_within_budget(max_edge, 1);
-      throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
-                  "antiradiance: even the coarsest patches (" +
-                      std::to_string(count.elements(coarsest)) + " elements at " +
-                      std::to_string(m) + " bins) need an estimated " +
-                      megabytes(estimated_bytes(count, coarsest, m)) +
-                      ", more than the budget of " + budget_text +
-                      " leaves; raise the budget or lower \"bins\"");
+      throw Error(
+          BAKEGI_ERROR_OUT_OF_MEMORY,
+          "antiradiance: even the coarsest patches (" + std::to_string(count.elements(coarsest)) +
+              " elements at " + std::to_string(m) + " bins) need an estimated " +
+              megabytes(estimated_bytes(count, coarsest, m)) + ", more than the budget of " +
+              budget_text + " leaves; raise the budget or lower \"bins\"");
     }
     if (!automatic) {
       throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
@@ -390,8 +392,8 @@ std::shared_ptr<const Precomputation> AntiradianceSolver::precompute(const Solve
                       ", more than the budget of " + budget_text + " leaves; patch_size " +
                       metres(*fitting) + " (or 0 for automatic) would fit");
     }
-    warn("antiradiance: patches coarsened from " + metres(max_edge) + " to " +
-         metres(*fitting) + " to fit the memory budget of " + budget_text);
+    warn("antiradiance: patches coarsened from " + metres(max_edge) + " to " + metres(*fitting) +
+         " to fit the memory budget of " + budget_text);
     max_edge = *fitting;
   }
 
@@ -541,8 +543,8 @@ std::unique_ptr<IndirectField> AntiradianceSolver::light(
   }
   if (settings.residual_path_traced) {
     // The solution only serves as the path tracer's control variate (controlled_path.h).
-    report.add_count("memory_bytes", system.memory_bytes() + tables.memory_bytes() +
-                                         cache->memory_bytes());
+    report.add_count("memory_bytes",
+                     system.memory_bytes() + tables.memory_bytes() + cache->memory_bytes());
     report_solution(report, system, tables, result, direct_seconds, iterate_seconds);
     report.add_seconds("antiradiance_output", seconds_since(stage_start));
     return std::make_unique<ControlledPathField>(inputs.direct, std::move(cache),

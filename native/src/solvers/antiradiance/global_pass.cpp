@@ -92,7 +92,8 @@ GlobalPass::GlobalPass(std::vector<Link> links, size_t element_count, const BinS
                     });
 }
 
-void GlobalPass::run(const BinSpreading& spreading, RadianceTables& tables) const {
+void GlobalPass::run(const BinSpreading& spreading, RadianceTables& tables,
+                     const JobContext* context) const {
   if (tables.element_count() != element_count_ || tables.bin_count() != bin_count_ ||
       spreading.bin_count() != bin_count_) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
@@ -105,6 +106,7 @@ void GlobalPass::run(const BinSpreading& spreading, RadianceTables& tables) cons
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, element_count_, kReceiversPerBlock),
       [&](const tbb::blocked_range<size_t>& block) {
+        if (context) context->throw_if_cancelled();
         const uint32_t block_end = receiver_offsets_[block.end()];
         for (size_t receiver = block.begin(); receiver != block.end(); ++receiver) {
           const std::span<glm::vec3> incident = tables.incident(receiver);

@@ -24,6 +24,7 @@
 #include "solvers/antiradiance/bin_spreading.h"
 #include "solvers/antiradiance/link.h"
 #include "solvers/antiradiance/radiance_tables.h"
+#include "util/job_context.h"
 
 namespace bakegi::antiradiance {
 
@@ -37,7 +38,10 @@ class GlobalPass {
 
   // L_in = U I_ex for every element. Throws Error(INVALID_ARGUMENT) when the tables' element
   // or bin count differs from the one the links were built for.
-  void run(const BinSpreading& spreading, RadianceTables& tables) const;
+  // `context` (optional) is checked for cancel every block of receivers: at 768 bins one
+  // pass takes about half a second, too long to wait for between iterations.
+  void run(const BinSpreading& spreading, RadianceTables& tables,
+           const JobContext* context = nullptr) const;
 
   // The links grouped by receiver (ascending), by (spread class, bin, sender) within a
   // receiver, input order kept among equal keys.

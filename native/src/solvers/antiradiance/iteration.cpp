@@ -127,10 +127,12 @@ void clear_antiradiance(const ElementHierarchy& hierarchy, const DirectionalBins
 
 void symmetric_iteration(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
                          const BinSpreading& spreading, const GlobalPass& transport,
-                         RadianceTables& tables) {
-  transport.run(spreading, tables);
+                         RadianceTables& tables, const JobContext* context) {
+  transport.run(spreading, tables, context);
+  if (context) context->throw_if_cancelled();
   push(hierarchy, tables);
   local_pass(hierarchy, bins, tables);
+  if (context) context->throw_if_cancelled();
   pull(hierarchy, tables);
 }
 
@@ -144,8 +146,9 @@ void asymmetric_iteration(const ElementHierarchy& hierarchy, const DirectionalBi
   bool incident_is_current = false;  // L_in = U (d − A) for the A now in the back bins
   for (int step = 0; step < steps; ++step) {
     if (context) context->throw_if_cancelled();
-    transport.run(spreading, tables);
+    transport.run(spreading, tables, context);
     push(hierarchy, tables);
+    if (context) context->throw_if_cancelled();
     const double change = local_pass_antiradiance_only(hierarchy, bins, tables);
     pull(hierarchy, tables);
     // Unchanged A: the L_in just computed already belongs to it.
@@ -153,7 +156,7 @@ void asymmetric_iteration(const ElementHierarchy& hierarchy, const DirectionalBi
     if (change < options.tolerance) break;
   }
   if (!incident_is_current) {
-    transport.run(spreading, tables);
+    transport.run(spreading, tables, context);
     push(hierarchy, tables);
   }
   local_pass_radiance_only(hierarchy, bins, tables);
@@ -202,7 +205,7 @@ IterationResult iterate(const ElementHierarchy& hierarchy, const DirectionalBins
     const auto accumulated = tables.accumulated_irradiance();
     before.assign(accumulated.begin(), accumulated.end());
     if (scheme == IterationScheme::kSymmetric) {
-      symmetric_iteration(hierarchy, bins, spreading, transport, tables);
+      symmetric_iteration(hierarchy, bins, spreading, transport, tables, context);
     } else {
       asymmetric_iteration(hierarchy, bins, spreading, transport, tables, options, context);
     }

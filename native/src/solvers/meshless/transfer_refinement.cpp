@@ -125,6 +125,8 @@ TransferOperator refine_transfer(const Scene& scene, const RayTracer& tracer,
                         ThreadScratch& local = scratch.local();
                         uint64_t local_rays = 0;
                         for (size_t r = range.begin(); r != range.end(); ++r) {
+                          // Per receiver: thousands of gather rays each at most.
+                          context.throw_if_cancelled();
                           local_rays += refine_receiver(scene, tracer, all, senders, relations,
                                                         gathering, current[r], op, local);
                         }
