@@ -23,14 +23,12 @@ QUICK = {
 }
 
 
-def closed_box(native):
-    """A 1 m closed box with a point light and 2000 points on its floor."""
-    scene = native.Scene()
-    material = scene.add_material((0.6, 0.6, 0.6))
-    n = 12  # cells per side: 6 * 2 * 144 triangles
+def closed_box_arrays():
+    """A 1 m closed box (6 * 2 * 144 triangles facing inwards), a point light's position and
+    2000 points on its floor: (positions, indices, light, points, normals)."""
+    n = 12  # cells per side
     positions, indices = [], []
-    axes = [(0, 1, 2), (1, 2, 0), (2, 0, 1)]
-    for u, v, w in axes:
+    for u, v, w in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
         for side in (0.0, 1.0):
             base = len(positions)
             for j in range(n + 1):
@@ -44,15 +42,23 @@ def closed_box(native):
                     c, d = a + n + 1, b + n + 1
                     # Faces point into the box: wound by the side.
                     indices += [a, b, d, a, d, c] if side == 0.0 else [a, d, b, a, c, d]
-    scene.add_mesh(np.array(positions, np.float32), np.array(indices, np.uint32),
-                   material=material)
-    scene.add_light("POINT", position=(0.5, 0.5, 0.8), color=(5.0, 5.0, 5.0))
     rng = np.random.default_rng(1)
     count = 2000
     floor = np.column_stack([rng.uniform(0.05, 0.95, (count, 2)), np.full(count, 1e-3)])
-    normals = np.tile([0.0, 0.0, 1.0], (count, 1))
-    return scene, native.Points(floor.astype(np.float32), normals.astype(np.float32),
-                                np.zeros(count, np.uint32))
+    normals = np.tile([0.0, 0.0, 1.0], (count, 1)).astype(np.float32)
+    return (np.array(positions, np.float32), np.array(indices, np.uint32), (0.5, 0.5, 0.8),
+            floor, normals)
+
+
+def closed_box(native):
+    """closed_box_arrays as a core scene with a 5 W/sr point light, and its points."""
+    positions, indices, light, floor, normals = closed_box_arrays()
+    scene = native.Scene()
+    material = scene.add_material((0.6, 0.6, 0.6))
+    scene.add_mesh(positions, indices, material=material)
+    scene.add_light("POINT", position=light, color=(5.0, 5.0, 5.0))
+    return scene, native.Points(floor.astype(np.float32), normals,
+                                np.zeros(len(floor), np.uint32))
 
 
 def test_every_stage_of_every_method_cancels(native, capsys):

@@ -1,0 +1,104 @@
+"""Scale independence: the same lit room at 1 mm, 1 m and 1 km (every length times s, the
+point light's intensity times s^2 so that the irradiance is unchanged) must bake the same
+indirect light with every method. Each method's results at the three scales are compared
+with its own 1 m result (NRMSE, the project's metric, over the same points); the same seed
+draws the same samples at every scale, so what differs is what depends on absolute size
+(ray offsets, automatic spacings, thresholds in metres)."""
+
+import numpy as np
+import pytest
+
+from test_cancel import closed_box_arrays
+
+SCALES = (1e-3, 1.0, 1e3)
+# Settings in metres are given at 1 m and scaled with the room ("coarse_spacing": 0.25 is
+# 0.25 mm at 1 mm).
+METHODS = {
+    "pathtrace": {"samples": 64},
+    "direct": {"samples": 64},
+    "antiradiance": {"bins": 48, "patch_size": 0.125},
+    "meshless": {"levels": 2, "coarse_spacing": 0.25},
+    "splatting": {},
+}
+LENGTHS = ("patch_size", "coarse_spacing")
+TOLERANCE = 0.02  # the issue's bound
+# The automatic choices that still assume metres (measured: meshless 22% off at 1 mm and 26%
+# at 1 km, its automatic spacing being 0.1475 m^(1/3) A^(1/3); antiradiance 4.4% at 1 mm with
+# its automatic patch size). Strict: fixing them makes these cases fail until moved above.
+AUTOMATIC = {
+    "antiradiance": {"bins": 48},
+    "meshless": {"levels": 2},
+}
+
+def luminance(rgb):
+    return rgb @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def nrmse(values, reference):
+    y, r = luminance(values.astype(np.float64)), luminance(reference.astype(np.float64))
+    return float(np.sqrt(np.mean((y - r) ** 2)) / np.mean(r))
+
+
+def bake(native, method, settings, scale):
+    positions, indices, light, points, normals = closed_box_arrays()
+    scene = native.Scene()
+    material = scene.add_material((0.6, 0.6, 0.6))
+    scene.add_mesh((positions * scale).astype(np.float32), indices, material=material)
+    scene.add_light("POINT", position=tuple(float(v) * scale for v in light),
+                    color=(5.0 * scale ** 2,) * 3)
+    with native.Points((points * scale).astype(np.float32), normals,
+                       np.zeros(len(points), np.uint32)) as handle, \
+            native.Settings(method=method, error_probes=0, seed=3,
+                            **{k: v * scale if k in LENGTHS else v
+                               for k, v in settings.items()}) as s:
+        job = native.Job(scene, handle, s)
+        try:
+            job.wait()
+            return job.result()
+        finally:
+            job.close()
+
+
+def errors_across_scales(native, method, settings):
+    results = {scale: bake(native, method, settings, scale) for scale in SCALES}
+    errors = {scale: nrmse(results[scale], results[1.0]) for scale in SCALES if scale != 1.0}
+    print(method, settings, {f"{s:g} m": f"{100 * e:.2f}%" for s, e in errors.items()})
+    return errors
+
+
+@pytest.mark.parametrize("method", list(METHODS))
+def test_the_same_room_at_every_scale_bakes_the_same_light(native, method):
+    for scale, error in errors_across_scales(native, method, METHODS[method]).items():
+        assert error <= TOLERANCE, f"{method} at {scale:g}x: NRMSE {100 * error:.1f}% vs 1 m"
+
+
+@pytest.mark.xfail(strict=True, reason="automatic spacing and patch size assume metres "
+                                       "(docs/reliability.md)")
+@pytest.mark.parametrize("method", list(AUTOMATIC))
+def test_automatic_settings_at_every_scale(native, method):
+    for scale, error in errors_across_scales(native, method, AUTOMATIC[method]).items():
+        assert error <= TOLERANCE, f"{method} at {scale:g}x: NRMSE {100 * error:.1f}% vs 1 m"
+
+
+def test_meshless_warns_when_its_automatic_spacing_meets_a_scene_not_in_metres(native):
+    """Until the automatic spacing is scale-free, a bake that relies on it in a room of 1 mm
+    or 1 km says so in its report (right or flagged as unsure, never confidently wrong)."""
+    for scale, warned in ((1e-3, True), (1.0, False), (1e3, True)):
+        positions, indices, light, points, normals = closed_box_arrays()
+        scene = native.Scene()
+        material = scene.add_material((0.6, 0.6, 0.6))
+        scene.add_mesh((positions * scale).astype(np.float32), indices, material=material)
+        scene.add_light("POINT", position=tuple(float(v) * scale for v in light),
+                        color=(5.0 * scale ** 2,) * 3)
+        with native.Points((points[:50] * scale).astype(np.float32), normals[:50],
+                           np.zeros(50, np.uint32)) as handle, \
+                native.Settings(method="meshless", levels=1, gather_rays=16,
+                                error_probes=0) as s:
+            job = native.Job(scene, handle, s)
+            try:
+                job.wait()
+                warnings = job.report().get("warnings", [])
+            finally:
+                job.close()
+        said = any("automatic point spacing" in w for w in warnings)
+        assert said == warned, (scale, warnings)
