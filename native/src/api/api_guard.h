@@ -6,6 +6,7 @@
 #include <new>
 #include <string>
 
+#include "api/live_handles.h"
 #include "bakegi/bakegi.h"
 #include "util/error.h"
 
@@ -14,10 +15,14 @@ namespace bakegi {
 // Records the message for bakegi_last_error() on this thread and returns status.
 bakegi_status fail(bakegi_status status, const std::string& message) noexcept;
 
-// Throws Error(INVALID_ARGUMENT, "<name> is NULL") when pointer is null.
+// Throws Error(INVALID_ARGUMENT, "<name> is NULL") when pointer is null, and for one of the
+// C API's handles when it is not live (api/live_handles.h: destroyed, foreign, other kind).
 template <typename T>
 void require(const T* pointer, const char* name) {
   if (!pointer) throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, std::string(name) + " is NULL");
+  if constexpr (HandleKind<T>::name != nullptr) {
+    require_live_handle(pointer, HandleKind<T>::name, name);
+  }
 }
 
 template <typename Body>

@@ -35,8 +35,8 @@ bakegi_status bakegi_file_read(const char* path, bakegi_scene** out_scene,
       points = std::make_unique<bakegi_points>();
       points->points = std::move(*file.points);
     }
-    *out_scene = scene.release();
-    if (out_points) *out_points = points.release();
+    *out_scene = bakegi::give_out(std::move(scene));
+    if (out_points) *out_points = bakegi::give_out(std::move(points));
   });
 }
 

@@ -65,12 +65,12 @@ bakegi_status bakegi_grid_create(const float bounds_min[3], const float bounds_m
                                    max_vertices == 0 ? kDefaultMaxVertices : max_vertices);
     auto handle = std::make_unique<bakegi_grid>();
     handle->grid = std::make_shared<const bakegi::IrradianceVectorGrid>(layout);
-    *out_grid = handle.release();
+    *out_grid = bakegi::give_out(std::move(handle));
   });
 }
 
 void bakegi_grid_destroy(bakegi_grid* grid) {
-  delete grid;
+  bakegi::destroy_handle(grid);
 }
 
 bakegi_status bakegi_grid_get_info(const bakegi_grid* grid, bakegi_grid_info* out_info) {
@@ -108,7 +108,7 @@ bakegi_status bakegi_job_start_grid(const bakegi_scene* scene, const bakegi_grid
     auto handle = std::make_unique<bakegi_job>();
     handle->job = std::make_unique<bakegi::BakeJob>(
         scene->description, request, settings ? settings->settings : bakegi::Settings());
-    *out_job = handle.release();
+    *out_job = bakegi::give_out(std::move(handle));
   });
 }
 
@@ -126,7 +126,7 @@ bakegi_status bakegi_job_get_grid(const bakegi_job* job, bakegi_grid** out_grid)
     }
     auto handle = std::make_unique<bakegi_grid>();
     handle->grid = std::move(grid);
-    *out_grid = handle.release();
+    *out_grid = bakegi::give_out(std::move(handle));
   });
 }
 
@@ -207,7 +207,7 @@ bakegi_status bakegi_grid_read_file(const char* path, bakegi_grid** out_grid) {
     auto handle = std::make_unique<bakegi_grid>();
     handle->grid = std::make_shared<const bakegi::IrradianceVectorGrid>(std::move(file.grid));
     handle->info_json = std::move(file.info_json);
-    *out_grid = handle.release();
+    *out_grid = bakegi::give_out(std::move(handle));
   });
 }
 

@@ -33,19 +33,19 @@ bakegi_status bakegi_job_start(const bakegi_scene* scene, const bakegi_points* p
     handle->job = std::make_unique<bakegi::BakeJob>(
         scene->description, points->points, settings ? settings->settings : bakegi::Settings(),
         points->display_probes);
-    *out_job = handle.release();
+    *out_job = bakegi::give_out(std::move(handle));
   });
 }
 
 double bakegi_job_progress(const bakegi_job* job) {
-  return job && job->job ? job->job->progress() : 0.0;
+  return bakegi::live(job) && job->job ? job->job->progress() : 0.0;
 }
 
 void bakegi_job_stage(const bakegi_job* job, char* buffer, size_t capacity) {
   if (!buffer || capacity == 0) return;
   buffer[0] = '\0';
   try {
-    if (!job || !job->job) return;
+    if (!bakegi::live(job) || !job->job) return;
     const std::string stage = job->job->stage();
     const size_t n = std::min(stage.size(), capacity - 1);
     std::memcpy(buffer, stage.data(), n);
@@ -56,12 +56,12 @@ void bakegi_job_stage(const bakegi_job* job, char* buffer, size_t capacity) {
 }
 
 void bakegi_job_cancel(bakegi_job* job) {
-  if (job && job->job) job->job->cancel();
+  if (bakegi::live(job) && job->job) job->job->cancel();
 }
 
 int bakegi_job_is_done(const bakegi_job* job) {
   // A missing job has nothing left to do; 1 keeps polling loops from spinning forever.
-  if (!job || !job->job) return 1;
+  if (!bakegi::live(job) || !job->job) return 1;
   try {
     return job->job->is_done() ? 1 : 0;
   } catch (...) {
@@ -113,7 +113,8 @@ bakegi_status bakegi_job_get_report(const bakegi_job* job, char* buffer, size_t 
 
 int bakegi_job_can_relight(const bakegi_job* job) {
   try {
-    return job && job->job && job->job->is_done() && job->job->precomputation() ? 1 : 0;
+    return bakegi::live(job) && job->job && job->job->is_done() && job->job->precomputation() ? 1
+                                                                                              : 0;
   } catch (...) {
     return 0;
   }
@@ -138,13 +139,13 @@ bakegi_status bakegi_job_start_relight(const bakegi_job* previous, const bakegi_
     handle->job = std::make_unique<bakegi::BakeJob>(
         scene->description, points ? points->points : before.points(), before.precomputation(),
         settings ? settings->settings : bakegi::Settings());
-    *out_job = handle.release();
+    *out_job = bakegi::give_out(std::move(handle));
   });
 }
 
 void bakegi_job_destroy(bakegi_job* job) {
   try {
-    delete job;
+    bakegi::destroy_handle(job);
   } catch (...) {
     // ~BakeJob only cancels and joins; nothing is expected to throw here.
   }

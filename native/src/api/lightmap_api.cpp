@@ -63,7 +63,7 @@ extern "C" {
 bakegi_status bakegi_lightmaps_create(bakegi_lightmaps** out_lightmaps) {
   return guarded(__func__, [&] {
     require(out_lightmaps, "out_lightmaps");
-    *out_lightmaps = new bakegi_lightmaps();
+    *out_lightmaps = bakegi::give_out(std::make_unique<bakegi_lightmaps>());
   });
 }
 
@@ -82,7 +82,7 @@ bakegi_status bakegi_lightmaps_cancel(bakegi_lightmaps* lightmaps) {
 }
 
 void bakegi_lightmaps_destroy(bakegi_lightmaps* lightmaps) {
-  delete lightmaps;
+  bakegi::destroy_handle(lightmaps);
 }
 
 bakegi_status bakegi_lightmaps_add(bakegi_lightmaps* lightmaps, const bakegi_scene* scene,
@@ -124,7 +124,7 @@ bakegi_status bakegi_lightmaps_reject_inside(bakegi_lightmaps* lightmaps, const 
 }
 
 uint32_t bakegi_lightmaps_count(const bakegi_lightmaps* lightmaps) {
-  return lightmaps ? uint32_t(lightmaps->set.layout().lightmaps.size()) : 0;
+  return bakegi::live(lightmaps) ? uint32_t(lightmaps->set.layout().lightmaps.size()) : 0;
 }
 
 bakegi_status bakegi_lightmaps_get_info(const bakegi_lightmaps* lightmaps, uint32_t lightmap,
@@ -154,7 +154,7 @@ bakegi_status bakegi_lightmaps_get_points(const bakegi_lightmaps* lightmaps,
     require(lightmaps, "lightmaps");
     auto handle = std::make_unique<bakegi_points>();
     handle->points = lightmaps->set.points();
-    *out_points = handle.release();
+    *out_points = bakegi::give_out(std::move(handle));
   });
 }
 
@@ -217,7 +217,7 @@ bakegi_status bakegi_lightmaps_read_file(const char* path, bakegi_lightmaps** ou
     if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
     auto handle = std::make_unique<bakegi_lightmaps>();
     handle->set = bakegi::LightmapSet(bakegi::read_lightmap_layout_file(path));
-    *out_lightmaps = handle.release();
+    *out_lightmaps = bakegi::give_out(std::move(handle));
   });
 }
 

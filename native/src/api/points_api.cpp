@@ -69,7 +69,7 @@ bakegi_status bakegi_points_create(const float* positions, const float* normals,
       points.normals[i] = glm::vec3(normal / length);
       if (object_ids) points.object_ids[i] = object_ids[i];
     }
-    *out_points = handle.release();
+    *out_points = bakegi::give_out(std::move(handle));
   });
 }
 
@@ -101,8 +101,8 @@ bakegi_status bakegi_points_set_display_probes(bakegi_points* points, const floa
   });
 }
 
-bakegi_status bakegi_points_set_share_candidates(bakegi_points* points,
-                                                 const uint32_t* candidates, uint64_t count) {
+bakegi_status bakegi_points_set_share_candidates(bakegi_points* points, const uint32_t* candidates,
+                                                 uint64_t count) {
   return guarded(__func__, [&] {
     require(points, "points");
     if (count > 0) require(candidates, "candidates");
@@ -118,11 +118,11 @@ bakegi_status bakegi_points_set_share_candidates(bakegi_points* points,
 }
 
 void bakegi_points_destroy(bakegi_points* points) {
-  delete points;
+  bakegi::destroy_handle(points);
 }
 
 uint64_t bakegi_points_count(const bakegi_points* points) {
-  return points ? points->points.size() : 0;
+  return bakegi::live(points) ? points->points.size() : 0;
 }
 
 bakegi_status bakegi_points_get(const bakegi_points* points, float* positions, float* normals,
@@ -141,8 +141,8 @@ bakegi_status bakegi_points_get(const bakegi_points* points, float* positions, f
 }
 
 bakegi_status bakegi_points_flag_inside(const bakegi_points* points, const bakegi_scene* scene,
-                                       uint32_t rays, float backface_fraction,
-                                       float max_distance, uint8_t* out_flags) {
+                                        uint32_t rays, float backface_fraction, float max_distance,
+                                        uint8_t* out_flags) {
   return guarded(__func__, [&] {
     require(points, "points");
     require(scene, "scene");

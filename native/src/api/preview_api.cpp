@@ -86,12 +86,12 @@ bakegi_status bakegi_preview_create(const bakegi_scene* scene, bakegi_preview** 
     require(scene, "scene");
     auto handle = std::make_unique<bakegi_preview>();
     handle->preview = std::make_unique<bakegi::SplattingPreview>(scene->description);
-    *out_preview = handle.release();
+    *out_preview = bakegi::give_out(std::move(handle));
   });
 }
 
 void bakegi_preview_destroy(bakegi_preview* preview) {
-  delete preview;
+  bakegi::destroy_handle(preview);
 }
 
 bakegi_status bakegi_preview_set_lights(bakegi_preview* preview, const bakegi_scene* lights) {

@@ -30,12 +30,12 @@ bakegi_status bakegi_scene_create(bakegi_scene** out_scene) {
   return guarded(__func__, [&] {
     require(out_scene, "out_scene");
     *out_scene = nullptr;
-    *out_scene = new bakegi_scene();
+    *out_scene = bakegi::give_out(std::make_unique<bakegi_scene>());
   });
 }
 
 void bakegi_scene_destroy(bakegi_scene* scene) {
-  delete scene;
+  bakegi::destroy_handle(scene);
 }
 
 bakegi_status bakegi_scene_add_texture(bakegi_scene* scene, uint32_t width, uint32_t height,
@@ -232,7 +232,7 @@ bakegi_status bakegi_scene_validate(const bakegi_scene* scene) {
 }
 
 uint64_t bakegi_scene_triangle_count(const bakegi_scene* scene) {
-  if (!scene) return 0;
+  if (!bakegi::live(scene)) return 0;
   uint64_t count = 0;
   for (const bakegi::Mesh& mesh : scene->description.meshes) count += mesh.indices.size() / 3;
   return count;
@@ -260,7 +260,7 @@ bakegi_status bakegi_scene_get_bounds(const bakegi_scene* scene, float out_min[3
 }
 
 uint32_t bakegi_scene_light_count(const bakegi_scene* scene) {
-  return scene ? uint32_t(scene->description.lights.size()) : 0;
+  return bakegi::live(scene) ? uint32_t(scene->description.lights.size()) : 0;
 }
 
 }  // extern "C"

@@ -32,12 +32,12 @@ bakegi_status bakegi_settings_create(bakegi_settings** out_settings) {
   return guarded(__func__, [&] {
     require(out_settings, "out_settings");
     *out_settings = nullptr;
-    *out_settings = new bakegi_settings();
+    *out_settings = bakegi::give_out(std::make_unique<bakegi_settings>());
   });
 }
 
 void bakegi_settings_destroy(bakegi_settings* settings) {
-  delete settings;
+  bakegi::destroy_handle(settings);
 }
 
 bakegi_status bakegi_settings_set_int(bakegi_settings* settings, const char* key, int64_t value) {
