@@ -141,6 +141,10 @@ class Meshless(common.SmallCornellCase):
             third = json.loads(settings.last_report)
             self.assertEqual(third["meshless_cache"], "miss")
             self.assertEqual(len(os.listdir(folder)), 2)
+            # The panel's Clear Cache deletes them (and is unavailable on an empty folder).
+            self.assertEqual(bpy.ops.bakegi.clear_cache(), {"FINISHED"})
+            self.assertEqual(os.listdir(folder), [])
+            self.assertFalse(bpy.ops.bakegi.clear_cache.poll())
 
     def test_a_blend_relative_cache_dir_is_not_the_filesystem_root(self):
         """method_settings={"cache_dir": "//x"} is Blender's "next to the .blend" (for an

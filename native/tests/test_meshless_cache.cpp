@@ -15,21 +15,21 @@
 #include <string>
 #include <vector>
 
+#include "bake/precomputation_store.h"
+#include "bake/solver_run.h"
 #include "cache_test_support.h"
 #include "capi_test_scene.h"
-#include "lights/direct_light.h"
 #include "light_transport_fixtures.h"
+#include "lights/direct_light.h"
 #include "meshless_test_scenes.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
+#include "settings/settings.h"
 #include "solvers/meshless/meshless_solver.h"
-#include "bake/precomputation_store.h"
-#include "bake/solver_run.h"
 #include "solvers/meshless/precomputation_cache.h"
 #include "util/byte_stream.h"
 #include "util/error.h"
 #include "util/job_context.h"
-#include "settings/settings.h"
 
 namespace bakegi {
 namespace {
@@ -150,34 +150,47 @@ TEST(MeshlessCache, KeyCoversSettingsAndPlacementPointsButNotLightsOrRelightSett
   // a method may hand its bake to, like samples).
   std::vector<std::string> sorted = ignored;
   std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(sorted, (std::vector<std::string>{"bounces", "cache_dir", "denoise", "direct_samples",
-                                              "samples", "sender_cutoff", "target_error",
-                                              "threads"}));
+  EXPECT_EQ(sorted, (std::vector<std::string>{"bounces", "cache_dir", "cache_max_mb", "denoise",
+                                              "direct_samples", "samples", "sender_cutoff",
+                                              "target_error", "threads"}));
   std::map<std::string, SettingValue> settings = {{"levels", int64_t(3)}, {"epsilon", 0.01}};
-  const CacheKey key = precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &points);
+  const CacheKey key =
+      precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &points);
 
   SceneDescription other_light = scene;
   other_light.lights[0].position.x += 0.3f;
   other_light.world_radiance = glm::vec3(0.1f);
-  EXPECT_EQ(precomputation_key(meshless::kPrecomputationCacheVersion, other_light, settings, ignored, &points), key);
+  EXPECT_EQ(precomputation_key(meshless::kPrecomputationCacheVersion, other_light, settings,
+                               ignored, &points),
+            key);
   auto relit = settings;
   relit["direct_samples"] = int64_t(64);
   relit["samples"] = int64_t(5);
   relit["threads"] = int64_t(3);
   relit["cache_dir"] = std::string("/elsewhere");
-  EXPECT_EQ(precomputation_key(meshless::kPrecomputationCacheVersion, scene, relit, ignored, &points), key);
+  EXPECT_EQ(
+      precomputation_key(meshless::kPrecomputationCacheVersion, scene, relit, ignored, &points),
+      key);
 
   auto finer = settings;
   finer["epsilon"] = 0.005;
-  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, finer, ignored, &points), key);
+  EXPECT_NE(
+      precomputation_key(meshless::kPrecomputationCacheVersion, scene, finer, ignored, &points),
+      key);
   auto invisible = settings;  // the gather's visibility test shapes the links
   invisible["visibility"] = int64_t(0);
-  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, invisible, ignored, &points), key);
+  EXPECT_NE(
+      precomputation_key(meshless::kPrecomputationCacheVersion, scene, invisible, ignored, &points),
+      key);
   BakePoints shifted = points;
   shifted.positions[7].x += 1e-4f;
-  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &shifted), key);
+  EXPECT_NE(
+      precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &shifted),
+      key);
   // With a viewpoint the bake points did not place the basis and are left out.
-  EXPECT_NE(precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, nullptr), key);
+  EXPECT_NE(
+      precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, nullptr),
+      key);
 }
 
 TEST(MeshlessCache, CorruptOrTruncatedFileIsDetectedAndRebuilt) {

@@ -13,7 +13,7 @@ import json
 import bpy
 from mathutils import Vector
 
-from .. import session, simplification, subdivision
+from .. import cache_folder, session, simplification, subdivision
 from ..export import targets as export_targets
 from ..native import BakeGIError
 from ..write import attributes, grid_file
@@ -213,6 +213,31 @@ class BAKEGI_OT_remove_bake(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class BAKEGI_OT_clear_cache(bpy.types.Operator):
+    """Delete the saved precomputations (*.bgcache) in the cache folder; later bakes compute
+    them again"""
+
+    bl_idname = "bakegi.clear_cache"
+    bl_label = "Clear Cache"
+    bl_options = {"REGISTER"}  # files on disk: not part of the .blend's undo
+
+    @classmethod
+    def poll(cls, context):
+        if runtime["running"]:
+            cls.poll_message_set("A bake is running")
+            return False
+        if cache_folder.usage(context.scene.bakegi.cache_directory())[0] == 0:
+            cls.poll_message_set("The cache folder holds no cache files")
+            return False
+        return True
+
+    def execute(self, context):
+        folder = context.scene.bakegi.cache_directory()
+        removed = cache_folder.clear(folder)
+        self.report({"INFO"}, f"BakeGI: deleted {removed} cache file(s) in {folder}")
+        return {"FINISHED"}
+
+
 class BAKEGI_OT_subdivide_copy(bpy.types.Operator):
     """Make a finer copy of a mesh whose vertices are too few for the light on it (the
     original is hidden, not changed); then bake again"""
@@ -399,7 +424,8 @@ class BAKEGI_OT_export_web(bpy.types.Operator):
         return {"FINISHED"}
 
 
-classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake, BAKEGI_OT_subdivide_copy,
+classes = (BAKEGI_OT_bake_indirect, BAKEGI_OT_remove_bake, BAKEGI_OT_clear_cache,
+           BAKEGI_OT_subdivide_copy,
            BAKEGI_OT_simplify_copy, BAKEGI_OT_add_grid_box, BAKEGI_OT_apply_grid,
            BAKEGI_OT_export_web)
 

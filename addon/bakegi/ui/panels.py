@@ -6,7 +6,7 @@ import textwrap
 
 import bpy
 
-from .. import error_check, live, native
+from .. import cache_folder, error_check, live, native
 from ..export import targets as export_targets
 from . import operators, report_text
 
@@ -37,6 +37,10 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             col.prop(settings, "meshless_epsilon")
             col.prop(settings, "seed")
             col.prop(settings, "use_cache")
+            if settings.use_cache:
+                row = col.row(align=True)
+                row.label(text="Cache: " + cache_folder.describe(settings.cache_directory()))
+                row.operator("bakegi.clear_cache", text="", icon="TRASH")
             col.prop(settings, "live_indirect")
         else:
             col.prop(settings, "quality")

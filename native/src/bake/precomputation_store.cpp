@@ -172,6 +172,48 @@ std::shared_ptr<const Precomputation> decode_cache_file(const PrecomputationCode
   return precomputation;
 }
 
+SettingSpec cache_size_setting() {
+  return integer_setting("cache_max_mb", 4096, 0, int64_t(1) << 30, SettingRole::kExecution,
+                         "size cap of the cache folder in MB: after a save, the least recently "
+                         "used cache files (*.bgcache) beyond it are deleted (report "
+                         "\"<method>_cache_evicted\"); 0: no cap");
+}
+
+size_t evict_least_recently_used(const std::string& folder, uint64_t max_bytes,
+                                 const std::string& keep) {
+  namespace fs = std::filesystem;
+  if (max_bytes == 0) return 0;
+  struct Entry {
+    fs::path path;
+    fs::file_time_type used;
+    uint64_t bytes;
+  };
+  std::vector<Entry> entries;
+  uint64_t total = 0;
+  std::error_code error;
+  const fs::path kept = utf8_path(keep);
+  for (fs::directory_iterator it(utf8_path(folder), error), end; !error && it != end;
+       it.increment(error)) {
+    std::error_code entry_error;
+    if (it->path().extension() != ".bgcache" || !it->is_regular_file(entry_error)) continue;
+    const uint64_t bytes = it->file_size(entry_error);
+    const fs::file_time_type used = it->last_write_time(entry_error);
+    if (entry_error) continue;
+    total += bytes;
+    if (it->path() != kept) entries.push_back({it->path(), used, bytes});
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& a, const Entry& b) { return a.used < b.used; });
+  size_t deleted = 0;
+  for (const Entry& entry : entries) {
+    if (total <= max_bytes) break;
+    std::error_code remove_error;
+    if (fs::remove(entry.path, remove_error)) ++deleted;
+    total -= entry.bytes;  // gone, by us or by another process
+  }
+  return deleted;
+}
+
 std::shared_ptr<const Precomputation> load_or_precompute(
     const CacheRequest& request, JobContext& context,
     const std::function<std::shared_ptr<const Precomputation>()>& make) {
@@ -199,6 +241,9 @@ std::shared_ptr<const Precomputation> load_or_precompute(
       std::shared_ptr<const Precomputation> loaded =
           decode_cache_file(codec, bytes, key, utf8_text(path.filename()), &context);
       report.set_text(prefix, "hit");
+      // Used now: the least-recently-used eviction reads the modification time.
+      std::error_code touch_error;
+      fs::last_write_time(path, fs::file_time_type::clock::now(), touch_error);
       report.add_seconds(prefix + "_load", seconds_since(start));
       report.add_count(prefix + "_bytes", bytes.size());
       codec.report_loaded(*loaded, report);
@@ -229,6 +274,8 @@ std::shared_ptr<const Precomputation> load_or_precompute(
     }
     const std::vector<uint8_t> bytes = encode_cache_file(codec, *made, key);
     write_file_atomically(path, bytes);
+    report.add_count(prefix + "_evicted", evict_least_recently_used(
+                                              request.folder, request.max_folder_bytes, path_text));
     report.add_seconds(prefix + "_save", seconds_since(start));
     report.add_count(prefix + "_bytes", bytes.size());
   } catch (const Error& e) {

@@ -28,6 +28,7 @@
 
 #include "scene/bake_points.h"
 #include "scene/scene.h"
+#include "settings/setting_schema.h"
 #include "settings/settings.h"
 #include "solvers/precomputation_codec.h"
 
@@ -61,18 +62,29 @@ std::shared_ptr<const Precomputation> decode_cache_file(const PrecomputationCode
                                                         const std::string& name,
                                                         const JobContext* job = nullptr);
 
+// The "cache_max_mb" setting of every method with a "cache_dir": the folder's size cap.
+SettingSpec cache_size_setting();
+
 struct CacheRequest {
   const PrecomputationCodec& codec;
-  std::string folder;                   // UTF-8; created when missing
+  std::string folder;  // UTF-8; created when missing
   const SceneDescription& scene;
-  const Settings& settings;             // the used ones key the file
+  const Settings& settings;  // the used ones key the file
   std::vector<std::string> ignored_settings;
-  const BakePoints* points = nullptr;   // the bake points, keyed when the codec says so
-  uint64_t max_file_bytes = 0;          // a file larger than this is not read
+  const BakePoints* points = nullptr;  // the bake points, keyed when the codec says so
+  uint64_t max_file_bytes = 0;         // a file larger than this is not read
+  uint64_t max_folder_bytes = 0;       // cache files beyond this are evicted; 0 = no cap
 };
 
-// Loads the precomputation `request` keys, or makes it with `make` and saves it. Reports
-// "<name>_cache" (hit, miss, stale), "<name>_cache_path", the seconds and bytes; a file that
+// Keeps the cache files ("*.bgcache") of `folder` within `max_bytes` by deleting the least
+// recently used (oldest modification time: a hit touches its file), never `keep`. Errors
+// (another process deleting the same file) are ignored. Returns how many were deleted.
+size_t evict_least_recently_used(const std::string& folder, uint64_t max_bytes,
+                                 const std::string& keep);
+
+// Loads the precomputation `request` keys, or makes it with `make` and saves it (then evicts
+// beyond max_folder_bytes). Reports "<name>_cache" (hit, miss, stale), "<name>_cache_path",
+// the seconds and bytes, "<name>_cache_evicted"; a file that
 // cannot be saved is a warning, never a failed bake.
 std::shared_ptr<const Precomputation> load_or_precompute(
     const CacheRequest& request, JobContext& context,

@@ -12,8 +12,7 @@ namespace bakegi {
 namespace {
 
 // The precomputation, from the cache when the method has one and a folder is set.
-std::shared_ptr<const Precomputation> precompute_or_load(Solver& solver,
-                                                         const std::string& method,
+std::shared_ptr<const Precomputation> precompute_or_load(Solver& solver, const std::string& method,
                                                          const SolveInputs& inputs,
                                                          JobContext& context) {
   const PrecomputationCodec* codec = solver.codec();
@@ -21,7 +20,8 @@ std::shared_ptr<const Precomputation> precompute_or_load(Solver& solver,
   if (codec == nullptr || schema.find("cache_dir") == nullptr) {
     return solver.precompute(inputs, context);
   }
-  const std::string folder = SettingReader(inputs.settings, schema).get_string("cache_dir");
+  const SettingReader reader(inputs.settings, schema);
+  const std::string folder = reader.get_string("cache_dir");
   if (folder.empty()) {
     context.report().set_text(codec->name() + "_cache", "off");
     return solver.precompute(inputs, context);
@@ -33,16 +33,12 @@ std::shared_ptr<const Precomputation> precompute_or_load(Solver& solver,
   for (const std::string& key : schema.keys_with_role(SettingRole::kExecution)) {
     ignored.push_back(key);
   }
-  const CacheRequest request{*codec,
-                             folder,
-                             inputs.scene.description,
-                             inputs.settings,
+  const CacheRequest request{*codec, folder, inputs.scene.description, inputs.settings,
                              std::move(ignored),
                              codec->keyed_by_points(inputs.settings) ? inputs.points : nullptr,
                              // The file cannot hold more than the precomputation may take.
-                             inputs.memory.total()};
-  return load_or_precompute(request, context,
-                            [&] { return solver.precompute(inputs, context); });
+                             inputs.memory.total(), uint64_t(reader.get_int("cache_max_mb")) << 20};
+  return load_or_precompute(request, context, [&] { return solver.precompute(inputs, context); });
 }
 
 }  // namespace

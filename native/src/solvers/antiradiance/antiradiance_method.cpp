@@ -1,8 +1,9 @@
 // Antiradiance as a method: its registration and its settings. Lighting: what a relight may
 // change (relighting without relinking, §3.3: bins, hierarchy and links stay); the rest
 // shapes them and is part of the precomputation cache's key.
-#include "solvers/method_registry.h"
+#include "bake/precomputation_store.h"
 #include "solvers/antiradiance/antiradiance_solver.h"
+#include "solvers/method_registry.h"
 
 namespace bakegi {
 
@@ -51,19 +52,22 @@ const std::vector<SettingSpec>& AntiradianceSolver::setting_specs() {
                    "there and a later bake of the same geometry, materials and settings loads "
                    "them; report \"antiradiance_cache\" says hit, miss, stale or off; empty: no "
                    "cache"),
+      cache_size_setting(),
   };
   return specs;
 }
 
 namespace {
 
-std::unique_ptr<Solver> make_antiradiance() { return std::make_unique<AntiradianceSolver>(); }
+std::unique_ptr<Solver> make_antiradiance() {
+  return std::make_unique<AntiradianceSolver>();
+}
 
-const MethodRegistration kRegistration({
-    "antiradiance",
-    "Antiradiance (Dachsbacher et al. 2007): hierarchical transport without visibility rays, "
-    "interpolated at the bake points; relights without relinking.",
-    30, true, make_antiradiance, AntiradianceSolver::setting_specs});
+const MethodRegistration kRegistration(
+    {"antiradiance",
+     "Antiradiance (Dachsbacher et al. 2007): hierarchical transport without visibility rays, "
+     "interpolated at the bake points; relights without relinking.",
+     30, true, make_antiradiance, AntiradianceSolver::setting_specs});
 
 }  // namespace
 

@@ -3,8 +3,9 @@
 // shapes the precomputation and is part of its cache key. "visibility" shapes: the gather's
 // visibility test (gather_integral.h) shapes T, so a relight or a cache hit with another value
 // would reuse links made under the other rule.
-#include "solvers/method_registry.h"
+#include "bake/precomputation_store.h"
 #include "solvers/meshless/meshless_solver.h"
+#include "solvers/method_registry.h"
 
 namespace bakegi {
 
@@ -39,19 +40,22 @@ const std::vector<SettingSpec>& MeshlessSolver::setting_specs() {
                    "a later bake of the same geometry, materials, settings (and bake points, "
                    "without a viewpoint) loads it; report \"meshless_cache\" says hit, miss, "
                    "stale or off; empty: no cache"),
+      cache_size_setting(),
   };
   return specs;
 }
 
 namespace {
 
-std::unique_ptr<Solver> make_meshless() { return std::make_unique<MeshlessSolver>(); }
+std::unique_ptr<Solver> make_meshless() {
+  return std::make_unique<MeshlessSolver>();
+}
 
-const MethodRegistration kRegistration({
-    "meshless",
-    "Meshless hierarchical basis with precomputed direct-to-indirect transfer (Lehtinen et al. "
-    "2008); relights in milliseconds.",
-    40, true, make_meshless, MeshlessSolver::setting_specs});
+const MethodRegistration kRegistration(
+    {"meshless",
+     "Meshless hierarchical basis with precomputed direct-to-indirect transfer (Lehtinen et al. "
+     "2008); relights in milliseconds.",
+     40, true, make_meshless, MeshlessSolver::setting_specs});
 
 }  // namespace
 
