@@ -49,6 +49,23 @@ class Meshless(common.SmallCornellCase):
         print("meshless / path tracer, mean per channel:", ratio)
         numpy.testing.assert_allclose(ratio, 1.0, atol=0.10)
 
+    def test_remove_bake_after_a_live_session_restores_the_scene_exactly(self):
+        """Bake with live indirect, relight three times, stop, Remove Bake: every material
+        (nodes, values, links), attribute and data-block count is as before the bake."""
+        light = bpy.data.objects["CeilingLight"]
+        start = tuple(light.location)
+        before = common.scene_snapshot()
+        self.bakegi.bake(method="meshless", target="CORNER", objects="VISIBLE", live=True,
+                         method_settings=QUICK)
+        for _ in range(3):
+            light.location.x += 0.1
+            bpy.context.view_layer.update()
+            self.bakegi.live_update()
+        self.bakegi.live_stop()
+        self.bakegi.remove_bake()
+        light.location = start
+        self.assertEqual(common.snapshot_difference(before, common.scene_snapshot()), [])
+
     def test_live_relight_equals_a_full_bake_with_the_moved_light(self):
         self.bakegi.bake(method="meshless", target="CORNER", objects="VISIBLE", live=True,
                          method_settings=QUICK)

@@ -275,6 +275,9 @@ class UiTest:
         self.screenshot("ui_after_cancel.png")
 
         yield from self.live_indirect(scene, objects)
+        # The live section steps the undo history: data is reloaded, old references are stale.
+        scene = bpy.context.scene
+        objects = {name: bpy.data.objects[name] for name in objects}
         yield from self.lightmap(scene, objects, before, predicted, positions)
         yield from self.grid(scene, before, predicted, positions)
         yield from self.preview_engine(scene, positions)
@@ -399,6 +402,19 @@ class UiTest:
               f"(debounce {live.DEBOUNCE_SECONDS * 1000:.0f} ms, timer polls); {text}")
         yield from self.wait_for_viewport()
         self.screenshot("ui_live_after_move.png")
+        # The relight is an undo step: Ctrl+Z steps back over it (and then over the move)
+        # without losing the bake: the attribute stays on every target.
+        moved_x = light.location.x
+        with self.override():
+            bpy.ops.ed.undo()
+        yield 0.5
+        if abs(bpy.data.objects["CeilingLight"].location.x - (moved_x - 0.4)) > 1e-4:
+            failures.append("Ctrl+Z did not step back over the moved light's relight")
+        for name in ("Floor", "BackWall"):
+            if common.ATTRIBUTE not in bpy.data.objects[name].data.color_attributes:
+                failures.append(f"undoing the live relight lost the bake on {name}")
+        scene = bpy.context.scene  # undo reloads data: old references are stale
+        settings = scene.bakegi
         settings.live_indirect = False
         if live.state() is not None:
             failures.append("turning Live Indirect off kept the precomputation")

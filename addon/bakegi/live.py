@@ -292,6 +292,7 @@ def _tick():
             if not live.running.is_done:
                 return POLL_SECONDS
             _finish_relight(bpy.data)
+            _push_undo_step()
             _redraw()
         if live.pending:
             _start_relight(bpy.context)
@@ -302,6 +303,25 @@ def _tick():
         _pause_on_error(BakeGIError("BAKEGI_ERROR_INTERNAL", f"live indirect stopped: {error}"))
     _timer_registered = False
     return None
+
+
+def _push_undo_step():
+    """Makes the relight's write an undo step of its own ("BakeGI Live Indirect"), so that
+    Ctrl+Z steps back over it like over the light move that caused it, and the write is not
+    folded into whatever the user does next."""
+    wm = getattr(bpy.context, "window_manager", None)
+    if wm is None or not wm.windows:
+        return
+    window = wm.windows[0]
+    override = {"window": window, "screen": window.screen}
+    try:
+        if hasattr(bpy.context, "temp_override"):
+            with bpy.context.temp_override(**override):
+                bpy.ops.ed.undo_push(message="BakeGI Live Indirect")
+        else:
+            bpy.ops.ed.undo_push(override, message="BakeGI Live Indirect")
+    except RuntimeError:  # no undo here (background, or an operator running): no step
+        pass
 
 
 def _redraw():
