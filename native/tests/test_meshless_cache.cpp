@@ -191,6 +191,40 @@ TEST(MeshlessCache, KeyCoversSettingsAndPlacementPointsButNotLightsOrRelightSett
   EXPECT_NE(
       precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, nullptr),
       key);
+
+  // Geometry, materials and every texel shape it (texels are hashed where they lie, apart
+  // from the encoding: one changed texel must change the key, the same texels must not).
+  const auto key_of = [&](const SceneDescription& changed) {
+    return precomputation_key(meshless::kPrecomputationCacheVersion, changed, settings, ignored,
+                              &points);
+  };
+  SceneDescription textured = scene;
+  Texture texture;
+  texture.width = 2;
+  texture.height = 2;
+  texture.set_texels(std::vector<glm::vec3>(4, glm::vec3(0.5f)));
+  textured.textures.push_back(texture);
+  const CacheKey textured_key = key_of(textured);
+  EXPECT_NE(textured_key, key);
+  SceneDescription same_texels = scene;
+  Texture copy;
+  copy.width = 2;
+  copy.height = 2;
+  copy.set_texels(std::vector<glm::vec3>(4, glm::vec3(0.5f)));  // equal, not shared
+  same_texels.textures.push_back(copy);
+  EXPECT_EQ(key_of(same_texels), textured_key);
+  SceneDescription one_texel = scene;
+  std::vector<glm::vec3> texels(4, glm::vec3(0.5f));
+  texels[3].z = 0.5001f;
+  Texture changed;
+  changed.width = 2;
+  changed.height = 2;
+  changed.set_texels(texels);
+  one_texel.textures.push_back(changed);
+  EXPECT_NE(key_of(one_texel), textured_key);
+  SceneDescription darker = scene;
+  darker.materials[0].albedo *= 0.9f;
+  EXPECT_NE(key_of(darker), key);
 }
 
 TEST(MeshlessCache, CorruptOrTruncatedFileIsDetectedAndRebuilt) {

@@ -233,6 +233,12 @@ std::vector<uint8_t> encode_scene_file(const SceneDescription& scene, const Bake
   return finish_framed_file(w);
 }
 
+std::vector<uint8_t> encode_scene_sections(const SceneDescription& scene) {
+  Writer w;
+  write_scene(w, scene);
+  return std::move(w.bytes);
+}
+
 SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& name) {
   auto fail = [&](const std::string& what) -> void {
     throw Error(BAKEGI_ERROR_BAD_FILE, name + ": " + what);

@@ -35,6 +35,9 @@ struct SceneFile {
 };
 
 std::vector<uint8_t> encode_scene_file(const SceneDescription& scene, const BakePoints* points);
+// The payload's scene sections (TEXR, MATL, MESH, LGHT, WRLD) without the frame or its
+// checksum: what the precomputation cache hashes for its key.
+std::vector<uint8_t> encode_scene_sections(const SceneDescription& scene);
 // Throws Error(BAD_FILE) naming what is wrong; `name` is used in messages.
 SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& name);
 
