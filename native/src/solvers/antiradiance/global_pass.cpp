@@ -106,9 +106,10 @@ void GlobalPass::run(const BinSpreading& spreading, RadianceTables& tables,
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, element_count_, kReceiversPerBlock),
       [&](const tbb::blocked_range<size_t>& block) {
-        if (context) context->throw_if_cancelled();
         const uint32_t block_end = receiver_offsets_[block.end()];
         for (size_t receiver = block.begin(); receiver != block.end(); ++receiver) {
+          // TBB may hand one task many blocks: check within, not only at its start.
+          if (context && receiver % 64 == 0) context->throw_if_cancelled();
           const std::span<glm::vec3> incident = tables.incident(receiver);
           std::fill(incident.begin(), incident.end(), glm::vec3(0.0f));
           const uint32_t end = receiver_offsets_[receiver + 1];

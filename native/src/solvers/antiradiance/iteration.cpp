@@ -131,7 +131,7 @@ void symmetric_iteration(const ElementHierarchy& hierarchy, const DirectionalBin
   transport.run(spreading, tables, context);
   if (context) context->throw_if_cancelled();
   push(hierarchy, tables);
-  local_pass(hierarchy, bins, tables);
+  local_pass(hierarchy, bins, tables, context);
   if (context) context->throw_if_cancelled();
   pull(hierarchy, tables);
 }

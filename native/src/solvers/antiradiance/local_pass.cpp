@@ -134,7 +134,8 @@ namespace {
 
 // K and/or J at every patch, adding each patch's E to E_acc (both modes that reflect).
 void reflect_all_patches(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                         RadianceTables& tables, Update update) {
+                         RadianceTables& tables, Update update,
+                         const JobContext* context = nullptr) {
   check_sizes(hierarchy, bins, tables);
   const std::vector<Patch>& patches = hierarchy.patches();
   const std::vector<Element>& elements = hierarchy.elements();
@@ -146,6 +147,7 @@ void reflect_all_patches(const ElementHierarchy& hierarchy, const DirectionalBin
                     [&](const tbb::blocked_range<size_t>& block) {
                       std::vector<glm::vec3> scratch;
                       for (size_t p = block.begin(); p != block.end(); ++p) {
+                        if (context && p % 64 == 0) context->throw_if_cancelled();
                         const Patch& patch = patches[p];
                         const uint32_t e = patch.element;
                         accumulated[p] +=
@@ -158,8 +160,8 @@ void reflect_all_patches(const ElementHierarchy& hierarchy, const DirectionalBin
 }  // namespace
 
 void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                RadianceTables& tables) {
-  reflect_all_patches(hierarchy, bins, tables, Update::kBoth);
+                RadianceTables& tables, const JobContext* context) {
+  reflect_all_patches(hierarchy, bins, tables, Update::kBoth, context);
 }
 
 void local_pass_radiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,

@@ -31,13 +31,15 @@
 #include "solvers/antiradiance/directional_bins.h"
 #include "solvers/antiradiance/element_hierarchy.h"
 #include "solvers/antiradiance/radiance_tables.h"
+#include "util/job_context.h"
 
 namespace bakegi::antiradiance {
 
 // Runs K and J at every patch (in parallel, results independent of the thread count). Throws
 // Error(INVALID_ARGUMENT) when the tables do not match the hierarchy or the bins.
+// `context` (optional) is checked for cancel every block of patches.
 void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                RadianceTables& tables);
+                RadianceTables& tables, const JobContext* context = nullptr);
 
 // The two halves of local_pass, for the asymmetric iteration (iteration.h), which solves the
 // antiradiance of a bounce with its radiance frozen:
