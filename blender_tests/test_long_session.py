@@ -13,10 +13,6 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 
-import unittest  # noqa: E402
-
-import bpy  # noqa: E402
-
 BAKES = 100
 BASELINE_AFTER = 10
 MAX_GROWTH = 0.05

@@ -39,18 +39,24 @@ def nrmse(values, reference):
     return float(np.sqrt(np.mean((y - r) ** 2)) / np.mean(r))
 
 
-def bake(native, method, settings, scale):
+def scaled_box(native, scale, count=None):
+    """The closed box with every length times `scale` and the light's intensity times
+    scale^2: (core scene, its first `count` floor points as native.Points)."""
     positions, indices, light, points, normals = closed_box_arrays()
+    points, normals = points[:count], normals[:count]
     scene = native.Scene()
     material = scene.add_material((0.6, 0.6, 0.6))
     scene.add_mesh((positions * scale).astype(np.float32), indices, material=material)
     scene.add_light("POINT", position=tuple(float(v) * scale for v in light),
                     color=(5.0 * scale ** 2,) * 3)
-    with native.Points((points * scale).astype(np.float32), normals,
-                       np.zeros(len(points), np.uint32)) as handle, \
-            native.Settings(method=method, error_probes=0, seed=3,
-                            **{k: v * scale if k in LENGTHS else v
-                               for k, v in settings.items()}) as s:
+    return scene, native.Points((points * scale).astype(np.float32), normals,
+                                np.zeros(len(points), np.uint32))
+
+
+def bake(native, method, settings, scale):
+    scene, handle = scaled_box(native, scale)
+    scaled = {k: v * scale if k in LENGTHS else v for k, v in settings.items()}
+    with handle, native.Settings(method=method, error_probes=0, seed=3, **scaled) as s:
         job = native.Job(scene, handle, s)
         try:
             job.wait()
@@ -84,16 +90,9 @@ def test_meshless_warns_when_its_automatic_spacing_meets_a_scene_not_in_metres(n
     """Until the automatic spacing is scale-free, a bake that relies on it in a room of 1 mm
     or 1 km says so in its report (right or flagged as unsure, never confidently wrong)."""
     for scale, warned in ((1e-3, True), (1.0, False), (1e3, True)):
-        positions, indices, light, points, normals = closed_box_arrays()
-        scene = native.Scene()
-        material = scene.add_material((0.6, 0.6, 0.6))
-        scene.add_mesh((positions * scale).astype(np.float32), indices, material=material)
-        scene.add_light("POINT", position=tuple(float(v) * scale for v in light),
-                        color=(5.0 * scale ** 2,) * 3)
-        with native.Points((points[:50] * scale).astype(np.float32), normals[:50],
-                           np.zeros(50, np.uint32)) as handle, \
-                native.Settings(method="meshless", levels=1, gather_rays=16,
-                                error_probes=0) as s:
+        scene, handle = scaled_box(native, scale, count=50)
+        with handle, native.Settings(method="meshless", levels=1, gather_rays=16,
+                                     error_probes=0) as s:
             job = native.Job(scene, handle, s)
             try:
                 job.wait()

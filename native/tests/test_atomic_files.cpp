@@ -104,14 +104,7 @@ TEST(AtomicFiles, SceneFilesAreWrittenAtomically) {
   fs::create_directories(folder.path());
   const std::string path = (fs::path(folder.path()) / "box.bgs").string();
   write_text(path, "an older file");
-  ScenePtr scene = new_scene();
-  const bakegi_material_desc material = grey_material();
-  ASSERT_EQ(bakegi_scene_add_material(scene.get(), &material, nullptr), BAKEGI_OK);
-  const BoxMesh box;
-  const bakegi_mesh_desc mesh = box.desc();
-  ASSERT_EQ(bakegi_scene_add_mesh(scene.get(), &mesh, nullptr), BAKEGI_OK);
-  const bakegi_light_desc lamp = point_light(0.5f, 0.5f, 0.5f, 1.0f);
-  ASSERT_EQ(bakegi_scene_add_light(scene.get(), &lamp, nullptr), BAKEGI_OK);
+  ScenePtr scene = new_box_scene();
   ASSERT_EQ(bakegi_file_write(path.c_str(), scene.get(), nullptr), BAKEGI_OK)
       << bakegi_last_error();
   EXPECT_EQ(read_scene_file(path).scene.meshes.size(), 1u);
