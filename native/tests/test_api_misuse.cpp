@@ -223,5 +223,42 @@ TEST(ApiMisuse, DegenerateScenes) {
                  "mesh 0");
 }
 
+// Bake points in open space (a scripted bake's stray points): antiradiance used to give a
+// point a million metres from the box the light of its nearest patch. Off every surface it
+// now gathers from the solution (the box is closed: its outside reflects nothing, so 0);
+// without the gather it keeps the nearest patch's value and says so in a warning.
+TEST(ApiMisuse, AntiradianceGivesNoLightToPointsInOpenSpace) {
+  ScenePtr scene = new_box_scene();
+  const float positions[] = {0.5f, 0.5f, 0.0f, 1e6f, 0.5f, 0.5f};
+  const float normals[] = {0.0f, 0.0f, 1.0f, -1.0f, 0.0f, 0.0f};
+  bakegi_points* raw = nullptr;
+  ASSERT_EQ(bakegi_points_create(positions, normals, nullptr, 2, &raw), BAKEGI_OK);
+  PointsPtr points(raw);
+  for (const int64_t rays : {int64_t(64), int64_t(0)}) {
+    SettingsPtr settings = new_settings("antiradiance");
+    ASSERT_EQ(bakegi_settings_set_int(settings.get(), "bins", 48), BAKEGI_OK);
+    ASSERT_EQ(bakegi_settings_set_int(settings.get(), "near_field_rays", rays), BAKEGI_OK);
+    ASSERT_EQ(bakegi_settings_set_int(settings.get(), "error_probes", 0), BAKEGI_OK);
+    bakegi_job* job = nullptr;
+    ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+    JobPtr owned(job);
+    ASSERT_EQ(bakegi_job_wait(job), BAKEGI_OK) << bakegi_last_error();
+    float rgb[6];
+    ASSERT_EQ(bakegi_job_get_result(job, rgb, 2), BAKEGI_OK);
+    size_t length = 0;
+    ASSERT_EQ(bakegi_job_get_report(job, nullptr, 0, &length), BAKEGI_OK);
+    std::string report(length + 1, '\0');
+    ASSERT_EQ(bakegi_job_get_report(job, report.data(), report.size(), &length), BAKEGI_OK);
+    EXPECT_NE(report.find("\"antiradiance_off_surface_points\": 1"), std::string::npos) << report;
+    EXPECT_GT(rgb[1], 0.0f);  // the floor inside is lit indirectly
+    if (rays > 0) {
+      EXPECT_EQ(rgb[4], 0.0f) << "a point in open space got light";
+      EXPECT_EQ(report.find("lie off every surface"), std::string::npos);
+    } else {
+      EXPECT_NE(report.find("lie off every surface"), std::string::npos) << report;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bakegi::test

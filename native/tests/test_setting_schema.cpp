@@ -83,13 +83,13 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
     for (const std::string& k : schema.keys_with_role(SettingRole::kExecution)) keys.push_back(k);
     return sorted(keys);
   };
-  EXPECT_EQ(
-      changeable("antiradiance"),
-      sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
-              "target_error", "threads", "cache_dir", "residual", "residual_fraction", "denoise"}));
+  EXPECT_EQ(changeable("antiradiance"),
+            sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
+                    "target_error", "threads", "cache_dir", "residual", "residual_fraction",
+                    "denoise", "cache_max_mb"}));
   EXPECT_EQ(changeable("meshless"),
             sorted({"direct_samples", "sender_cutoff", "bounces", "cache_dir", "samples",
-                    "target_error", "threads", "denoise"}));
+                    "target_error", "threads", "denoise", "cache_max_mb"}));
 }
 
 TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {

@@ -276,7 +276,7 @@ void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> 
   }
   constexpr size_t kBlock = 256;
   std::atomic<size_t> done{0};
-  std::atomic<uint64_t> rays{0};
+  std::atomic<uint64_t> rays{0}, off_surface{0}, unanswered{0};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), kBlock),
                     [&](const tbb::blocked_range<size_t>& range) {
                       if (context.is_cancelled()) return;
@@ -284,8 +284,19 @@ void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> 
                       for (size_t i = range.begin(); i != range.end(); ++i) {
                         // Per point: a near-field gather of many rays takes milliseconds.
                         if (context.is_cancelled()) return;
+                        bool off = false;
                         const glm::vec3 splat =
-                            interpolation_.evaluate(points.positions[i], points.normals[i]);
+                            interpolation_.evaluate(points.positions[i], points.normals[i], &off);
+                        if (off) {
+                          // In open space the patches say nothing: gather from the solution.
+                          ++off_surface;
+                          if (!near_field_.gather_off_surface(
+                                  points.positions[i], points.normals[i], i, out[i], local_rays)) {
+                            ++unanswered;
+                            out[i] = splat;
+                          }
+                          continue;
+                        }
                         out[i] = near_field_.evaluate(points.positions[i], points.normals[i], i,
                                                       splat, local_rays);
                       }
@@ -295,6 +306,14 @@ void AntiradianceField::evaluate(const BakePoints& points, std::span<glm::vec3> 
                     });
   context.throw_if_cancelled();
   if (rays.load() > 0) context.report().add_count("rays", rays.load());
+  context.report().add_count("antiradiance_off_surface_points", off_surface.load());
+  if (unanswered.load() > 0) {
+    context.report().warn(
+        "antiradiance: " + std::to_string(unanswered.load()) +
+        " bake points lie off every surface (beyond the interpolation's reach of any patch) "
+        "and got the nearest patch's light, which is not theirs: set near_field_rays > 0 "
+        "(they then gather from the solution) or put the points on surfaces");
+  }
 }
 
 // The antiradiance precomputation in the job's cache (bake/precomputation_store.h): files

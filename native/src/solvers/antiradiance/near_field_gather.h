@@ -64,10 +64,23 @@ class NearFieldGather {
   // (gather and shadow) to `rays`.
   glm::vec3 evaluate(const glm::vec3& position, const glm::vec3& normal, uint64_t point,
                      const glm::vec3& splat, uint64_t& rays) const;
+  // For a point off every surface (SurfaceInterpolation's off_surface): the gather alone,
+  // every ray counting (a ray that misses or meets the back of a face brings no indirect
+  // light). False when the gather is disabled.
+  bool gather_off_surface(const glm::vec3& position, const glm::vec3& normal, uint64_t point,
+                          glm::vec3& value, uint64_t& rays) const;
   const NearFieldSettings& settings() const { return settings_; }
   // The cache is shared with the field's other users and counted by its owner.
 
  private:
+  struct Gathered {
+    glm::dvec3 sum{0.0};
+    float nearest = 0.0f;
+    uint32_t unseen = 0;
+  };
+  Gathered gather(const glm::vec3& position, const glm::vec3& normal, uint64_t point,
+                  uint64_t& rays_cast) const;
+
   const DirectLight* direct_ = nullptr;
   std::shared_ptr<const PatchRadianceCache> cache_;
   NearFieldSettings settings_;

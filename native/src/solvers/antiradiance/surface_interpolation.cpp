@@ -85,7 +85,9 @@ glm::ivec3 SurfaceInterpolation::cell_of(const glm::vec3& position) const {
   return glm::clamp(cell, glm::ivec3(0), dims_ - 1);
 }
 
-glm::vec3 SurfaceInterpolation::evaluate(const glm::vec3& position, const glm::vec3& normal) const {
+glm::vec3 SurfaceInterpolation::evaluate(const glm::vec3& position, const glm::vec3& normal,
+                                         bool* off_surface) const {
+  if (off_surface) *off_surface = false;
   if (samples_.empty()) return glm::vec3(0.0f);
   struct Candidate {
     uint32_t sample;
@@ -132,7 +134,7 @@ glm::vec3 SurfaceInterpolation::evaluate(const glm::vec3& position, const glm::v
   if (all_weight_sum > 0.0 && std::isfinite(all_weight_sum)) {
     return glm::vec3(all_sum / all_weight_sum);
   }
-  return nearest_fallback(position, normal);
+  return nearest_fallback(position, normal, off_surface);
 }
 
 bool SurfaceInterpolation::sees(const glm::vec3& position, const glm::vec3& normal,
@@ -141,15 +143,18 @@ bool SurfaceInterpolation::sees(const glm::vec3& position, const glm::vec3& norm
                                       kLiftAbsolute * support_, kLiftPerDistance);
 }
 
-glm::vec3 SurfaceInterpolation::nearest_fallback(const glm::vec3& position,
-                                                 const glm::vec3& normal) const {
+glm::vec3 SurfaceInterpolation::nearest_fallback(const glm::vec3& position, const glm::vec3& normal,
+                                                 bool* off_surface) const {
   // Rare (points away from all geometry, or at odd normals): a linear scan ranked first by
   // how well the normal agrees (agreeing, same hemisphere, any), then by distance.
   int best_rank = 3;
   float best_distance = std::numeric_limits<float>::infinity();
   size_t best = 0;
+  float clearance = std::numeric_limits<float>::infinity();  // beyond the nearest patch's extent
   for (size_t i = 0; i < samples_.size(); ++i) {
     const float agreement = glm::dot(samples_[i].normal, normal);
+    clearance =
+        std::min(clearance, glm::length(position - samples_[i].center) - samples_[i].radius);
     const int rank = agreement > kMinNormalAgreement ? 0 : (agreement > 0.0f ? 1 : 2);
     const glm::vec3 offset = position - samples_[i].center;
     float d2 = glm::dot(offset, offset);
@@ -160,6 +165,7 @@ glm::vec3 SurfaceInterpolation::nearest_fallback(const glm::vec3& position,
       best = i;
     }
   }
+  if (off_surface) *off_surface = !(clearance <= support_);
   return samples_[best].value;
 }
 

@@ -74,8 +74,12 @@ class SurfaceInterpolation {
                                 const RayTracer* visibility = nullptr);
 
   // The interpolated value at `position` with unit normal `normal`; zero when there are no
-  // samples. Finite whenever the samples' values are.
-  glm::vec3 evaluate(const glm::vec3& position, const glm::vec3& normal) const;
+  // samples. Finite whenever the samples' values are. `off_surface` (optional) is set when the
+  // point lies farther than the support radius beyond every patch (farther than h from each
+  // patch's extent): its value is then only the nearest patch's, which says nothing about a
+  // point in open space (a point a million metres away used to get it as its light).
+  glm::vec3 evaluate(const glm::vec3& position, const glm::vec3& normal,
+                     bool* off_surface = nullptr) const;
 
   float support_radius() const { return support_; }
   size_t sample_count() const { return samples_.size(); }
@@ -86,7 +90,8 @@ class SurfaceInterpolation {
   size_t cell_index(const glm::ivec3& cell) const {
     return (size_t(cell.z) * size_t(dims_.y) + size_t(cell.y)) * size_t(dims_.x) + size_t(cell.x);
   }
-  glm::vec3 nearest_fallback(const glm::vec3& position, const glm::vec3& normal) const;
+  glm::vec3 nearest_fallback(const glm::vec3& position, const glm::vec3& normal,
+                             bool* off_surface) const;
   bool sees(const glm::vec3& position, const glm::vec3& normal, const SurfaceSample& s) const;
 
   std::vector<SurfaceSample> samples_;
