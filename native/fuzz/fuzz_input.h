@@ -11,11 +11,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <span>
 #include <vector>
 
 #include "util/byte_stream.h"
 #include "util/error.h"
+#include "util/framed_file.h"
 
 namespace bakegi::fuzz {
 
@@ -32,6 +34,25 @@ inline std::vector<uint8_t> with_consistent_frame(std::span<const uint8_t> bytes
   const uint64_t hash = fnv1a64(std::span<const uint8_t>(fixed.data(), hashed));
   for (int i = 0; i < 8; ++i) fixed[hashed + i] = uint8_t(hash >> (8 * i));
   return fixed;
+}
+
+// A framed file (util/framed_file.h: the .bgs and .bgl formats), read as it is and with its
+// frame made consistent.
+template <typename Read>
+void read_framed_both_ways(std::span<const uint8_t> bytes, Read&& read) {
+  read(bytes);
+  read(with_consistent_frame(bytes, 16, kFramedHeaderBytes));
+}
+
+// What a reader accepted must read again after its own encoding: `read_again` throwing is a
+// finding (abort), not a refusal.
+template <typename ReadAgain>
+void require_round_trip(ReadAgain&& read_again) {
+  try {
+    read_again();
+  } catch (const Error&) {
+    std::abort();
+  }
 }
 
 // Runs `read` and swallows the refusals a reader is allowed to give.
