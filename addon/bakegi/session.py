@@ -75,8 +75,8 @@ class BakeSession:
         with native.Settings(**self.settings) as settings:
             settings.check()
         budget = self.method_settings.get("memory_budget_mb")
-        # The texel samples are held to the bake's budget too (a bad value is the core's to
-        # refuse when the job starts).
+        # The texel samples are held to the bake's budget too (a bad value was refused by
+        # the check above).
         self.lightmap = (replace(request.lightmap, memory_budget_mb=budget)
                          if isinstance(budget, int) and not isinstance(budget, bool) and budget >= 1
                          else request.lightmap)
