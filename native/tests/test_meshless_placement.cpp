@@ -10,10 +10,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "scene/triangle_geometry.h"
 #include "light_transport_fixtures.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
+#include "scene/triangle_geometry.h"
 #include "solvers/meshless/importance_particles.h"
 #include "solvers/meshless/point_placement.h"
 #include "util/error.h"
@@ -353,21 +353,49 @@ TEST(MeshlessPlacement, PointCapRefusesOrDropsLevels) {
   EXPECT_GE(statistics.levels.size(), 1u);
 }
 
-TEST(MeshlessPlacement, AutomaticDefaultsFollowTheSceneSize) {
-  // The Cornell box's reachable area (24.4 m², measured): a level-0 estimate of 32 A^(1/3) =
-  // 93 points at R = sqrt(0.6965 A / 93) = 0.428 m; four levels down to 5.3 cm.
-  const float cornell = meshless::automatic_coarse_spacing(24.4f);
-  EXPECT_NEAR(cornell, 0.428f, 1e-3f);
-  EXPECT_NEAR(meshless::estimated_point_count(24.4, cornell), 32.0 * std::cbrt(24.4), 1e-3);
-  EXPECT_EQ(meshless::automatic_level_count(cornell), 4u);
-  // Crytek Sponza's reachable area (13,272 m², measured): R = 3.49 m, four levels down to
-  // 44 cm.
-  const float sponza = meshless::automatic_coarse_spacing(13272.0f);
-  EXPECT_NEAR(sponza, 3.49f, 0.01f);
-  EXPECT_EQ(meshless::automatic_level_count(sponza), 4u);
-  // Small objects: fewer levels, none finer than 2 cm.
-  EXPECT_EQ(meshless::automatic_level_count(0.3f), 4u);  // 0.3 / 8 = 3.75 cm; / 16 < 2 cm
-  EXPECT_EQ(meshless::automatic_level_count(0.03f), 1u);
+// A closed cube room of side 2 `half` (faces inward), lit at its centre.
+SceneDescription cube_room(float half) {
+  SceneDescription d;
+  const uint32_t grey = add_material(d, glm::vec3(0.5f));
+  d.meshes.push_back(make_cube(glm::vec3(-half), glm::vec3(half), Facing::kInward, grey));
+  d.lights.push_back(test::point_light(glm::vec3(0.0f), glm::vec3(10.0f * half * half)));
+  return d;
+}
+
+TEST(MeshlessPlacement, MeanFreePathIsTheRoomsMeanChordAtEveryScale) {
+  // Cosine-distributed rays from points spread evenly over a closed convex room travel 4V/S
+  // on average (Cauchy's mean chord): 4 (2h)^3 / (6 (2h)^2) = 4h/3. The pilot's candidates
+  // are particles after three bounces, near even over the faces; 4096 rays leave ~1% noise.
+  double at_one_metre = 0.0;
+  for (const float half : {1.0f, 1e-3f, 1e3f}) {
+    BuiltScene built(cube_room(half));
+    JobContext context;
+    PlacementStatistics statistics;
+    meshless::place_points(built.scene, *built.tracer, glm::vec3(0.3f * half),
+                           fixed_settings(0.5f * half, 1, false), context, &statistics);
+    const double relative = statistics.mean_free_path / half;
+    EXPECT_NEAR(relative, 4.0 / 3.0, 0.04) << "half side " << half;
+    if (half == 1.0f) at_one_metre = relative;
+    // The same seed draws the same rays: only float rounding differs between scales.
+    if (half != 1.0f) EXPECT_NEAR(relative, at_one_metre, 2e-3) << "half side " << half;
+  }
+}
+
+TEST(MeshlessPlacement, AutomaticDefaultsFollowTheMeanFreePath) {
+  // The Cornell box's mean free path (1.17 m, measured): R = 0.36 l = 0.42 m, four levels
+  // down to 5.3 cm; the finest level stays above l / 60 (2 cm there).
+  const float cornell = meshless::automatic_coarse_spacing(1.17f);
+  EXPECT_NEAR(cornell, 0.421f, 1e-3f);
+  EXPECT_EQ(meshless::automatic_level_count(cornell, 1.17f), 4u);
+  EXPECT_EQ(meshless::automatic_level_count(0.3f, 1.17f), 4u);   // 0.3 / 8 = 3.75 cm
+  EXPECT_EQ(meshless::automatic_level_count(0.15f, 1.17f), 3u);  // 0.15 / 8 < 1.95 cm
+  EXPECT_EQ(meshless::automatic_level_count(0.03f, 1.17f), 1u);
+  // No unit: the same room at 1 mm and 1 km gets the same levels.
+  for (const float scale : {1e-3f, 1e3f}) {
+    EXPECT_NEAR(meshless::automatic_coarse_spacing(1.17f * scale), cornell * scale,
+                1e-5f * cornell * scale);
+    EXPECT_EQ(meshless::automatic_level_count(0.15f * scale, 1.17f * scale), 3u);
+  }
 }
 
 TEST(MeshlessPlacement, RejectsBadSettings) {

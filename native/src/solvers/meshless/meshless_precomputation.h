@@ -30,6 +30,7 @@ struct MeshlessStatistics {
   uint32_t bounces = 1;
   std::vector<double> bounce_fractions;
   double coarse_spacing = 0.0;  // metres, level 0
+  double mean_free_path = 0.0;  // metres, the pilot's (what the automatic spacing follows)
   uint64_t link_bytes = 0;      // the single-bounce operator T while it existed
   uint64_t placement_rays = 0;  // rays the precomputation cast (a cache hit casts none)
   uint64_t refinement_rays = 0;

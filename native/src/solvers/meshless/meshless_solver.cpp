@@ -99,16 +99,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Scene extents (bounding box diagonals, metres) the metre-based automatic spacing was made
-// for: a shoebox to a cathedral.
-constexpr float kMetreRuleSmallest = 0.1f, kMetreRuleLargest = 1000.0f;
-
-std::string format_metres(float metres) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.3g m", double(metres));
-  return buffer;
-}
-
 template <typename T>
 std::string json_array(const std::vector<T>& values) {
   std::string json = "[";
@@ -155,6 +145,7 @@ void report_statistics(const MeshlessPrecomputation& system, Report& report) {
   report.add_count("meshless_bounces", s.bounces);
   report.set_json("meshless_bounce_fractions", json_array(s.bounce_fractions));
   report.set_number("meshless_coarse_spacing", s.coarse_spacing);
+  report.set_number("meshless_mean_free_path", s.mean_free_path);
   report.add_count("meshless_link_bytes", s.link_bytes);
   report.add_count("meshless_precomputation_bytes", system.memory_bytes());
 }
@@ -262,18 +253,6 @@ std::shared_ptr<const Precomputation> MeshlessSolver::precompute(const SolveInpu
   const Scene& scene = inputs.scene;
   const auto precompute_start = std::chrono::steady_clock::now();
 
-  // The automatic spacing is a rule in metres (automatic_coarse_spacing): a scene far from
-  // room sizes gets far too many or too few points (a 1 km box baked 30x slower and 26% off,
-  // a 1 mm box 22% off: python_tests/test_scale.py). Say so rather than be confidently wrong.
-  const float extent = scene.extent();
-  if (settings.coarse_spacing == 0.0 &&
-      (extent < kMetreRuleSmallest || extent > kMetreRuleLargest)) {
-    report.warn("meshless: the scene spans " + format_metres(extent) +
-                "; the automatic point spacing assumes a scene in metres of room to building "
-                "size (0.1 to 1000 m), so this bake may be coarse or slow and off: set "
-                "coarse_spacing (about a tenth of a room's width) or model in metres");
-  }
-
   // §2.3: points.
   context.set_stage("meshless: placing points", 0.02, 0.15);
   auto start = std::chrono::steady_clock::now();
@@ -374,6 +353,7 @@ std::shared_ptr<const Precomputation> MeshlessSolver::precompute(const SolveInpu
   statistics.bounce_fractions = bounce_stats.bounce_fraction;
   statistics.coarse_spacing =
       placement_stats.levels.empty() ? 0.0 : placement_stats.levels[0].spacing;
+  statistics.mean_free_path = placement_stats.mean_free_path;
   statistics.link_bytes = single.memory_bytes();
   statistics.placement_rays = placement_stats.particle_rays + placement_stats.harmonic_mean_rays;
   statistics.refinement_rays = refinement_stats.rays + sky_rays;

@@ -27,14 +27,18 @@ constexpr float kHarmonicThreshold = 1.0f / 6.0f;
 // Random sequential adsorption of disks in the plane jams at this coverage (Feder 1980).
 constexpr double kJammingCoverage = 0.547;
 constexpr uint32_t kMaxLevels = 16;
-// Automatic defaults (see the header): level-0 estimate 32 A^(1/3), four levels, finest >= 2 cm.
-constexpr double kCoarseCountPerCubeRootArea = 32.0;
+// Automatic defaults (see the header): R_coarse = 0.36 l, four levels, the finest >= l / 60.
+constexpr float kCoarseSpacingPerFreePath = 0.36f;
 constexpr uint32_t kAutomaticLevels = 4;
-constexpr float kFinestAutomaticSpacing = 0.02f;
+constexpr float kFinestSpacingPerFreePath = 1.0f / 60.0f;
 
 constexpr uint64_t kPilotSalt = 0x5EED'0001'0000'0000ull;
 constexpr uint64_t kLevelSalt = 0x5EED'0002'0000'0000ull;
 constexpr uint64_t kHarmonicSalt = 0x5EED'0003'0000'0000ull;
+constexpr uint64_t kFreePathSalt = 0x5EED'0004'0000'0000ull;
+// Rays for the mean free path: its relative noise is about the chord lengths' spread (~0.7 of
+// the mean in a box) over sqrt(4096), ~1%.
+constexpr size_t kFreePathRays = 4096;
 
 using ParticleFactory = std::function<ImportanceParticles(uint64_t seed)>;
 
@@ -86,8 +90,8 @@ class HashGrid {
 // solid angle (as Ward's irradiance-cache radius), jittered on a side x side grid over
 // (cos theta, phi): stratification keeps the estimate stable with few rays.
 float harmonic_mean_distance(const RayTracer& tracer, const Candidate& candidate,
-                             float max_distance, uint32_t side, float epsilon,
-                             RandomStream& random, uint64_t& rays) {
+                             float max_distance, uint32_t side, float epsilon, RandomStream& random,
+                             uint64_t& rays) {
   const Frame frame(candidate.geometric_normal);
   const glm::vec3 origin = candidate.position + candidate.geometric_normal * epsilon;
   double inverse_sum = 0.0;
@@ -110,13 +114,39 @@ float harmonic_mean_distance(const RayTracer& tracer, const Candidate& candidate
 struct Pilot {
   double area = 0.0;
   float extent = 0.0f;
+  float mean_free_path = 0.0f;
   uint64_t rays = 0;
 };
 
+// The mean distance a cosine-distributed ray from the pilot candidates travels to the next
+// surface (misses, in an open scene, count as the extent): the scene's own length, 4V/S in a
+// closed convex room (Cauchy), about a room's size in a building, shorter among furniture.
+// One ray from each of `kFreePathRays` candidates spread over the batch.
+float mean_free_path(const RayTracer& tracer, const std::vector<Candidate>& candidates,
+                     float extent, float epsilon, uint64_t seed, uint64_t& rays) {
+  RandomStream random(mix64(seed ^ kFreePathSalt), 0);
+  const size_t stride = std::max<size_t>(1, candidates.size() / kFreePathRays);
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < candidates.size(); i += stride) {
+    const Candidate& c = candidates[i];
+    const float u1 = random.next_float(), u2 = random.next_float();
+    const glm::vec3 direction =
+        Frame(c.geometric_normal).to_world(sample_cosine_hemisphere(u1, u2));
+    const glm::vec3 origin = c.position + c.geometric_normal * epsilon;
+    const Hit hit = tracer.intersect(Ray{origin, direction, 0.0f, extent});
+    sum += hit.hit ? double(hit.t) : double(extent);
+    ++count;
+  }
+  rays += count;
+  return count > 0 ? float(sum / double(count)) : 0.0f;
+}
+
 // A first batch of candidates from a separate stream: which triangles are reachable (their
-// area) and how far apart the reachable surfaces are (the bounding box diagonal).
-Pilot run_pilot(const Scene& scene, const ParticleFactory& particles, uint64_t seed,
-                JobContext& context) {
+// area), how far apart the reachable surfaces are (the bounding box diagonal) and how far
+// light travels between them (the mean free path).
+Pilot run_pilot(const Scene& scene, const RayTracer& tracer, const ParticleFactory& particles,
+                uint64_t seed, JobContext& context) {
   ImportanceParticles pilot_particles = particles(mix64(seed ^ kPilotSalt));
   std::vector<Candidate> candidates;
   while (candidates.size() < kPilotCandidates) {
@@ -136,6 +166,11 @@ Pilot run_pilot(const Scene& scene, const ParticleFactory& particles, uint64_t s
   }
   pilot.extent = glm::length(hi - lo);
   pilot.rays = pilot_particles.rays_traced();
+  context.throw_if_cancelled();
+  pilot.mean_free_path = mean_free_path(tracer, candidates, pilot.extent,
+                                        placement_ray_epsilon(scene), seed, pilot.rays);
+  // Every candidate on one point (a degenerate scene): a length from the area instead.
+  if (!(pilot.mean_free_path > 0.0f)) pilot.mean_free_path = float(std::sqrt(pilot.area));
   return pilot;
 }
 
@@ -173,14 +208,17 @@ std::vector<BasisPoint> place(const Scene& scene, const RayTracer& tracer,
                               JobContext& context, PlacementStatistics* statistics_out) {
   check_settings(settings);
   PlacementStatistics statistics;
-  const Pilot pilot = run_pilot(scene, particles, settings.seed, context);
+  const Pilot pilot = run_pilot(scene, tracer, particles, settings.seed, context);
   statistics.reachable_area = float(pilot.area);
   statistics.reachable_extent = pilot.extent;
+  statistics.mean_free_path = pilot.mean_free_path;
   statistics.particle_rays = pilot.rays;
 
-  const float coarse = settings.coarse_spacing > 0.0f ? settings.coarse_spacing
-                                                      : automatic_coarse_spacing(pilot.area);
-  uint32_t levels = settings.levels > 0 ? settings.levels : automatic_level_count(coarse);
+  const float coarse = settings.coarse_spacing > 0.0f
+                           ? settings.coarse_spacing
+                           : automatic_coarse_spacing(pilot.mean_free_path);
+  uint32_t levels =
+      settings.levels > 0 ? settings.levels : automatic_level_count(coarse, pilot.mean_free_path);
 
   auto total_estimate = [&](uint32_t level_count) {
     double total = 0.0;
@@ -290,16 +328,14 @@ std::vector<BasisPoint> place(const Scene& scene, const RayTracer& tracer,
 
 }  // namespace
 
-float automatic_coarse_spacing(float reachable_area) {
-  const double coarse_count = kCoarseCountPerCubeRootArea * std::cbrt(double(reachable_area));
-  return float(std::sqrt(estimated_point_count(reachable_area, 1.0) / coarse_count));
+float automatic_coarse_spacing(float mean_free_path) {
+  return kCoarseSpacingPerFreePath * mean_free_path;
 }
 
-uint32_t automatic_level_count(float coarse_spacing) {
+uint32_t automatic_level_count(float coarse_spacing, float mean_free_path) {
+  const float finest = kFinestSpacingPerFreePath * mean_free_path;
   uint32_t levels = kAutomaticLevels;
-  while (levels > 1 && coarse_spacing / float(1u << (levels - 1)) < kFinestAutomaticSpacing) {
-    --levels;
-  }
+  while (levels > 1 && coarse_spacing / float(1u << (levels - 1)) < finest) --levels;
   return levels;
 }
 

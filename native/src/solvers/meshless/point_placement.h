@@ -62,25 +62,29 @@ struct LevelStatistics {
 struct PlacementStatistics {
   float reachable_area = 0.0f;    // m², triangles the pilot particles reached
   float reachable_extent = 0.0f;  // m, diagonal of the pilot candidates' bounding box
+  float mean_free_path = 0.0f;    // m, mean distance from a pilot candidate to the next surface
   bool levels_reduced = false;    // automatic levels lowered to fit max_points
   uint64_t particle_rays = 0;
   uint64_t harmonic_mean_rays = 0;
   std::vector<LevelStatistics> levels;
 };
 
-// R_coarse when the settings leave it at 0, from the reachable area A (m², scene units are
-// meters): the spacing whose flat-surface estimate gives level 0 32 (A / 1 m²)^(1/3) points,
-// i.e. R_coarse = 0.1475 m^(1/3) A^(1/3). A scale-free rule (R ~ extent) gives every room the
-// same coarse count; the cube root lets large scenes have more coarse functions. The factor
-// was first 8 (R = 0.295 A^(1/3), calibrated to the paper's ~340 level-0 functions on Crytek
-// Sponza), but the coarsest level carries every bounce after the first and the local means:
-// on the Cornell box (24.4 m²) R = 0.86 m gave 10.8% error, R = 0.43 m with four levels 6.3%
-// in 3 s; on the office 34% -> 24% (docs/methods/meshless.md, the spacing study).
-float automatic_coarse_spacing(float reachable_area);
+// R_coarse when the settings leave it at 0, from the scene's mean free path l (the mean
+// distance a cosine-distributed ray from a reachable surface travels to the next one; 4V/S
+// in a closed convex room): R_coarse = 0.36 l. Indirect light varies over about the distance
+// to the surfaces it comes from, so the coarsest level follows that distance, and the rule
+// has no unit: the same room modelled in millimetres or kilometres gets the same points, and
+// a building of many rooms gets coarse points in proportion to its rooms. The factor keeps
+// the spacing study's Cornell box value (l = 1.17 m, R = 0.43 m: 6.3% in 3 s, where R =
+// 0.86 m gave 10.8%; docs/methods/meshless.md); the rule it replaced, R = 0.1475 m^(1/3)
+// A^(1/3) in the reachable area A, gave R/l = 0.36-0.42 on the Cornell box, the two rooms
+// and the office but assumed metres (22-26% off at 1 mm and 1 km, python_tests/test_scale.py).
+float automatic_coarse_spacing(float mean_free_path);
 // Levels when the settings leave them at 0: four (the spacing study: at equal point counts a
 // finer coarsest level with four levels beats five or six levels), fewer when the finest
-// spacing would fall below 2 cm (indirect light varies little below that).
-uint32_t automatic_level_count(float coarse_spacing);
+// spacing would fall below l / 60 (2 cm in the Cornell box: indirect light varies little
+// over less).
+uint32_t automatic_level_count(float coarse_spacing, float mean_free_path);
 // Expected Poisson-disk points on a flat area: random sequential adsorption of disks of
 // diameter R jams at 54.7% coverage, so N = 0.547 A / (pi R^2 / 4) = 0.70 A / R^2.
 double estimated_point_count(double area, double spacing);

@@ -45,6 +45,7 @@ void write_statistics(ByteWriter& w, const MeshlessStatistics& s) {
   w.u64(s.bounce_fractions.size());
   for (double f : s.bounce_fractions) w.f64(f);
   w.f64(s.coarse_spacing);
+  w.f64(s.mean_free_path);
   w.u64(s.link_bytes);
   w.u64(s.placement_rays);
   w.u64(s.refinement_rays);
@@ -175,6 +176,7 @@ MeshlessStatistics read_statistics(ByteReader& r) {
   s.bounces = r.u32();
   r.array(s.bounce_fractions, r.u64(), 8, "bounce fractions", [&] { return r.f64(); });
   s.coarse_spacing = r.f64();
+  s.mean_free_path = r.f64();
   s.link_bytes = r.u64();
   s.placement_rays = r.u64();
   s.refinement_rays = r.u64();
@@ -244,7 +246,8 @@ void encode_precomputation(const MeshlessPrecomputation& precomputation, ByteWri
   write_receiver_relations(w, precomputation.receiver_relations.get());
 }
 
-std::shared_ptr<MeshlessPrecomputation> decode_precomputation(ByteReader& r, const JobContext* job) {
+std::shared_ptr<MeshlessPrecomputation> decode_precomputation(ByteReader& r,
+                                                              const JobContext* job) {
   size_t end = r.open_section(kStatistics, "statistics");
   MeshlessStatistics statistics = read_statistics(r);
   r.close_section(end, "statistics");
