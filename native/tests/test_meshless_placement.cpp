@@ -382,18 +382,24 @@ TEST(MeshlessPlacement, MeanFreePathIsTheRoomsMeanChordAtEveryScale) {
 }
 
 TEST(MeshlessPlacement, AutomaticDefaultsFollowTheMeanFreePath) {
-  // The Cornell box's mean free path (1.17 m, measured): R = 0.36 l = 0.42 m, four levels
-  // down to 5.3 cm; the finest level stays above l / 60 (2 cm there).
-  const float cornell = meshless::automatic_coarse_spacing(1.17f);
+  // The Cornell box (measured: l = 1.17 m, A = 24.4 m², n = A / l² = 17.8): R = 0.36 l =
+  // 0.42 m, four levels down to 5.3 cm; the finest level stays above l / 60 (2 cm there).
+  const float cornell = meshless::automatic_coarse_spacing(1.17f, 24.4f);
   EXPECT_NEAR(cornell, 0.421f, 1e-3f);
   EXPECT_EQ(meshless::automatic_level_count(cornell, 1.17f), 4u);
   EXPECT_EQ(meshless::automatic_level_count(0.3f, 1.17f), 4u);   // 0.3 / 8 = 3.75 cm
   EXPECT_EQ(meshless::automatic_level_count(0.15f, 1.17f), 3u);  // 0.15 / 8 < 1.95 cm
   EXPECT_EQ(meshless::automatic_level_count(0.03f, 1.17f), 1u);
-  // No unit: the same room at 1 mm and 1 km gets the same levels.
+  // Sponza (l = 4.98 m, A = 13,272 m², n = 535): 30x the room faces, R/l 1.76x larger, so
+  // 30 / 1.76² = 9.7x the coarse points, not 30x.
+  const float sponza = meshless::automatic_coarse_spacing(4.98f, 13272.0f);
+  EXPECT_NEAR(sponza / 4.98f, 0.36f * std::pow(13272.0f / (4.98f * 4.98f) / 17.8f, 1.0f / 6.0f),
+              1e-4f);
+  EXPECT_NEAR(sponza, 3.16f, 0.01f);
+  // No unit: the same room at 1 mm and 1 km gets the same spacing relative to its size.
   for (const float scale : {1e-3f, 1e3f}) {
-    EXPECT_NEAR(meshless::automatic_coarse_spacing(1.17f * scale), cornell * scale,
-                1e-5f * cornell * scale);
+    EXPECT_NEAR(meshless::automatic_coarse_spacing(1.17f * scale, 24.4f * scale * scale),
+                cornell * scale, 1e-5f * cornell * scale);
     EXPECT_EQ(meshless::automatic_level_count(0.15f * scale, 1.17f * scale), 3u);
   }
 }

@@ -27,8 +27,10 @@ constexpr float kHarmonicThreshold = 1.0f / 6.0f;
 // Random sequential adsorption of disks in the plane jams at this coverage (Feder 1980).
 constexpr double kJammingCoverage = 0.547;
 constexpr uint32_t kMaxLevels = 16;
-// Automatic defaults (see the header): R_coarse = 0.36 l, four levels, the finest >= l / 60.
-constexpr float kCoarseSpacingPerFreePath = 0.36f;
+// Automatic defaults (see the header): R_coarse = 0.36 l (n / 17.8)^(1/6), n = A / l^2; four
+// levels, the finest >= l / 60.
+constexpr double kCoarseSpacingPerFreePath = 0.36;
+constexpr double kCornellBoxAreaOverFreePathSquared = 17.8;
 constexpr uint32_t kAutomaticLevels = 4;
 constexpr float kFinestSpacingPerFreePath = 1.0f / 60.0f;
 
@@ -216,7 +218,7 @@ std::vector<BasisPoint> place(const Scene& scene, const RayTracer& tracer,
 
   const float coarse = settings.coarse_spacing > 0.0f
                            ? settings.coarse_spacing
-                           : automatic_coarse_spacing(pilot.mean_free_path);
+                           : automatic_coarse_spacing(pilot.mean_free_path, float(pilot.area));
   uint32_t levels =
       settings.levels > 0 ? settings.levels : automatic_level_count(coarse, pilot.mean_free_path);
 
@@ -328,8 +330,11 @@ std::vector<BasisPoint> place(const Scene& scene, const RayTracer& tracer,
 
 }  // namespace
 
-float automatic_coarse_spacing(float mean_free_path) {
-  return kCoarseSpacingPerFreePath * mean_free_path;
+float automatic_coarse_spacing(float mean_free_path, float reachable_area) {
+  const double l = double(mean_free_path);
+  const double n = double(reachable_area) / (l * l);
+  return float(kCoarseSpacingPerFreePath * l *
+               std::pow(std::max(n, 1e-6) / kCornellBoxAreaOverFreePathSquared, 1.0 / 6.0));
 }
 
 uint32_t automatic_level_count(float coarse_spacing, float mean_free_path) {

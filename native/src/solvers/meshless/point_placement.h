@@ -71,15 +71,18 @@ struct PlacementStatistics {
 
 // R_coarse when the settings leave it at 0, from the scene's mean free path l (the mean
 // distance a cosine-distributed ray from a reachable surface travels to the next one; 4V/S
-// in a closed convex room): R_coarse = 0.36 l. Indirect light varies over about the distance
-// to the surfaces it comes from, so the coarsest level follows that distance, and the rule
-// has no unit: the same room modelled in millimetres or kilometres gets the same points, and
-// a building of many rooms gets coarse points in proportion to its rooms. The factor keeps
-// the spacing study's Cornell box value (l = 1.17 m, R = 0.43 m: 6.3% in 3 s, where R =
-// 0.86 m gave 10.8%; docs/methods/meshless.md); the rule it replaced, R = 0.1475 m^(1/3)
-// A^(1/3) in the reachable area A, gave R/l = 0.36-0.42 on the Cornell box, the two rooms
-// and the office but assumed metres (22-26% off at 1 mm and 1 km, python_tests/test_scale.py).
-float automatic_coarse_spacing(float mean_free_path);
+// in a closed convex room) and its reachable area A:
+//   R_coarse = 0.36 l (n / 17.8)^(1/6),  n = A / l^2.
+// Indirect light varies over about the distance to the surfaces it comes from, so the
+// coarsest level follows l; n counts the scene's "room faces" (17.8 in the Cornell box, 535
+// in Sponza), and the sixth root lets a large scene's coarse count grow as n^(2/3) rather
+// than n: the same trade as the rule this replaced (R = 0.1475 m^(1/3) A^(1/3), coarse count
+// ~ A^(1/3)), which assumed metres and was 22-26% off at 1 mm and 1 km
+// (python_tests/test_scale.py). Neither l nor n has a unit, so neither has the rule. The
+// factor keeps the spacing study's Cornell box value (l = 1.17 m, R = 0.43 m: 6.3% in 3 s,
+// where R = 0.86 m gave 10.8%; docs/methods/meshless.md). Without the sixth root (R = 0.36 l)
+// Sponza took 3x as long (570 s, 388k points) for an error still over 100%.
+float automatic_coarse_spacing(float mean_free_path, float reachable_area);
 // Levels when the settings leave them at 0: four (the spacing study: at equal point counts a
 // finer coarsest level with four levels beats five or six levels), fewer when the finest
 // spacing would fall below l / 60 (2 cm in the Cornell box: indirect light varies little

@@ -27,7 +27,7 @@ namespace bakegi::meshless {
 // 2: glossy lobes fold into T; 3: levels_reduced in the statistics; 4: the senders' sky
 // visibility (SKYV); 5: gather hits complete blind sender levels, and the receivers' coarser
 // relations (RREL) for completing them at bake points.
-inline constexpr uint32_t kPrecomputationCacheVersion = 6;
+inline constexpr uint32_t kPrecomputationCacheVersion = 7;
 
 void encode_precomputation(const MeshlessPrecomputation& precomputation, ByteWriter& payload);
 
