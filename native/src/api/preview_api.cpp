@@ -116,9 +116,11 @@ bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera
     bakegi::Settings given = settings ? settings->settings : bakegi::Settings();
     given.validate(bakegi::method_schema("splatting"), bakegi::setting_keys_of_any_method());
     // The method's defaults are the bake's; a frame takes the paper's (docs/methods/
-    // splatting.md) unless asked: 256 VPLs, no visibility rays, and no near-field split
-    // (5-15x a frame on rooms: every VPL near a wall is near some pixel).
+    // splatting.md) unless asked: 256 VPLs, a 16-texel coarsest level, no visibility rays,
+    // and no near-field split (5-15x a frame on rooms: every VPL near a wall is near some
+    // pixel).
     if (!given.has("vpl_count")) given.set("vpl_count", int64_t(256));
+    if (!given.has("base_resolution")) given.set("base_resolution", int64_t(16));
     if (!given.has("visibility_clusters")) given.set("visibility_clusters", int64_t(0));
     if (!given.has("near_field_split")) given.set("near_field_split", 0.0);
     bakegi::SplattingSettings parsed = bakegi::SplattingSettings::from(given);

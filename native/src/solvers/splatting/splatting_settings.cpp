@@ -31,8 +31,10 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
                       "texels per side of each light's reflective shadow maps"),
       integer_setting("rsm_spots", 16, 1, 1024, R::kLighting,
                       "views per area light, for emissive meshes and for the world"),
-      integer_setting("base_resolution", 16, 1, 4096, R::kLighting,
-                      "texels of the coarsest subsplat level along the larger side (paper: 16)"),
+      integer_setting("base_resolution", 32, 1, 4096, R::kLighting,
+                      "the bake: cells of the coarsest level per side of the points' extent; "
+                      "the preview: texels of the coarsest level along the image's larger side "
+                      "(16 unless set, the paper's)"),
       integer_setting("max_resolution", 0, 0, 16384, R::kLighting,
                       "texels of the finest subsplat level along the larger side; 0: pixels"),
       text_setting("refinement", "shared", {"shared", "illumination", "none"}, R::kLighting,

@@ -20,8 +20,10 @@ struct SplattingSettings {
   RsmOptions rsm;
   uint32_t vpl_count = 1024;
   VplSampling vpl_sampling = VplSampling::kRegular;
-  uint32_t base_resolution = 16;  // texels of the coarsest level along the larger side
-  uint32_t max_resolution = 0;    // finest level's texels along the larger side, 0: pixels
+  // Coarsest level: cells per side of the points' extent (the bake), texels along the image's
+  // larger side (a preview; the C API gives frames 16, the paper's, unless set).
+  uint32_t base_resolution = 32;
+  uint32_t max_resolution = 0;  // finest level's texels along the larger side, 0: pixels
   DiscontinuityTest discontinuity;
   // kShared: §3.3 (one set for all VPLs); kIllumination: §3.3.1 (per VPL); kNone: every
   // pixel a subsplat (full-resolution splatting).
