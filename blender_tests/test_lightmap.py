@@ -306,6 +306,52 @@ class LightmapFiles(LightmapCase):
         self.assertEqual(common.snapshot_difference(before, common.scene_snapshot()), [])
         self.assertEqual(sorted(f for f in os.listdir(self.folder)), [os.path.basename(path)])
 
+    def polled_session(self):
+        """A lightmap bake driven as the modal operator drives it (poll, then finish), dense
+        enough that writing its atlas takes a while."""
+        from bakegi import request, session
+        bake = session.BakeSession(bpy.context, request.BakeRequest(
+            method="direct", samples=1, target="LIGHTMAP", objects="VISIBLE",
+            lightmap=request.LightmapOptions(texels_per_meter=96.0), lightmap_folder=self.folder))
+        bake.start()
+        return bake
+
+    def test_cancel_while_the_atlas_is_written_keeps_the_finished_texture(self):
+        """Esc after the job, while the core writes the EXR on a worker thread: the write
+        stops, no staging or temporary file stays, the old lightmap file and the scene are
+        as they were. Then the same bake polled to the end commits its atlas."""
+        import time
+        from bakegi import session
+        path = self.bake_lightmap()["lightmap"]["path"]
+        with open(path, "rb") as f:
+            written = f.read()
+        before = common.scene_snapshot()
+        bake = self.polled_session()
+        stages = []
+        while True:
+            progress = bake.poll()
+            stages.append(progress.stage)
+            if progress.stage == session.WRITING_LIGHTMAP or progress.done:
+                break
+            time.sleep(0.001)
+        self.assertEqual(progress.stage, session.WRITING_LIGHTMAP, stages[-5:])
+        started = time.perf_counter()
+        bake.cancel()  # waits for the writer
+        print(f"cancel during the atlas write returned in {time.perf_counter() - started:.3f} s")
+        with open(path, "rb") as f:
+            self.assertEqual(f.read(), written)
+        self.assertEqual(common.snapshot_difference(before, common.scene_snapshot()), [])
+        self.assertEqual(sorted(os.listdir(self.folder)), [os.path.basename(path)])
+
+        bake = self.polled_session()
+        while not bake.poll().done:
+            time.sleep(0.005)
+        report = bake.finish()
+        self.assertEqual(report["lightmap"]["path"], path)
+        with open(path, "rb") as f:
+            self.assertNotEqual(f.read(), written)  # a denser atlas
+        self.assertEqual(sorted(os.listdir(self.folder)), [os.path.basename(path)])
+
 
 class WallBehindWall(common.AddonCase):
     """Two rooms under one floor plane, parted by a thick wall; the light is in room 1.

@@ -23,6 +23,10 @@ from .write import attributes, file_names, grid_file, lightmap_image, material_h
 from .native import BakeGIError
 
 
+# The stage a lightmap bake shows while the core writes its EXR (after the job's stages).
+WRITING_LIGHTMAP = "writing the lightmap"
+
+
 @dataclass
 class Progress:
     fraction: float
@@ -90,6 +94,12 @@ class BakeSession:
         self._starter = None
         self._starter_error = None
         self._cancelled = False
+        # A lightmap bake's EXR: resolved and written by the core on a worker thread once the
+        # job is done (a 2048² atlas takes a quarter of a second; Esc stops it), into a staging
+        # file that finish() renames over the lightmap's file.
+        self._writer = None
+        self._writer_error = None
+        self._staged_lightmap = None
         self.seconds = {}
         self._started_at = None
         self._created_at = time.perf_counter()
@@ -186,7 +196,41 @@ class BakeSession:
         fraction = min(max(job.progress, 0.0), 1.0)
         elapsed = time.perf_counter() - self._started_at
         eta = elapsed * (1.0 - fraction) / fraction if 0.02 <= fraction < 1.0 else -1.0
-        return Progress(fraction, job.stage, eta, job.is_done)
+        done = job.is_done
+        if done and self.target == "LIGHTMAP" and not self._cancelled:
+            if self._writer is None and self._staged_lightmap is None:
+                self._writer = threading.Thread(target=self._write_lightmap_file,
+                                                name="bakegi-lightmap-write", daemon=True)
+                self._writer.start()
+            if self._writer is not None and self._writer.is_alive():
+                return Progress(1.0, WRITING_LIGHTMAP, -1.0, False)
+        return Progress(fraction, job.stage, eta, done)
+
+    def _write_lightmap_file(self):
+        """Worker thread, or finish() when no poll started it: the core resolves the bake
+        into the atlas and writes it as a staging EXR beside the lightmap's file (no bpy;
+        ctypes releases the GIL). A failed or cancelled write leaves no file."""
+        try:
+            self.job.wait()
+            staged = lightmap_image.staging_path(self.lightmap_folder)
+            lightmap_image.write_lightmap_file(self.exported, self.job.result(), staged,
+                                               self.lightmap_full_float)
+            self._staged_lightmap = staged
+        except BaseException as error:  # handed to finish() on the main thread
+            self._writer_error = error
+
+    def _join_writer(self):
+        """The staging EXR of a lightmap bake (written now if no poll started the writer);
+        raises what the writer raised."""
+        if self._writer is None and self._staged_lightmap is None and self._writer_error is None:
+            self._write_lightmap_file()
+        if self._writer is not None:
+            self._writer.join()
+            self._writer = None
+        if self._writer_error is not None:
+            error, self._writer_error = self._writer_error, None
+            raise error
+        return self._staged_lightmap
 
     def cancel(self, wait=True):
         """Stops the bake; nothing in Blender is changed. wait=False returns at once and
@@ -194,6 +238,21 @@ class BakeSession:
         responsive)."""
         self._cancelled = True
         self._take_back_changes()  # bpy: here, on the main thread
+        writer, self._writer = self._writer, None
+        if writer is not None and writer.is_alive():
+            # The core stops resolving or writing the EXR within a block of scanlines.
+            self.exported.lightmaps.lightmaps.cancel()
+            def discard():
+                writer.join()
+                self._discard_staged_lightmap()
+                self._stop_job(True)
+                self._release_export()
+            if wait:
+                discard()
+            else:
+                threading.Thread(target=discard, name="bakegi-cancel", daemon=True).start()
+            return
+        self._discard_staged_lightmap()
         starter, self._starter = self._starter, None
         if starter is not None and starter.is_alive():
             # The core stops the worker's texel work within a texel row (it used to run on
@@ -243,7 +302,7 @@ class BakeSession:
             if self.target == "GRID":
                 grid_report = self._write_grid()
             elif self.target == "LIGHTMAP":
-                lightmap_report = self._write_lightmap(data, rgb)
+                lightmap_report = self._write_lightmap(data)
                 image = data.images.get(lightmap_report["image"])
             else:
                 attributes.write_results(data, self.exported.targets, rgb)
@@ -264,11 +323,15 @@ class BakeSession:
                 # This bake replaced what live indirect would overwrite.
                 live.stop()
         finally:
+            if self._writer is not None:  # (it has the job; it stops once the job failed)
+                self._writer.join()
+                self._writer = None
             if self.job is not None:
                 self.job.close()
                 self.job = None
             targets = self.exported.targets if self.exported else []
             if not written:
+                self._discard_staged_lightmap()
                 self._take_back_changes()
             exported_lightmaps = self.exported.lightmaps if self.exported else None
             if not adopted:
@@ -303,13 +366,31 @@ class BakeSession:
                 "rays_per_hemisphere": self.grid.rays, "file_bytes": os.path.getsize(path),
                 "description": grid_file.describe(info)}
 
-    def _write_lightmap(self, data, rgb):
+    def _discard_staged_lightmap(self):
+        staged, self._staged_lightmap = self._staged_lightmap, None
+        if staged is not None:
+            try:
+                os.remove(staged)
+            except OSError:
+                pass
+
+    def _write_lightmap(self, data):
         import bpy  # the session runs inside Blender; the rest of this module does not need it
         path = os.path.join(self.lightmap_folder, lightmap_image.lightmap_file_name(
             bpy.data.filepath, self.scene_name, self._file_identity(data)))
-        image, dropped = lightmap_image.write_lightmap(
-            data, self.exported, rgb, path, self.scene_name, self.lightmap_full_float,
-            bpy.data.filepath)
+        staged = self._join_writer()
+        self._staged_lightmap = None
+        try:
+            os.replace(staged, path)  # atomic: the old lightmap stays until here
+        except OSError as error:
+            try:
+                os.remove(staged)
+            except OSError:
+                pass
+            raise BakeGIError("BAKEGI_ERROR_IO", f"cannot write the lightmap {path}: "
+                              f"{error.strerror}") from None
+        image, dropped = lightmap_image.place_lightmap(data, self.exported, path,
+                                                       self.scene_name, bpy.data.filepath)
         if dropped:
             self.exported.warnings.append(
                 f"the lightmap atlas was rewritten without {', '.join(sorted(dropped))}; "

@@ -225,6 +225,59 @@ TEST_F(LightmapApi, CancelStopsTheTexelWorkFromAnotherThread) {
   EXPECT_EQ(bakegi_lightmaps_cancel(nullptr), BAKEGI_ERROR_INVALID_ARGUMENT);
 }
 
+// Esc during the write-back: the add-on writes the EXR on a worker thread, so a cancel can
+// reach it. Resolving a 2048^2 floor (4.2 M samples) and writing it takes a measurable time
+// (printed); once cancelled, the write stops between resolve's steps and leaves no file.
+TEST_F(LightmapApi, CancelStopsTheWriteBack) {
+  SceneHandle scene = lit_scene();
+  const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
+  const uint32_t mesh = floor.add_to(scene.get(), 10);
+  LightmapsPtr lightmaps = new_lightmaps();
+  ASSERT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 2048, 2048,
+                                 nullptr),
+            BAKEGI_OK);
+  bakegi_points* raw = nullptr;
+  ASSERT_EQ(bakegi_lightmaps_get_points(lightmaps.get(), &raw), BAKEGI_OK);
+  PointsHandle points(raw);
+  const uint64_t count = bakegi_points_count(points.get());
+  const std::vector<float> rgb(3 * count, 0.5f);
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
+                                       path("whole.exr").c_str(), 4, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  std::printf(
+      "a 2048^2 lightmap resolved and written in %.0f ms\n",
+      1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+
+  // A cancel from another thread while a write runs: it either finished first (OK, whole
+  // file) or stopped (CANCELLED, no file); never a partial file.
+  bakegi_status written = BAKEGI_OK;
+  std::thread writer([&] {
+    written = bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
+                                         path("raced.exr").c_str(), 4, 0, BAKEGI_EXR_ZIP);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // into the write, usually
+  ASSERT_EQ(bakegi_lightmaps_cancel(lightmaps.get()), BAKEGI_OK);
+  const auto cancelled = std::chrono::steady_clock::now();
+  writer.join();
+  std::printf(
+      "the write returned %s %.0f ms after the cancel\n",
+      written == BAKEGI_OK ? "finished" : "cancelled",
+      1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - cancelled).count());
+  if (written == BAKEGI_OK) {
+    EXPECT_EQ(read_exr(path("raced.exr")).width, 2048u);
+  } else {
+    EXPECT_EQ(written, BAKEGI_ERROR_CANCELLED) << bakegi_last_error();
+    EXPECT_FALSE(std::filesystem::exists(path("raced.exr")));
+  }
+  // Cancelled is sticky: a later write stops before it starts, and writes nothing.
+  EXPECT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
+                                       path("after.exr").c_str(), 4, 0, BAKEGI_EXR_ZIP),
+            BAKEGI_ERROR_CANCELLED);
+  EXPECT_FALSE(std::filesystem::exists(path("after.exr")));
+}
+
 TEST_F(LightmapApi, PaddingAroundAChart) {
   SceneHandle scene = lit_scene();
   Quad quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});

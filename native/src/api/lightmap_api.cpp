@@ -166,7 +166,8 @@ bakegi_status bakegi_lightmaps_write_exr(const bakegi_lightmaps* lightmaps, uint
     require(rgb, "rgb");
     require(path, "path");
     if (path[0] == '\0') throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "path is empty");
-    const bakegi::ExrWriteOptions options = exr_options(full_float, compression);
+    bakegi::ExrWriteOptions options = exr_options(full_float, compression);
+    options.cancel = lightmaps->set.cancel_flag();
     bakegi::write_exr(path, lightmaps->set.resolve(lightmap, rgb, count, padding), options);
   });
 }

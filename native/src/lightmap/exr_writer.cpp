@@ -1,5 +1,6 @@
 #include "lightmap/exr_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <filesystem>
@@ -105,9 +106,18 @@ void write_exr(const std::string& path, const RgbImage& image, const ExrWriteOpt
     {
       Imf::OutputFile file(utf8_name(temporary).c_str(), header);
       file.setFrameBuffer(frame);
-      file.writePixels(height);
+      // Blocks of scanlines (multiples of ZIP's 16-line blocks), with a cancel check between.
+      constexpr int kRowsPerBlock = 128;
+      for (int written = 0; written < height; written += kRowsPerBlock) {
+        throw_if_cancelled(options.cancel, "writing the lightmap");
+        file.writePixels(std::min(kRowsPerBlock, height - written));
+      }
     }  // closed (and flushed) before the rename
     fs::rename(temporary, target);
+  } catch (const Error&) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
   } catch (const std::exception& e) {
     std::error_code ignored;
     fs::remove(temporary, ignored);

@@ -186,6 +186,11 @@ RgbImage LightmapSet::resolve(uint32_t index, const float* rgb, uint64_t count,
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
                 "padding " + std::to_string(padding) + " is over " + std::to_string(kMaxPadding));
   }
+  // Esc during the write-back: the add-on writes the EXR on a worker thread and cancels here
+  // and in the EXR writer; resolving and writing a 2048² map takes ~0.25 s in all, a cancel
+  // stops it within ~50 ms (LightmapApi.CancelStopsTheWriteBack).
+  const char* work = "writing the lightmap";
+  throw_if_cancelled(cancel_.get(), work);
   const uint64_t first = layout_.first_point(index);
   std::vector<glm::vec3> values(l.samples.size());
   for (size_t i = 0; i < values.size(); ++i) {
@@ -198,8 +203,11 @@ RgbImage LightmapSet::resolve(uint32_t index, const float* rgb, uint64_t count,
   }
   std::vector<uint8_t> filled;
   RgbImage image = resolve_texels(l.samples, values.data(), filled);
+  throw_if_cancelled(cancel_.get(), work);
   dilate_texels(image, filled, padding);
+  throw_if_cancelled(cancel_.get(), work);
   stitch_seams(image, l.samples.covered, filled, l.seams);
+  throw_if_cancelled(cancel_.get(), work);
   return image;
 }
 

@@ -47,12 +47,14 @@ class LightmapSet {
   // Error(CANCELLED) within a texel row or 64 samples, and the set keeps no partial samples
   // of it. (The add-on cancels a lightmap bake's texel work on Esc.) Sticky.
   void cancel() { cancel_->store(true, std::memory_order_relaxed); }
+  // The flag cancel() raises, for work on this set's results (the EXR writer).
+  const CancelFlag* cancel_flag() const { return cancel_.get(); }
 
   // Lightmap `lightmap` as an image (bottom-up, like Blender's): rgb holds 3 floats for
   // each of the count points of points() (the whole bake result); texels get the mean of
   // their samples, `padding` rounds of dilation fill the gutters, and UV seams are
   // stitched. Throws INVALID_ARGUMENT for a wrong count, a value that is not finite or a
-  // padding over kMaxPadding.
+  // padding over kMaxPadding, CANCELLED between its steps once cancel() was called.
   RgbImage resolve(uint32_t lightmap, const float* rgb, uint64_t count, uint32_t padding) const;
 
   const LightmapLayout& layout() const { return layout_; }
