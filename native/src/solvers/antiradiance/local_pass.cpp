@@ -165,12 +165,12 @@ void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
 }
 
 void local_pass_radiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                              RadianceTables& tables) {
-  reflect_all_patches(hierarchy, bins, tables, Update::kRadianceOnly);
+                              RadianceTables& tables, const JobContext* context) {
+  reflect_all_patches(hierarchy, bins, tables, Update::kRadianceOnly, context);
 }
 
 double local_pass_antiradiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                                    RadianceTables& tables) {
+                                    RadianceTables& tables, const JobContext* context) {
   check_sizes(hierarchy, bins, tables);
   const std::vector<Patch>& patches = hierarchy.patches();
   const std::vector<Element>& elements = hierarchy.elements();
@@ -181,6 +181,7 @@ double local_pass_antiradiance_only(const ElementHierarchy& hierarchy, const Dir
                     [&](const tbb::blocked_range<size_t>& block) {
                       std::vector<glm::vec3> before(static_cast<size_t>(m)), scratch;
                       for (size_t p = block.begin(); p != block.end(); ++p) {
+                        if (context && p % 64 == 0) context->throw_if_cancelled();
                         const Patch& patch = patches[p];
                         const uint32_t e = patch.element;
                         const std::span<glm::vec3> exitant = tables.exitant(e);

@@ -47,12 +47,12 @@ void local_pass(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
 // K only: the front bins of every patch get I_L, the back bins 0 (the next bounce starts
 // without antiradiance), and E is added to the accumulated irradiance.
 void local_pass_radiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                              RadianceTables& tables);
+                              RadianceTables& tables, const JobContext* context = nullptr);
 
 // J only: the back bins of every patch get −I_A; the front bins and the accumulated irradiance
 // are left alone. Returns the relative change of the back bins, Σ|new − old| / Σ|new| over
 // patches, bins and channels (1 when they went to zero from non-zero, 0 when they stay zero).
 double local_pass_antiradiance_only(const ElementHierarchy& hierarchy, const DirectionalBins& bins,
-                                    RadianceTables& tables);
+                                    RadianceTables& tables, const JobContext* context = nullptr);
 
 }  // namespace bakegi::antiradiance

@@ -12,6 +12,9 @@ namespace bakegi::antiradiance {
 
 namespace {
 
+// Between cancel checks: 256 rows of up to 3072 bins, well under a millisecond.
+constexpr uint32_t kElementsPerCancelCheck = 256;
+
 // Subtrees of at most this many elements are walked by one task: large enough that the
 // sequential part near the root is a few hundred elements for the Cornell box default.
 constexpr uint32_t kSubtreeGrain = 512;
@@ -74,7 +77,7 @@ void sum_children_intensity(const std::vector<Element>& elements, RadianceTables
 
 }  // namespace
 
-void push(const ElementHierarchy& hierarchy, RadianceTables& tables) {
+void push(const ElementHierarchy& hierarchy, RadianceTables& tables, const JobContext* context) {
   check_tables(hierarchy, tables);
   const std::vector<Element>& elements = hierarchy.elements();
   const TreeSplit split = split_tree(elements);
@@ -84,13 +87,16 @@ void push(const ElementHierarchy& hierarchy, RadianceTables& tables) {
                       for (size_t s = block.begin(); s != block.end(); ++s) {
                         const uint32_t root = split.subtrees[s];
                         for (uint32_t e = root; e != elements[root].subtree_end; ++e) {
+                          if (context && e % kElementsPerCancelCheck == 0) {
+                            context->throw_if_cancelled();
+                          }
                           add_parent_radiance(elements, tables, e);
                         }
                       }
                     });
 }
 
-void pull(const ElementHierarchy& hierarchy, RadianceTables& tables) {
+void pull(const ElementHierarchy& hierarchy, RadianceTables& tables, const JobContext* context) {
   check_tables(hierarchy, tables);
   const std::vector<Element>& elements = hierarchy.elements();
   const TreeSplit split = split_tree(elements);
@@ -99,10 +105,14 @@ void pull(const ElementHierarchy& hierarchy, RadianceTables& tables) {
                       for (size_t s = block.begin(); s != block.end(); ++s) {
                         const uint32_t root = split.subtrees[s];
                         for (uint32_t e = elements[root].subtree_end; e-- != root;) {
+                          if (context && e % kElementsPerCancelCheck == 0) {
+                            context->throw_if_cancelled();
+                          }
                           sum_children_intensity(elements, tables, e);
                         }
                       }
                     });
+  if (context) context->throw_if_cancelled();
   for (auto it = split.upper.rbegin(); it != split.upper.rend(); ++it) {
     sum_children_intensity(elements, tables, *it);
   }

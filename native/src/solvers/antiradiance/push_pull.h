@@ -15,15 +15,20 @@
 
 #include "solvers/antiradiance/element_hierarchy.h"
 #include "solvers/antiradiance/radiance_tables.h"
+#include "util/job_context.h"
 
 namespace bakegi::antiradiance {
 
 // L_in(e) += L_in(parent(e)) for every element in pre-order. Throws Error(INVALID_ARGUMENT)
-// when the tables do not have a row per element.
-void push(const ElementHierarchy& hierarchy, RadianceTables& tables);
+// when the tables do not have a row per element. `context` (optional) is checked for cancel
+// every kElementsPerCancelCheck elements: a sweep of the tables at many bins takes tens of
+// milliseconds.
+void push(const ElementHierarchy& hierarchy, RadianceTables& tables,
+          const JobContext* context = nullptr);
 
 // I_ex(c) = Σ_children I_ex(child) for every cluster, leaves first. Throws
-// Error(INVALID_ARGUMENT) when the tables do not have a row per element.
-void pull(const ElementHierarchy& hierarchy, RadianceTables& tables);
+// Error(INVALID_ARGUMENT) when the tables do not have a row per element. `context` as push's.
+void pull(const ElementHierarchy& hierarchy, RadianceTables& tables,
+          const JobContext* context = nullptr);
 
 }  // namespace bakegi::antiradiance
