@@ -238,28 +238,18 @@ class BakeSession:
         responsive)."""
         self._cancelled = True
         self._take_back_changes()  # bpy: here, on the main thread
-        writer, self._writer = self._writer, None
-        if writer is not None and writer.is_alive():
-            # The core stops resolving or writing the EXR within a block of scanlines.
-            self.exported.lightmaps.lightmaps.cancel()
-            def discard():
-                writer.join()
-                self._discard_staged_lightmap()
-                self._stop_job(True)
-                self._release_export()
-            if wait:
-                discard()
-            else:
-                threading.Thread(target=discard, name="bakegi-cancel", daemon=True).start()
-            return
-        self._discard_staged_lightmap()
-        starter, self._starter = self._starter, None
-        if starter is not None and starter.is_alive():
-            # The core stops the worker's texel work within a texel row (it used to run on
-            # for seconds after Esc); the worker may still start a job: wind both down.
+        # A lightmap worker (the texels before the job, or the EXR after it; never both):
+        # the core stops its texel work within a texel row (it used to run on for seconds
+        # after Esc) and its EXR within a block of scanlines; the texel worker may still
+        # start a job: wind both down.
+        workers = (self._starter, self._writer)
+        self._starter = self._writer = None
+        worker = next((w for w in workers if w is not None and w.is_alive()), None)
+        if worker is not None:
             self.exported.lightmaps.lightmaps.cancel()
             def wind_down():
-                starter.join()
+                worker.join()
+                self._discard_staged_lightmap()
                 self._stop_job(True)
                 self._release_export()
             if wait:
@@ -267,6 +257,7 @@ class BakeSession:
             else:
                 threading.Thread(target=wind_down, name="bakegi-cancel", daemon=True).start()
             return
+        self._discard_staged_lightmap()
         self._stop_job(wait)
         self._release_export()
 
@@ -294,7 +285,8 @@ class BakeSession:
             except BakeGIError as error:
                 raise self._named(error) from None
             self.seconds["bake"] = time.perf_counter() - self._started_at
-            rgb = self.job.result()
+            # (A lightmap's result went to its EXR writer: not fetched again.)
+            rgb = self.job.result() if self.target not in ("LIGHTMAP", "GRID") else None
             core_report = self.job.report()
             t0 = time.perf_counter()
             data = data if data is not None else self.context.blend_data

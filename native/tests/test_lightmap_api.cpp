@@ -24,6 +24,14 @@ namespace fs = std::filesystem;
 
 using LightmapApi = LightmapFilesTest;
 
+// A fake bake result: `value` in every channel of each of the lightmaps' points.
+std::vector<float> uniform_result(bakegi_lightmaps* lightmaps, float value) {
+  bakegi_points* raw = nullptr;
+  EXPECT_EQ(bakegi_lightmaps_get_points(lightmaps, &raw), BAKEGI_OK);
+  PointsHandle points(raw);
+  return std::vector<float>(3 * bakegi_points_count(points.get()), value);
+}
+
 TEST_F(LightmapApi, TwoLightmapsOneBakeRoundTrip) {
   SceneHandle scene = lit_scene();
   const Quad floor({0, 0, 0}, {2, 0, 0}, {0, 2, 0});
@@ -236,11 +244,8 @@ TEST_F(LightmapApi, CancelStopsTheWriteBack) {
   ASSERT_EQ(bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, floor.uvs.data(), 2048, 2048,
                                  nullptr),
             BAKEGI_OK);
-  bakegi_points* raw = nullptr;
-  ASSERT_EQ(bakegi_lightmaps_get_points(lightmaps.get(), &raw), BAKEGI_OK);
-  PointsHandle points(raw);
-  const uint64_t count = bakegi_points_count(points.get());
-  const std::vector<float> rgb(3 * count, 0.5f);
+  const std::vector<float> rgb = uniform_result(lightmaps.get(), 0.5f);
+  const uint64_t count = rgb.size() / 3;
   const auto start = std::chrono::steady_clock::now();
   ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
                                        path("whole.exr").c_str(), 4, 0, BAKEGI_EXR_ZIP),
@@ -287,11 +292,8 @@ TEST_F(LightmapApi, PaddingAroundAChart) {
   ASSERT_EQ(
       bakegi_lightmaps_add(lightmaps.get(), scene.get(), mesh, quad.uvs.data(), 8, 8, nullptr),
       BAKEGI_OK);
-  bakegi_points* raw = nullptr;
-  ASSERT_EQ(bakegi_lightmaps_get_points(lightmaps.get(), &raw), BAKEGI_OK);
-  PointsHandle points(raw);
-  const uint64_t count = bakegi_points_count(points.get());
-  const std::vector<float> rgb(3 * count, 1.0f);
+  const std::vector<float> rgb = uniform_result(lightmaps.get(), 1.0f);
+  const uint64_t count = rgb.size() / 3;
   ASSERT_EQ(bakegi_lightmaps_write_exr(lightmaps.get(), 0, rgb.data(), count,
                                        path("chart.exr").c_str(), 2, 0, BAKEGI_EXR_ZIP),
             BAKEGI_OK)
