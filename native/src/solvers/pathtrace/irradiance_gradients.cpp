@@ -1,0 +1,128 @@
+#include "solvers/pathtrace/irradiance_gradients.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "util/luminance.h"
+#include "util/sampling.h"
+
+namespace bakegi {
+
+namespace {
+
+constexpr int M = HemisphereCells::kThetaCells;
+constexpr int N = HemisphereCells::kPhiCells;
+
+int cell_of(float u1, float u2) {
+  const int j = std::clamp(int(u1 * float(M)), 0, M - 1);
+  const int k = std::clamp(int(u2 * float(N)), 0, N - 1);
+  return j * N + k;
+}
+
+// sin θ and cos θ where u1 = sin² θ (the cosine-distributed polar angle).
+double sin_theta(double u1) {
+  return std::sqrt(std::clamp(u1, 0.0, 1.0));
+}
+double cos_theta(double u1) {
+  return std::sqrt(std::clamp(1.0 - u1, 0.0, 1.0));
+}
+
+glm::dvec3 azimuth(double phi) {
+  return {std::cos(phi), std::sin(phi), 0.0};
+}
+glm::dvec3 perpendicular(double phi) {
+  return {-std::sin(phi), std::cos(phi), 0.0};
+}
+
+// 1 / min(a, b) with misses (+inf) contributing nothing.
+double inverse_nearest(float a, float b) {
+  const float r = std::min(a, b);
+  return std::isfinite(r) && r > 0.0f ? 1.0 / double(r) : 0.0;
+}
+
+}  // namespace
+
+glm::vec3 HemisphereCells::local_direction(float u1, float u2) {
+  const float s = float(sin_theta(u1)), c = float(cos_theta(u1));
+  const float phi = 2.0f * float(M_PI) * u2;
+  return {s * std::cos(phi), s * std::sin(phi), c};
+}
+
+void HemisphereCells::add(float u1, float u2, const glm::vec3& radiance, float distance) {
+  Cell& cell = cells_[size_t(cell_of(u1, u2))];
+  cell.nearest = cell.samples == 0 ? distance : std::min(cell.nearest, distance);
+  cell.radiance += glm::dvec3(radiance);
+  ++cell.samples;
+  ++samples_;
+  if (std::isfinite(distance) && distance > 0.0f) inverse_distance_sum_ += 1.0 / distance;
+  const double y = luminance(radiance);
+  luminance_sum_ += y;
+  luminance_squares_ += y * y;
+}
+
+IrradianceGather HemisphereCells::estimate(const Frame& frame) const {
+  IrradianceGather out;
+  out.samples = samples_;
+  if (samples_ == 0) return out;
+  const double n = double(samples_);
+  glm::dvec3 total(0.0);
+  for (const Cell& cell : cells_) total += cell.radiance;
+  const glm::dvec3 mean = total / n;
+  out.value = glm::vec3(mean);
+  out.harmonic_distance = inverse_distance_sum_ > 0.0 ? float(n / inverse_distance_sum_)
+                                                      : std::numeric_limits<float>::infinity();
+  if (samples_ > 1) {
+    const double y = luminance_sum_ / n;
+    out.luminance_variance_of_mean =
+        float(std::max(0.0, (luminance_squares_ - n * y * y) / (n - 1.0)) / n);
+  }
+
+  // Cell means (an empty cell reads as the mean) and nearest hits.
+  std::array<glm::dvec3, kCells> radiance;
+  std::array<float, kCells> nearest;
+  for (int c = 0; c < kCells; ++c) {
+    const Cell& cell = cells_[size_t(c)];
+    radiance[size_t(c)] = cell.samples > 0 ? cell.radiance / double(cell.samples) : mean;
+    nearest[size_t(c)] = cell.samples > 0 ? cell.nearest : std::numeric_limits<float>::infinity();
+  }
+  const auto at = [](int j, int k) { return size_t(j * N + (k + N) % N); };
+
+  std::array<glm::dvec3, 3> rotational{}, translational{};
+  const double dphi = 2.0 * M_PI / double(N);
+  for (int k = 0; k < N; ++k) {
+    const glm::dvec3 u_k = azimuth((k + 0.5) * dphi), v_k = perpendicular((k + 0.5) * dphi);
+    const glm::dvec3 v_boundary = perpendicular(k * dphi);
+    for (int j = 0; j < M; ++j) {
+      const glm::dvec3& l = radiance[at(j, k)];
+      const double u_centre = (j + 0.5) / M, u_low = double(j) / M, u_high = (j + 1.0) / M;
+      // Rotation: L tan θ v over the cells.
+      const double tan_theta = sin_theta(u_centre) / cos_theta(u_centre);
+      // Translation across the cell's lower polar boundary (j >= 1) and its lower azimuthal
+      // boundary (between k - 1 and k).
+      double polar = 0.0;
+      if (j >= 1) {
+        const double s = sin_theta(u_low), c = cos_theta(u_low);
+        polar = dphi * s * c * c * inverse_nearest(nearest[at(j, k)], nearest[at(j - 1, k)]);
+      }
+      const double azimuthal = (sin_theta(u_high) - sin_theta(u_low)) *
+                               inverse_nearest(nearest[at(j, k)], nearest[at(j, k - 1)]);
+      const glm::dvec3 polar_step = j >= 1 ? l - radiance[at(j - 1, k)] : glm::dvec3(0.0);
+      const glm::dvec3 azimuthal_step = l - radiance[at(j, k - 1)];
+      for (int channel = 0; channel < 3; ++channel) {
+        rotational[size_t(channel)] += l[channel] * tan_theta * v_k;
+        translational[size_t(channel)] +=
+            polar * polar_step[channel] * u_k + azimuthal * azimuthal_step[channel] * v_boundary;
+      }
+    }
+  }
+  for (int channel = 0; channel < 3; ++channel) {
+    out.rotational[size_t(channel)] =
+        frame.to_world(glm::vec3(rotational[size_t(channel)] / double(kCells)));
+    out.translational[size_t(channel)] =
+        frame.to_world(glm::vec3(translational[size_t(channel)] / M_PI));
+  }
+  return out;
+}
+
+}  // namespace bakegi
