@@ -86,10 +86,10 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
   EXPECT_EQ(changeable("antiradiance"),
             sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
                     "target_error", "threads", "cache_dir", "residual", "residual_fraction",
-                    "denoise", "cache_max_mb"}));
+                    "denoise", "cache_max_mb", "irradiance_cache"}));
   EXPECT_EQ(changeable("meshless"),
             sorted({"direct_samples", "sender_cutoff", "bounces", "cache_dir", "samples",
-                    "target_error", "threads", "denoise", "cache_max_mb"}));
+                    "target_error", "threads", "denoise", "cache_max_mb", "irradiance_cache"}));
 }
 
 TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {

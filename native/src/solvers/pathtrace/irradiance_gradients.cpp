@@ -53,8 +53,10 @@ void HemisphereCells::add(float u1, float u2, const glm::vec3& radiance, float d
   Cell& cell = cells_[size_t(cell_of(u1, u2))];
   cell.nearest = cell.samples == 0 ? distance : std::min(cell.nearest, distance);
   cell.radiance += glm::dvec3(radiance);
+  cell.squares += glm::dvec3(radiance) * glm::dvec3(radiance);
   ++cell.samples;
   ++samples_;
+  total_squares_ += glm::dvec3(radiance) * glm::dvec3(radiance);
   if (std::isfinite(distance) && distance > 0.0f) inverse_distance_sum_ += 1.0 / distance;
   const double y = luminance(radiance);
   luminance_sum_ += y;
@@ -78,50 +80,73 @@ IrradianceGather HemisphereCells::estimate(const Frame& frame) const {
         float(std::max(0.0, (luminance_squares_ - n * y * y) / (n - 1.0)) / n);
   }
 
-  // Cell means (an empty cell reads as the mean) and nearest hits.
-  std::array<glm::dvec3, kCells> radiance;
+  // Cell means (an empty cell reads as the mean), the variance of each mean (a cell of one
+  // sample borrows the gather's per-sample variance), and nearest hits.
+  const glm::dvec3 sample_variance =
+      glm::max(glm::dvec3(0.0), (total_squares_ - n * mean * mean) / std::max(1.0, n - 1.0));
+  std::array<glm::dvec3, kCells> radiance, mean_variance;
   std::array<float, kCells> nearest;
   for (int c = 0; c < kCells; ++c) {
     const Cell& cell = cells_[size_t(c)];
-    radiance[size_t(c)] = cell.samples > 0 ? cell.radiance / double(cell.samples) : mean;
+    const double m = double(cell.samples);
+    radiance[size_t(c)] = cell.samples > 0 ? cell.radiance / m : mean;
+    mean_variance[size_t(c)] =
+        cell.samples > 1
+            ? glm::max(glm::dvec3(0.0),
+                       (cell.squares - cell.radiance * cell.radiance / m) / (m - 1.0)) /
+                  m
+        : cell.samples == 1 ? sample_variance
+                            : glm::dvec3(0.0);
     nearest[size_t(c)] = cell.samples > 0 ? cell.nearest : std::numeric_limits<float>::infinity();
   }
   const auto at = [](int j, int k) { return size_t(j * N + (k + N) % N); };
 
-  std::array<glm::dvec3, 3> rotational{}, translational{};
+  // Both gradients are linear in the cell means: gradient = Σ_c coefficient_c L_c (local
+  // frame), so their noise is Σ_c |coefficient_c|² Var(L_c).
+  std::array<glm::dvec3, kCells> rotation{}, translation{};
   const double dphi = 2.0 * M_PI / double(N);
   for (int k = 0; k < N; ++k) {
     const glm::dvec3 u_k = azimuth((k + 0.5) * dphi), v_k = perpendicular((k + 0.5) * dphi);
     const glm::dvec3 v_boundary = perpendicular(k * dphi);
     for (int j = 0; j < M; ++j) {
-      const glm::dvec3& l = radiance[at(j, k)];
       const double u_centre = (j + 0.5) / M, u_low = double(j) / M, u_high = (j + 1.0) / M;
       // Rotation: L tan θ v over the cells.
-      const double tan_theta = sin_theta(u_centre) / cos_theta(u_centre);
+      rotation[at(j, k)] += (sin_theta(u_centre) / cos_theta(u_centre) / double(kCells)) * v_k;
       // Translation across the cell's lower polar boundary (j >= 1) and its lower azimuthal
-      // boundary (between k - 1 and k).
-      double polar = 0.0;
+      // boundary (between k - 1 and k), each a difference of two cells.
       if (j >= 1) {
         const double s = sin_theta(u_low), c = cos_theta(u_low);
-        polar = dphi * s * c * c * inverse_nearest(nearest[at(j, k)], nearest[at(j - 1, k)]);
+        const glm::dvec3 polar = (dphi * s * c * c / M_PI) *
+                                 inverse_nearest(nearest[at(j, k)], nearest[at(j - 1, k)]) * u_k;
+        translation[at(j, k)] += polar;
+        translation[at(j - 1, k)] -= polar;
       }
-      const double azimuthal = (sin_theta(u_high) - sin_theta(u_low)) *
-                               inverse_nearest(nearest[at(j, k)], nearest[at(j, k - 1)]);
-      const glm::dvec3 polar_step = j >= 1 ? l - radiance[at(j - 1, k)] : glm::dvec3(0.0);
-      const glm::dvec3 azimuthal_step = l - radiance[at(j, k - 1)];
-      for (int channel = 0; channel < 3; ++channel) {
-        rotational[size_t(channel)] += l[channel] * tan_theta * v_k;
-        translational[size_t(channel)] +=
-            polar * polar_step[channel] * u_k + azimuthal * azimuthal_step[channel] * v_boundary;
-      }
+      const glm::dvec3 azimuthal = ((sin_theta(u_high) - sin_theta(u_low)) / M_PI) *
+                                   inverse_nearest(nearest[at(j, k)], nearest[at(j, k - 1)]) *
+                                   v_boundary;
+      translation[at(j, k)] += azimuthal;
+      translation[at(j, k - 1)] -= azimuthal;
     }
   }
-  for (int channel = 0; channel < 3; ++channel) {
-    out.rotational[size_t(channel)] =
-        frame.to_world(glm::vec3(rotational[size_t(channel)] / double(kCells)));
-    out.translational[size_t(channel)] =
-        frame.to_world(glm::vec3(translational[size_t(channel)] / M_PI));
-  }
+  const auto combine = [&](const std::array<glm::dvec3, kCells>& coefficient) {
+    std::array<glm::vec3, 3> gradient;
+    for (int channel = 0; channel < 3; ++channel) {
+      glm::dvec3 g(0.0);
+      double noise = 0.0;
+      for (int c = 0; c < kCells; ++c) {
+        g += coefficient[size_t(c)] * radiance[size_t(c)][channel];
+        noise += glm::dot(coefficient[size_t(c)], coefficient[size_t(c)]) *
+                 mean_variance[size_t(c)][channel];
+      }
+      // E|ĝ|² = |g|² + noise: keep the part of the estimate above its noise.
+      const double squared = glm::dot(g, g);
+      const double keep = squared > 0.0 ? std::max(0.0, squared - noise) / squared : 0.0;
+      gradient[size_t(channel)] = frame.to_world(glm::vec3(keep * g));
+    }
+    return gradient;
+  };
+  out.rotational = combine(rotation);
+  out.translational = combine(translation);
   return out;
 }
 

@@ -22,6 +22,13 @@
 // nearest hit in the cell, as in the paper). The first sum is the paper's; in the second the
 // paper has (cos θ_j- − cos θ_j+)/sin θ_j, which the derivation above does not give: the
 // analytic test (test_irradiance_gradients.cpp) checks this one.
+//
+// Noise. A gradient from a few samples per cell is noisy (its noise falls as
+// sqrt(cells / samples), the value's as 1/sqrt(samples)), and a record's prediction carries
+// it across its reach. Both gradients are linear in the cell means, so their variance v
+// follows from the cells' (per channel); each gradient is shrunk by max(0, |g|² − v)/|g|²
+// (James and Stein's positive-part estimator, E|g|² being the true |g|² plus v): a gradient
+// its noise explains is dropped, one well above it is kept nearly whole.
 #pragma once
 
 #include <array>
@@ -66,11 +73,13 @@ class HemisphereCells {
  private:
   struct Cell {
     glm::dvec3 radiance{0.0};
+    glm::dvec3 squares{0.0};
     int64_t samples = 0;
     float nearest = 0.0f;  // set with the first sample
   };
   std::vector<Cell> cells_;
   int64_t samples_ = 0;
+  glm::dvec3 total_squares_{0.0};
   double inverse_distance_sum_ = 0.0;
   double luminance_sum_ = 0.0, luminance_squares_ = 0.0;
 };

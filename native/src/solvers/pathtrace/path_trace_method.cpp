@@ -14,18 +14,24 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
                      "error to reach: NRMSE over the bake points as the samples' spread "
                      "predicts it (an upper bound with quasi-random samples); samples go where "
                      "the noise is, `samples` caps each point; 0 = exactly `samples` per point"),
+      number_setting("irradiance_cache", 0.0, 0.0, 1.0, SettingRole::kLighting,
+                     "accuracy a of an irradiance cache (Ward & Heckbert): gathers of `samples` "
+                     "paths at sparse records, interpolated with gradients where the light "
+                     "changes by less than about a across a record; 0 = off (every point traces "
+                     "its own paths). Typical 0.1-0.3; pays off where points are dense"),
   };
   return specs;
 }
 
 namespace {
 
-std::unique_ptr<Solver> make_pathtrace() { return std::make_unique<PathTraceSolver>(); }
+std::unique_ptr<Solver> make_pathtrace() {
+  return std::make_unique<PathTraceSolver>();
+}
 
-const MethodRegistration kRegistration({
-    "pathtrace",
-    "Monte Carlo path tracing: the reference (DESIGN.md).",
-    10, false, make_pathtrace, PathTraceSolver::setting_specs});
+const MethodRegistration kRegistration({"pathtrace",
+                                        "Monte Carlo path tracing: the reference (DESIGN.md).", 10,
+                                        false, make_pathtrace, PathTraceSolver::setting_specs});
 
 }  // namespace
 

@@ -1,16 +1,33 @@
 #include "solvers/pathtrace/path_trace_solver.h"
 
 #include "lights/direct_light.h"
-#include "solvers/pathtrace/indirect_path.h"
-#include "util/job_context.h"
 #include "settings/settings.h"
+#include "solvers/pathtrace/indirect_path.h"
+#include "solvers/pathtrace/irradiance_cache_bake.h"
+#include "util/error.h"
+#include "util/job_context.h"
 
 namespace bakegi {
 
 PathTraceSettings PathTraceSettings::from(const Settings& settings) {
   PathTraceSettings s;
   s.sampling = SampleSettings::from(settings);
-  s.max_bounces = int(SettingReader(settings, method_schema("pathtrace")).get_int("max_bounces"));
+  const SettingReader reader(settings, method_schema("pathtrace"));
+  s.max_bounces = int(reader.get_int("max_bounces"));
+  s.irradiance_cache = reader.get_float("irradiance_cache");
+  if (s.irradiance_cache > 0.0) {
+    if (s.sampling.target_error > 0.0) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "irradiance_cache does not aim at a target_error: set target_error=0 and the "
+                  "paths per record with samples");
+    }
+    if (s.sampling.samples < kIrradianceCacheMinSamples) {
+      throw Error(
+          BAKEGI_ERROR_INVALID_ARGUMENT,
+          "irradiance_cache needs samples >= " + std::to_string(kIrradianceCacheMinSamples) +
+              " (paths per record: one for each gradient cell)");
+    }
+  }
   return s;
 }
 
@@ -21,6 +38,16 @@ bool PathTracedField::evaluate_with_variance(const BakePoints& points, std::span
                                              std::span<float> variance_of_mean,
                                              const NoiseFilter* after, JobContext& context) const {
   const int max_bounces = settings_.max_bounces;
+  if (settings_.irradiance_cache > 0.0) {
+    IrradianceCacheSettings cache;
+    cache.accuracy = float(settings_.irradiance_cache);
+    cache.samples = settings_.sampling.samples;
+    cache.seed = settings_.sampling.seed;
+    cache.sample_offset = settings_.sampling.sample_offset;
+    cache.max_bounces = max_bounces;
+    bake_with_irradiance_cache(direct_, points, cache, out, variance_of_mean, context);
+    return !variance_of_mean.empty();
+  }
   estimate_at_points(
       points, out, settings_.sampling,
       [&](const SurfacePoint& x, RandomStream& rng, uint64_t& rays) {

@@ -13,6 +13,9 @@ namespace bakegi {
 struct PathTraceSettings {
   SampleSettings sampling;
   int max_bounces = 64;
+  // > 0: the accuracy a of an irradiance cache (irradiance_cache_bake.h); 0: every point
+  // traces its own paths.
+  double irradiance_cache = 0.0;
 
   static PathTraceSettings from(const Settings& settings);
 };

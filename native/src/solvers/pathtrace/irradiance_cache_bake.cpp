@@ -1,0 +1,281 @@
+#include "solvers/pathtrace/irradiance_cache_bake.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "lights/direct_light.h"
+#include "scene/scene.h"
+#include "solvers/pathtrace/indirect_path.h"
+#include "solvers/pathtrace/irradiance_cache.h"
+#include "util/error.h"
+#include "util/job_context.h"
+#include "util/luminance.h"
+#include "util/random.h"
+#include "util/report.h"
+#include "util/sampling.h"
+
+namespace bakegi {
+
+namespace {
+
+// Records are at most this fraction of the scene's extent (its bounding box's diagonal) wide:
+// a gather that sees only the sky or far walls says little about light that changes on a
+// smaller scale.
+constexpr float kMaxRadiusOfExtent = 0.25f;
+// The pilot's random numbers are a different sequence from the gathers'.
+constexpr uint64_t kPilotSeedSalt = 0x51f15e11ull;
+// Cancel is checked every this many samples of a gather.
+constexpr int64_t kSamplesPerCheck = 32;
+
+bool is_finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+SurfacePoint surface_of(const BakePoints& points, size_t i) {
+  return {points.positions[i], points.normals[i], points.normals[i]};
+}
+
+// Step 1: the harmonic mean distance of kPilotRays cosine rays from every point.
+std::vector<float> pilot_radii(const DirectLight& direct, const BakePoints& points,
+                               const IrradianceCacheSettings& settings, float max_radius,
+                               JobContext& context) {
+  std::vector<float> radii(points.size());
+  std::atomic<size_t> done{0};
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, points.size(), 64),
+      [&](const tbb::blocked_range<size_t>& block) {
+        context.throw_if_cancelled();
+        uint64_t rays = 0;
+        for (size_t i = block.begin(); i != block.end(); ++i) {
+          const SurfacePoint x = surface_of(points, i);
+          const Frame frame(x.shading_normal);
+          const glm::vec3 origin = direct.ray_origin(x);
+          double inverse_sum = 0.0;
+          for (int s = 0; s < kPilotRays; ++s) {
+            RandomStream rng =
+                sobol_sample_stream(uint64_t(settings.seed) ^ kPilotSeedSalt, i, uint64_t(s));
+            const float u1 = rng.next_float(), u2 = rng.next_float();
+            const glm::vec3 d = frame.to_world(HemisphereCells::local_direction(u1, u2));
+            const Hit hit = direct.tracer().intersect(Ray{origin, d, 0.0f, 1e30f});
+            ++rays;
+            if (hit.hit && hit.t > 0.0f) inverse_sum += 1.0 / double(hit.t);
+          }
+          radii[i] = inverse_sum > 0.0 ? std::min(max_radius, float(kPilotRays / inverse_sum))
+                                       : max_radius;
+        }
+        context.report().add_count("rays", rays);
+        const size_t now = done.fetch_add(block.size()) + block.size();
+        context.set_stage_progress(0.05 * double(now) / double(points.size()));
+      });
+  return radii;
+}
+
+// Step 3: one record's gather.
+IrradianceGather gather_at(const DirectLight& direct, const BakePoints& points, size_t i,
+                           const IrradianceCacheSettings& settings, uint64_t& rays,
+                           uint64_t& dropped, JobContext& context) {
+  const SurfacePoint x = surface_of(points, i);
+  const Frame frame(x.shading_normal);
+  const glm::vec3 origin = direct.ray_origin(x);
+  HemisphereCells cells;
+  for (int64_t first = 0; first < settings.samples; first += kSamplesPerCheck) {
+    context.throw_if_cancelled();
+    const int64_t last = std::min(settings.samples, first + kSamplesPerCheck);
+    for (int64_t s = first; s < last; ++s) {
+      RandomStream rng =
+          sobol_sample_stream(uint64_t(settings.seed), i, uint64_t(settings.sample_offset + s));
+      const float u1 = rng.next_float(), u2 = rng.next_float();
+      const glm::vec3 d = frame.to_world(HemisphereCells::local_direction(u1, u2));
+      ++rays;
+      const Hit hit = direct.tracer().intersect(Ray{origin, d, 0.0f, 1e30f});
+      if (!hit.hit) {
+        cells.add(u1, u2, glm::vec3(0.0f), std::numeric_limits<float>::infinity());
+        continue;
+      }
+      const PathRadiance path =
+          trace_from_first_hit(direct, hit, d, rng, settings.max_bounces, rays);
+      glm::vec3 radiance = path.first_light + path.rest;
+      // A non-finite sample counts as 0 (and is reported), as in the plain path tracer.
+      if (!is_finite(radiance)) {
+        radiance = glm::vec3(0.0f);
+        ++dropped;
+      }
+      cells.add(u1, u2, radiance, hit.t);
+    }
+  }
+  return cells.estimate(frame);
+}
+
+// A fixed pseudo-random order of the points (step 2).
+std::vector<uint32_t> shuffled_order(size_t count, uint64_t seed) {
+  std::vector<uint32_t> order(count);
+  std::iota(order.begin(), order.end(), 0u);
+  std::vector<uint64_t> keys(count);
+  for (size_t i = 0; i < count; ++i) {
+    uint64_t h =
+        (uint64_t(i) + 1) * 0x9e3779b97f4a7c15ull ^ (uint64_t(seed) * 0xbf58476d1ce4e5b9ull);
+    h ^= h >> 31;
+    h *= 0x94d049bb133111ebull;
+    keys[i] = h ^ (h >> 29);
+  }
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return keys[a] < keys[b] || (keys[a] == keys[b] && a < b);
+  });
+  return order;
+}
+
+}  // namespace
+
+void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& points,
+                                const IrradianceCacheSettings& settings, std::span<glm::vec3> out,
+                                std::span<float> variance_of_mean, JobContext& context) {
+  const size_t count = points.size();
+  if (out.size() != count || (!variance_of_mean.empty() && variance_of_mean.size() != count)) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "output size does not match the number of bake points");
+  }
+  if (count == 0) return;
+  Report& report = context.report();
+  const float extent = direct.scene().extent();
+  const float max_radius = extent > 0.0f ? kMaxRadiusOfExtent * extent : 1.0f;
+  // The index's finest cells: reaches below this share them (only the lookup's speed).
+  const float smallest_radius = max_radius * std::ldexp(1.0f, -20);
+
+  context.set_stage_progress(0.0);
+  context.set_stage_text("irradiance cache: measuring distances at " + std::to_string(count) +
+                         " points");
+  const std::vector<float> pilot = pilot_radii(direct, points, settings, max_radius, context);
+
+  std::vector<IrradianceRecord> records;
+  std::vector<uint32_t> record_point;                  // the bake point of each record
+  std::vector<uint32_t> record_of(count, UINT32_MAX);  // each point's record, if it is one
+  const std::vector<uint32_t> order = shuffled_order(count, uint64_t(settings.seed));
+  std::vector<uint32_t> uncovered = order;
+  std::atomic<uint64_t> dropped{0};
+  int rounds = 0;
+  double slice = 0.9;
+  for (int round = 0; round < kIrradianceCacheRounds && !uncovered.empty(); ++round) {
+    ++rounds;
+    // Placement: against the records so far (their radii from their gathers) and the new
+    // ones (their pilot radii).
+    IrradianceCache placed(settings.accuracy, smallest_radius);
+    for (const IrradianceRecord& r : records) placed.add(r);
+    const size_t first_new = records.size();
+    const bool last_round = round + 1 == kIrradianceCacheRounds;
+    for (const uint32_t i : uncovered) {
+      const glm::vec3& x = points.positions[i];
+      const glm::vec3& n = points.normals[i];
+      if (!last_round && placed.covers(x, n)) continue;
+      IrradianceRecord r;
+      r.position = x;
+      r.normal = n;
+      r.radius = pilot[i];
+      placed.add(r);
+      record_of[i] = uint32_t(records.size());
+      records.push_back(r);
+      record_point.push_back(i);
+    }
+    const size_t new_records = records.size() - first_new;
+    context.set_stage_text("irradiance cache: gathering " + std::to_string(settings.samples) +
+                           " paths at " + std::to_string(new_records) + " records (round " +
+                           std::to_string(round + 1) + ")");
+    std::atomic<size_t> gathered{0};
+    const double progress_from = 1.0 - slice;
+    const double progress_to = 1.0 - slice / 2.0;
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(first_new, records.size(), 1),
+        [&](const tbb::blocked_range<size_t>& block) {
+          uint64_t rays = 0, block_dropped = 0;
+          for (size_t r = block.begin(); r != block.end(); ++r) {
+            IrradianceRecord& record = records[r];
+            record.gather =
+                gather_at(direct, points, record_point[r], settings, rays, block_dropped, context);
+            record.radius = record_radius(record.gather, max_radius);
+            const size_t now = gathered.fetch_add(1) + 1;
+            context.set_stage_progress(progress_from + (progress_to - progress_from) * double(now) /
+                                                           double(new_records));
+          }
+          report.add_count("rays", rays);
+          if (block_dropped) dropped.fetch_add(block_dropped);
+        },
+        tbb::simple_partitioner());
+    slice /= 2.0;
+
+    // What the records with their gathered radii leave uncovered.
+    IrradianceCache cache(settings.accuracy, smallest_radius);
+    for (const IrradianceRecord& r : records) cache.add(r);
+    std::vector<uint8_t> left(count, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, uncovered.size(), 256),
+                      [&](const tbb::blocked_range<size_t>& block) {
+                        for (size_t k = block.begin(); k != block.end(); ++k) {
+                          const uint32_t i = uncovered[k];
+                          if (record_of[i] != UINT32_MAX) continue;
+                          left[k] = !cache.covers(points.positions[i], points.normals[i]);
+                        }
+                      });
+    std::vector<uint32_t> still;
+    for (size_t k = 0; k < uncovered.size(); ++k) {
+      if (left[k]) still.push_back(uncovered[k]);
+    }
+    uncovered.swap(still);
+  }
+
+  // Interpolation everywhere else, and the leave-one-out check at the records.
+  context.set_stage_text("irradiance cache: interpolating " +
+                         std::to_string(count - records.size()) + " points from " +
+                         std::to_string(records.size()) + " records");
+  IrradianceCache cache(settings.accuracy, smallest_radius);
+  for (const IrradianceRecord& r : records) cache.add(r);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 256),
+                    [&](const tbb::blocked_range<size_t>& block) {
+                      context.throw_if_cancelled();
+                      for (size_t i = block.begin(); i != block.end(); ++i) {
+                        float variance = 0.0f;
+                        if (record_of[i] != UINT32_MAX) {
+                          const IrradianceGather& g = records[record_of[i]].gather;
+                          out[i] = g.value;
+                          variance = g.luminance_variance_of_mean;
+                        } else {
+                          const IrradianceCache::Interpolated v =
+                              cache.interpolate(points.positions[i], points.normals[i]);
+                          out[i] = v.value;
+                          variance = v.luminance_variance_of_mean;
+                        }
+                        if (!variance_of_mean.empty()) variance_of_mean[i] = variance;
+                      }
+                    });
+  double squares = 0.0, noise = 0.0, mean = 0.0;
+  size_t checked = 0;
+  for (size_t r = 0; r < records.size(); ++r) {
+    const IrradianceCache::Interpolated v =
+        cache.interpolate(records[r].position, records[r].normal, uint32_t(r));
+    if (!v.covered) continue;
+    const double d = luminance(v.value) - luminance(records[r].gather.value);
+    squares += d * d;
+    noise += double(v.luminance_variance_of_mean) + records[r].gather.luminance_variance_of_mean;
+    ++checked;
+  }
+  for (size_t i = 0; i < count; ++i) mean += luminance(out[i]);
+  mean /= double(count);
+  report.add_count("irradiance_cache_records", records.size());
+  report.add_count("irradiance_cache_rounds", uint64_t(rounds));
+  report.add_count("samples", uint64_t(records.size()) * uint64_t(settings.samples));
+  report.add_count("irradiance_cache_checked_records", checked);
+  if (checked > 0 && mean > 0.0) {
+    report.set_number("irradiance_cache_interpolation_error",
+                      std::sqrt(std::max(0.0, squares - noise) / double(checked)) / mean);
+  }
+  if (dropped.load() > 0) {
+    report.warn(std::to_string(dropped.load()) + " non-finite Monte Carlo samples were dropped");
+  }
+  context.set_stage_progress(1.0);
+}
+
+}  // namespace bakegi

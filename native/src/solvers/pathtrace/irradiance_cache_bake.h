@@ -1,0 +1,49 @@
+// The path tracer through an irradiance cache (irradiance_cache.h): gathers at the records,
+// interpolation elsewhere.
+//
+// 1. Every bake point's radius is estimated from a pilot of kPilotRays cosine rays (the
+//    harmonic mean of their hit distances; closest hits only, no shading).
+// 2. Records are placed greedily, the points in a fixed pseudo-random order: a point no
+//    record covers becomes one. Visiting the points shuffled spreads the records like a
+//    Poisson-disk pattern, not in scan lines.
+// 3. Each record gathers `samples` paths (at least 2^8: the gradient cells,
+//    irradiance_gradients.h), path for path the path tracer's for that point with its
+//    first direction stratified by the cells; its radius is then set from the gather.
+// 4. Where a record's radius came out smaller than its pilot said, points may be left
+//    uncovered: they are placed and gathered again, up to kRounds rounds, the last of which
+//    makes every uncovered point a record.
+// 5. Every other point is interpolated.
+// The report says how many records there were, and a leave-one-out estimate of the error
+// that interpolation adds: each record predicted from the others where they cover it, the
+// records' noise taken out (irradiance_cache_interpolation_error, relative to the mean).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "scene/bake_points.h"
+
+namespace bakegi {
+
+class DirectLight;
+class JobContext;
+
+struct IrradianceCacheSettings {
+  float accuracy = 0.2f;  // a
+  int64_t samples = 1024;
+  int64_t seed = 0;
+  int64_t sample_offset = 0;
+  int max_bounces = 64;
+};
+
+inline constexpr int kPilotRays = 32;
+inline constexpr int kIrradianceCacheRounds = 4;
+inline constexpr int64_t kIrradianceCacheMinSamples = 256;
+
+void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& points,
+                                const IrradianceCacheSettings& settings, std::span<glm::vec3> out,
+                                std::span<float> variance_of_mean, JobContext& context);
+
+}  // namespace bakegi
