@@ -61,31 +61,35 @@ uint32_t IrradianceCache::add(const IrradianceRecord& record) {
 }
 
 float IrradianceCache::error_of(const IrradianceRecord& record, const glm::vec3& x,
-                                const glm::vec3& n) const {
+                                const glm::vec3& n, float own_radius) const {
   const float cosine = glm::dot(n, record.normal);
   if (!(cosine > 0.0f) || !(record.radius > 0.0f)) return accuracy_;
   const glm::vec3 d = x - record.position;
   const float reach = accuracy_ * record.radius;
   if (glm::dot(d, 0.5f * (n + record.normal)) < -kBehindTolerance * reach) return accuracy_;
-  return glm::length(d) / record.radius + std::sqrt(std::max(0.0f, 1.0f - cosine));
+  const float radius = std::min(record.radius, own_radius);
+  if (!(radius > 0.0f)) return accuracy_;
+  return glm::length(d) / radius + std::sqrt(std::max(0.0f, 1.0f - cosine));
 }
 
-bool IrradianceCache::covers(const glm::vec3& x, const glm::vec3& n, uint32_t except) const {
+bool IrradianceCache::covers(const glm::vec3& x, const glm::vec3& n, float own_radius,
+                             uint32_t except) const {
   bool found = false;
   index_.for_each_near(x, [&](uint32_t i) {
-    if (!found && i != except && error_of(records_[i], x, n) < accuracy_) found = true;
+    if (!found && i != except && error_of(records_[i], x, n, own_radius) < accuracy_) found = true;
   });
   return found;
 }
 
 IrradianceCache::Interpolated IrradianceCache::interpolate(const glm::vec3& x, const glm::vec3& n,
+                                                           float own_radius,
                                                            uint32_t except) const {
   glm::dvec3 sum(0.0);
   double weights = 0.0, variance = 0.0;
   index_.for_each_near(x, [&](uint32_t i) {
     if (i == except) return;
     const IrradianceRecord& record = records_[i];
-    const float error = error_of(record, x, n);
+    const float error = error_of(record, x, n, own_radius);
     if (!(error < accuracy_)) return;
     // A record at the point itself: its weight is infinite, the others' nothing.
     const double w = 1.0 / std::max(double(error), 1e-6) - 1.0 / double(accuracy_);

@@ -6,9 +6,11 @@
 // a radius R_i: the harmonic mean distance to what its gather hit, at most 10% of the bake
 // points' extent and at most E_i / |∇_t E_i| (where the light changes fast, records are
 // closer). A point (x, n) may use record i where
-//     ε_i = |x − x_i| / R_i + sqrt(1 − n · n_i)  <  a,
+//     ε_i = |x − x_i| / min(R_i, R_x) + sqrt(1 − n · n_i)  <  a,
 // a the cache's accuracy (Ward's error bound: the relative change of irradiance the paper
-// allows across a record, about ε), and x does not lie behind record i's surface. The value
+// allows across a record, about ε), R_x the point's own radius (measured the same way, where
+// it is known: a point in a crevice must not take light from a record in the open; Ward
+// bounds only by R_i), and x does not lie behind record i's surface. The value
 // at x is the weighted mean of the records' first-order predictions
 //     E_i + (n_i × n) · ∇_r E_i + (x − x_i) · ∇_t E_i,   weight 1/ε_i − 1/a,
 // whose weights fall to 0 at the edge of each record's reach, so the result is continuous.
@@ -72,20 +74,26 @@ class IrradianceCache {
   const std::vector<IrradianceRecord>& records() const { return records_; }
   float accuracy() const { return accuracy_; }
 
-  // Whether some record may be used at (x, n) (skipping record `except`).
-  bool covers(const glm::vec3& x, const glm::vec3& n, uint32_t except = UINT32_MAX) const;
+  // Whether some record may be used at (x, n) (skipping record `except`). `own_radius`: the
+  // point's own radius (its pilot's harmonic mean distance); the distance term uses the
+  // smaller of the two radii, so a point whose surroundings are close (a vertex in a crevice,
+  // under a ledge, inside other geometry) does not take light from a record out in the open.
+  bool covers(const glm::vec3& x, const glm::vec3& n, float own_radius = kNoRadius,
+              uint32_t except = UINT32_MAX) const;
 
   struct Interpolated {
     glm::vec3 value{0.0f};
     float luminance_variance_of_mean = 0.0f;  // of the records' noise the weights carry
     bool covered = false;
   };
-  Interpolated interpolate(const glm::vec3& x, const glm::vec3& n,
+  Interpolated interpolate(const glm::vec3& x, const glm::vec3& n, float own_radius = kNoRadius,
                            uint32_t except = UINT32_MAX) const;
+  static constexpr float kNoRadius = 3.0e38f;
 
  private:
   // ε_i of record i at (x, n), or a value >= a where record i may not be used.
-  float error_of(const IrradianceRecord& record, const glm::vec3& x, const glm::vec3& n) const;
+  float error_of(const IrradianceRecord& record, const glm::vec3& x, const glm::vec3& n,
+                 float own_radius) const;
   float accuracy_;
   std::vector<IrradianceRecord> records_;
   RecordIndex index_;

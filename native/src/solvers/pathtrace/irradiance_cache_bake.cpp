@@ -172,7 +172,7 @@ void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
     for (const uint32_t i : uncovered) {
       const glm::vec3& x = points.positions[i];
       const glm::vec3& n = points.normals[i];
-      if (!last_round && placed.covers(x, n)) continue;
+      if (!last_round && placed.covers(x, n, pilot[i])) continue;
       IrradianceRecord r;
       r.position = x;
       r.normal = n;
@@ -217,7 +217,7 @@ void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
                         for (size_t k = block.begin(); k != block.end(); ++k) {
                           const uint32_t i = uncovered[k];
                           if (record_of[i] != UINT32_MAX) continue;
-                          left[k] = !cache.covers(points.positions[i], points.normals[i]);
+                          left[k] = !cache.covers(points.positions[i], points.normals[i], pilot[i]);
                         }
                       });
     std::vector<uint32_t> still;
@@ -244,7 +244,7 @@ void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
                           variance = g.luminance_variance_of_mean;
                         } else {
                           const IrradianceCache::Interpolated v =
-                              cache.interpolate(points.positions[i], points.normals[i]);
+                              cache.interpolate(points.positions[i], points.normals[i], pilot[i]);
                           out[i] = v.value;
                           variance = v.luminance_variance_of_mean;
                         }
@@ -255,7 +255,8 @@ void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
   size_t checked = 0;
   for (size_t r = 0; r < records.size(); ++r) {
     const IrradianceCache::Interpolated v =
-        cache.interpolate(records[r].position, records[r].normal, uint32_t(r));
+        cache.interpolate(records[r].position, records[r].normal,
+                          std::min(records[r].radius, pilot[record_point[r]]), uint32_t(r));
     if (!v.covered) continue;
     const double d = luminance(v.value) - luminance(records[r].gather.value);
     squares += d * d;

@@ -13,6 +13,9 @@
 //    uncovered: they are placed and gathered again, up to kRounds rounds, the last of which
 //    makes every uncovered point a record.
 // 5. Every other point is interpolated.
+// A point's pilot radius also bounds which records it may use (irradiance_cache.h: R_x), and
+// placement and the rounds test coverage with it: on Sponza, without it, vertices enclosed by
+// other geometry (no light reaches them) took the light of records beside them in the open.
 // The report says how many records there were, and a leave-one-out estimate of the error
 // that interpolation adds: each record predicted from the others where they cover it, the
 // records' noise taken out (irradiance_cache_interpolation_error, relative to the mean).
