@@ -239,6 +239,29 @@ TEST(IrradianceCacheBake, AgreesWithThePlainPathTracerInALitBox) {
   EXPECT_LT(nrmse, 0.05);
 }
 
+// Points far apart for their surroundings (a coarse grid in the box) would nearly all be
+// records: the cache declines, says so, and the bake is the plain path tracer's, bit for bit.
+TEST(IrradianceCacheBake, DeclinesWhereThePointsAreSparse) {
+  LitBox box;
+  test::Baker baker(box.d);
+  const BakePoints points = LitBox::floor_grid(4);
+  PathTraceSettings cached;
+  cached.sampling.samples = 256;
+  cached.irradiance_cache = 0.2;
+  JobContext context;
+  std::vector<glm::vec3> out(points.size());
+  PathTracedField(baker.direct(), cached).evaluate(points, out, context);
+  EXPECT_EQ(context.report().count("irradiance_cache_declined"), 1u);
+  ASSERT_FALSE(context.report().warnings().empty());
+  EXPECT_NE(context.report().warnings()[0].find("irradiance cache not used"), std::string::npos);
+  PathTraceSettings plain = cached;
+  plain.irradiance_cache = 0.0;
+  JobContext plain_context;
+  std::vector<glm::vec3> expected(points.size());
+  PathTracedField(baker.direct(), plain).evaluate(points, expected, plain_context);
+  for (size_t i = 0; i < points.size(); ++i) EXPECT_EQ(out[i], expected[i]) << i;
+}
+
 TEST(IrradianceCacheBake, SaysWhatItCannotDo) {
   Settings settings;
   settings.set("irradiance_cache", 0.2);

@@ -134,14 +134,14 @@ std::vector<uint32_t> shuffled_order(size_t count, uint64_t seed) {
 
 }  // namespace
 
-void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& points,
+bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& points,
                                 const IrradianceCacheSettings& settings, std::span<glm::vec3> out,
                                 std::span<float> variance_of_mean, JobContext& context) {
   const size_t count = points.size();
   if (out.size() != count || (!variance_of_mean.empty() && variance_of_mean.size() != count)) {
     throw Error(BAKEGI_ERROR_INTERNAL, "output size does not match the number of bake points");
   }
-  if (count == 0) return;
+  if (count == 0) return true;
   Report& report = context.report();
   const float extent = direct.scene().extent();
   const float max_radius = extent > 0.0f ? kMaxRadiusOfExtent * extent : 1.0f;
@@ -183,6 +183,19 @@ void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
       record_point.push_back(i);
     }
     const size_t new_records = records.size() - first_new;
+    if (round == 0) {
+      const double fraction = double(new_records) / double(count);
+      report.set_number("irradiance_cache_record_fraction", fraction);
+      if (fraction > kMaxRecordFraction) {
+        report.warn("irradiance cache not used: " + std::to_string(int(100.0 * fraction + 0.5)) +
+                    "% of the bake points would be records (it pays off below " +
+                    std::to_string(int(100.0 * kMaxRecordFraction)) +
+                    "%: the points are not dense for their surroundings); every point traces "
+                    "its own paths");
+        report.add_count("irradiance_cache_declined", 1);
+        return false;
+      }
+    }
     context.set_stage_text("irradiance cache: gathering " + std::to_string(settings.samples) +
                            " paths at " + std::to_string(new_records) + " records (round " +
                            std::to_string(round + 1) + ")");
@@ -270,13 +283,20 @@ void bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
   report.add_count("samples", uint64_t(records.size()) * uint64_t(settings.samples));
   report.add_count("irradiance_cache_checked_records", checked);
   if (checked > 0 && mean > 0.0) {
-    report.set_number("irradiance_cache_interpolation_error",
-                      std::sqrt(std::max(0.0, squares - noise) / double(checked)) / mean);
+    const double interpolation = std::sqrt(std::max(0.0, squares - noise) / double(checked)) / mean;
+    report.set_number("irradiance_cache_interpolation_error", interpolation);
+    if (interpolation > kWarnInterpolationError) {
+      report.warn("the irradiance cache's interpolation may add about " +
+                  std::to_string(int(100.0 * interpolation + 0.5)) +
+                  "% error (records predicted from their neighbours); a smaller "
+                  "irradiance_cache accuracy places records closer");
+    }
   }
   if (dropped.load() > 0) {
     report.warn(std::to_string(dropped.load()) + " non-finite Monte Carlo samples were dropped");
   }
   context.set_stage_progress(1.0);
+  return true;
 }
 
 }  // namespace bakegi

@@ -45,8 +45,9 @@ bool PathTracedField::evaluate_with_variance(const BakePoints& points, std::span
     cache.seed = settings_.sampling.seed;
     cache.sample_offset = settings_.sampling.sample_offset;
     cache.max_bounces = max_bounces;
-    bake_with_irradiance_cache(direct_, points, cache, out, variance_of_mean, context);
-    return !variance_of_mean.empty();
+    if (bake_with_irradiance_cache(direct_, points, cache, out, variance_of_mean, context)) {
+      return !variance_of_mean.empty();
+    }
   }
   estimate_at_points(
       points, out, settings_.sampling,
