@@ -6,8 +6,9 @@ the values at the subset with the reference (tools/real_scene_metrics.py; the re
 own noise is stated and removed in quadrature).
 
     /usr/bin/python3 tools/irradiance_cache_study.py --scenes cornell_area,bunny_dragon \\
-        --accuracy 0.1 0.2 0.3 --record-samples 256 1024 4096 --plain-samples 16 64 256 \\
-        [--work /tmp/bakegi_real_scenes] [--cli build/bakegi] [--json docs/irradiance_cache.json]
+        --accuracy 0.1 0.2 0.3 --record-samples 256 1024 --plain-samples 64 256 1024 \\
+        [--target CORNER|LIGHTMAP] [--work /tmp/bakegi_real_scenes] [--cli build/bakegi] \\
+        [--json docs/irradiance_cache.json]
 
 Seconds are the core's (`report["seconds"]["total"]`), error probes off.
 """
@@ -48,13 +49,17 @@ def main():
     parser.add_argument("--accuracy", type=float, nargs="+", default=[0.1, 0.2, 0.3])
     parser.add_argument("--record-samples", type=int, nargs="+", default=[256, 1024])
     parser.add_argument("--plain-samples", type=int, nargs="+", default=[16, 64, 256])
+    parser.add_argument("--denoised-targets", type=float, nargs="*", default=[],
+                        help="also the default bake (target_error and denoise) at these targets")
+    parser.add_argument("--target", default="CORNER", choices=("CORNER", "LIGHTMAP"),
+                        help="which of the scene's exports: face corners or lightmap texels")
     parser.add_argument("--work", default="/tmp/bakegi_real_scenes")
     parser.add_argument("--cli", default=os.path.join(ROOT, "build", "bakegi"))
     parser.add_argument("--json", help="write the rows here")
     args = parser.parse_args()
     rows = []
     for scene in args.scenes.split(","):
-        folder = os.path.join(args.work, scene, "corner")
+        folder = os.path.join(args.work, scene, args.target.lower())
         bgs = os.path.join(folder, "scene.bgs")
         if not os.path.exists(bgs):
             sys.exit("%s: no export in %s: run tools/real_scenes.py for it first" % (scene, folder))
@@ -66,16 +71,21 @@ def main():
         print("%s: reference %d paths per point, its noise %.2f%%"
               % (scene, ref_samples, 100 * ref_noise), flush=True)
         runs = [("plain_%d" % n, {}, n, 0.0) for n in args.plain_samples]
+        runs += [("denoised_%g" % t, {"target_error": t, "denoise": 1}, 65536, 0.0)
+                 for t in args.denoised_targets]
         runs += [("cache_%g_%d" % (a, n), {"irradiance_cache": a}, n, a)
                  for a in args.accuracy for n in args.record_samples]
         for name, settings, samples, accuracy in runs:
             values, report = bake(args.cli, bgs, folder, "ic_" + name, settings, samples)
             metrics = compare_at_subset(values[indices], ref, ref_noise, names)
             row = {
-                "scene": scene, "accuracy": accuracy, "samples": samples,
+                "scene": scene, "target": args.target, "accuracy": accuracy, "samples": samples,
+                "denoised_target": settings.get("target_error"),
                 "seconds": report["seconds"]["total"], "paths": report.get("samples"),
                 "rays": report.get("rays"), "evaluated_points": report.get("evaluated_points"),
                 "records": report.get("irradiance_cache_records"),
+                "declined": bool(report.get("irradiance_cache_declined")),
+                "record_fraction": report.get("irradiance_cache_record_fraction"),
                 "rounds": report.get("irradiance_cache_rounds"),
                 "predicted_interpolation_error": report.get("irradiance_cache_interpolation_error"),
                 "reference_samples": ref_samples, "reference_noise": ref_noise,

@@ -15,10 +15,11 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
                      "predicts it (an upper bound with quasi-random samples); samples go where "
                      "the noise is, `samples` caps each point; 0 = exactly `samples` per point"),
       number_setting("irradiance_cache", 0.0, 0.0, 1.0, SettingRole::kLighting,
-                     "accuracy a of an irradiance cache (Ward & Heckbert): gathers of `samples` "
-                     "paths at sparse records, interpolated with gradients where the light "
-                     "changes by less than about a across a record; 0 = off (every point traces "
-                     "its own paths). Typical 0.1-0.3; pays off where points are dense"),
+                     "accuracy a of an irradiance cache (Ward & Heckbert; docs/methods/"
+                     "pathtrace.md): `samples` paths (>= 256) at sparse records, the other "
+                     "points interpolated with gradients; smaller a places records closer "
+                     "(0.2-0.3 measured best, docs/benchmarks.md 0g); not with target_error; "
+                     "declines (warning) where over half the points would be records; 0 = off"),
   };
   return specs;
 }
