@@ -47,10 +47,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", required=True, help="comma-separated suite scene names")
     parser.add_argument("--accuracy", type=float, nargs="+", default=[0.1, 0.2, 0.3])
-    parser.add_argument("--record-samples", type=int, nargs="+", default=[256, 1024])
+    parser.add_argument("--record-samples", type=int, nargs="*", default=[256, 1024])
     parser.add_argument("--plain-samples", type=int, nargs="+", default=[16, 64, 256])
     parser.add_argument("--denoised-targets", type=float, nargs="*", default=[],
                         help="also the default bake (target_error and denoise) at these targets")
+    parser.add_argument("--cache-targets", type=float, nargs="*", default=[],
+                        help="also the cache at each accuracy aiming at these target errors "
+                        "(records sampled in rounds; at most 65,536 paths a record)")
     parser.add_argument("--target", default="CORNER", choices=("CORNER", "LIGHTMAP"),
                         help="which of the scene's exports: face corners or lightmap texels")
     parser.add_argument("--work", default="/tmp/bakegi_real_scenes")
@@ -75,12 +78,16 @@ def main():
                  for t in args.denoised_targets]
         runs += [("cache_%g_%d" % (a, n), {"irradiance_cache": a}, n, a)
                  for a in args.accuracy for n in args.record_samples]
+        runs += [("cache_%g_target_%g" % (a, t), {"irradiance_cache": a, "target_error": t},
+                  65536, a) for a in args.accuracy for t in args.cache_targets]
         for name, settings, samples, accuracy in runs:
             values, report = bake(args.cli, bgs, folder, "ic_" + name, settings, samples)
             metrics = compare_at_subset(values[indices], ref, ref_noise, names)
             row = {
                 "scene": scene, "target": args.target, "accuracy": accuracy, "samples": samples,
-                "denoised_target": settings.get("target_error"),
+                "denoised_target": settings.get("target_error") if not accuracy else None,
+                "cache_target": settings.get("target_error") if accuracy else None,
+                "predicted": report.get("sampling_predicted_error"),
                 "seconds": report["seconds"]["total"], "paths": report.get("samples"),
                 "rays": report.get("rays"), "evaluated_points": report.get("evaluated_points"),
                 "records": report.get("irradiance_cache_records"),

@@ -45,6 +45,12 @@ bool Report::has_number(const std::string& key) const {
   return numbers_.count(key) > 0;
 }
 
+double Report::number(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto found = numbers_.find(key);
+  return found == numbers_.end() ? 0.0 : found->second;
+}
+
 uint64_t Report::count(const std::string& key) const {
   std::lock_guard lock(mutex_);
   auto it = counts_.find(key);

@@ -24,6 +24,7 @@ class Report {
   std::vector<std::string> warnings() const;
   uint64_t count(const std::string& key) const;  // 0 if never counted
   bool has_number(const std::string& key) const;
+  double number(const std::string& key) const;  // 0 if never set
   // One JSON object: numbers, counts, texts and JSON values as top-level members,
   // "seconds": {stage: s, ...} and "warnings": [...]. Non-finite numbers become null.
   std::string to_json() const;

@@ -13,6 +13,7 @@
 
 #include "lights/direct_light.h"
 #include "scene/scene.h"
+#include "solvers/adaptive_sampling.h"
 #include "solvers/pathtrace/indirect_path.h"
 #include "solvers/pathtrace/irradiance_cache.h"
 #include "util/error.h"
@@ -78,17 +79,17 @@ std::vector<float> pilot_radii(const DirectLight& direct, const BakePoints& poin
   return radii;
 }
 
-// Step 3: one record's gather.
+// Step 3: one record's gather of samples [from, to), its gradients as measured.
 IrradianceGather gather_at(const DirectLight& direct, const BakePoints& points, size_t i,
-                           const IrradianceCacheSettings& settings, uint64_t& rays,
-                           uint64_t& dropped, JobContext& context) {
+                           const IrradianceCacheSettings& settings, int64_t from, int64_t to,
+                           uint64_t& rays, uint64_t& dropped, JobContext& context) {
   const SurfacePoint x = surface_of(points, i);
   const Frame frame(x.shading_normal);
   const glm::vec3 origin = direct.ray_origin(x);
   HemisphereCells cells;
-  for (int64_t first = 0; first < settings.samples; first += kSamplesPerCheck) {
+  for (int64_t first = from; first < to; first += kSamplesPerCheck) {
     context.throw_if_cancelled();
-    const int64_t last = std::min(settings.samples, first + kSamplesPerCheck);
+    const int64_t last = std::min(to, first + kSamplesPerCheck);
     for (int64_t s = first; s < last; ++s) {
       RandomStream rng =
           sobol_sample_stream(uint64_t(settings.seed), i, uint64_t(settings.sample_offset + s));
@@ -153,8 +154,14 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
                          " points");
   const std::vector<float> pilot = pilot_radii(direct, points, settings, max_radius, context);
 
-  std::vector<IrradianceRecord> records;
-  std::vector<uint32_t> record_point;                  // the bake point of each record
+  std::vector<IrradianceRecord> records;   // their gathers' gradients shrunk
+  std::vector<IrradianceGather> measured;  // the same gathers as measured (to add to)
+  std::vector<uint32_t> record_point;      // the bake point of each record
+  // With a target error, records start with the least their cells need and rounds add
+  // samples where the noise is (as solvers/adaptive_sampling.h does for points).
+  const bool adaptive = settings.target_error > 0.0;
+  const int64_t first_samples =
+      adaptive ? std::min(settings.samples, kIrradianceCacheMinSamples) : settings.samples;
   std::vector<uint32_t> record_of(count, UINT32_MAX);  // each point's record, if it is one
   const std::vector<uint32_t> order = shuffled_order(count, uint64_t(settings.seed));
   std::vector<uint32_t> uncovered = order;
@@ -180,6 +187,7 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
       placed.add(r);
       record_of[i] = uint32_t(records.size());
       records.push_back(r);
+      measured.emplace_back();
       record_point.push_back(i);
     }
     const size_t new_records = records.size() - first_new;
@@ -196,7 +204,7 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
         return false;
       }
     }
-    context.set_stage_text("irradiance cache: gathering " + std::to_string(settings.samples) +
+    context.set_stage_text("irradiance cache: gathering " + std::to_string(first_samples) +
                            " paths at " + std::to_string(new_records) + " records (round " +
                            std::to_string(round + 1) + ")");
     std::atomic<size_t> gathered{0};
@@ -208,8 +216,9 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
           uint64_t rays = 0, block_dropped = 0;
           for (size_t r = block.begin(); r != block.end(); ++r) {
             IrradianceRecord& record = records[r];
-            record.gather =
-                gather_at(direct, points, record_point[r], settings, rays, block_dropped, context);
+            measured[r] = gather_at(direct, points, record_point[r], settings, 0, first_samples,
+                                    rays, block_dropped, context);
+            record.gather = shrink_gradients(measured[r]);
             record.radius = record_radius(record.gather, max_radius);
             const size_t now = gathered.fetch_add(1) + 1;
             context.set_stage_progress(progress_from + (progress_to - progress_from) * double(now) /
@@ -238,6 +247,57 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
       if (left[k]) still.push_back(uncovered[k]);
     }
     uncovered.swap(still);
+  }
+
+  // With a target error: rounds of more samples at the records whose noise needs them. The
+  // prediction is over the records, an upper bound for the points between them (each a
+  // weighted mean of several). Radii, and so which records a point uses, stay as placed.
+  if (adaptive) {
+    int sampling_rounds = 1;
+    std::vector<PointTally> tallies(records.size());
+    for (;;) {
+      for (size_t r = 0; r < records.size(); ++r) {
+        tallies[r] = {measured[r].samples, measured[r].luminance_sum,
+                      measured[r].luminance_squares};
+      }
+      const SamplingRound next =
+          plan_sampling_round(tallies, settings.target_error, settings.samples);
+      report.set_number("sampling_predicted_error", next.predicted_error);
+      if (next.done()) break;
+      ++sampling_rounds;
+      // Whole blocks of 2^8 samples keep every gradient cell stratified.
+      std::vector<int64_t> added(records.size());
+      for (size_t r = 0; r < records.size(); ++r) {
+        const int64_t blocks =
+            (next.added[r] + kIrradianceCacheMinSamples - 1) / kIrradianceCacheMinSamples;
+        added[r] =
+            std::min(blocks * kIrradianceCacheMinSamples, settings.samples - measured[r].samples);
+      }
+      context.set_stage_text("irradiance cache: more paths at the records towards " +
+                             std::to_string(settings.target_error * 100.0) + "% error");
+      tbb::parallel_for(
+          tbb::blocked_range<size_t>(0, records.size(), 1),
+          [&](const tbb::blocked_range<size_t>& block) {
+            uint64_t rays = 0, block_dropped = 0;
+            for (size_t r = block.begin(); r != block.end(); ++r) {
+              if (added[r] <= 0) continue;
+              const int64_t from = measured[r].samples;
+              measured[r] = combine_gathers(
+                  measured[r], gather_at(direct, points, record_point[r], settings, from,
+                                         from + added[r], rays, block_dropped, context));
+              const float radius = records[r].radius;
+              records[r].gather = shrink_gradients(measured[r]);
+              records[r].radius = radius;
+            }
+            report.add_count("rays", rays);
+            if (block_dropped) dropped.fetch_add(block_dropped);
+          },
+          tbb::simple_partitioner());
+      context.set_stage_progress(1.0 - slice / 2.0);
+      slice /= 2.0;
+    }
+    report.add_count("sampling_rounds", uint64_t(sampling_rounds));
+    report.set_number("target_error", settings.target_error);
   }
 
   // Interpolation everywhere else, and the leave-one-out check at the records.
@@ -280,11 +340,19 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
   mean /= double(count);
   report.add_count("irradiance_cache_records", records.size());
   report.add_count("irradiance_cache_rounds", uint64_t(rounds));
-  report.add_count("samples", uint64_t(records.size()) * uint64_t(settings.samples));
+  uint64_t samples = 0;
+  for (const IrradianceGather& g : measured) samples += uint64_t(g.samples);
+  report.add_count("samples", samples);
   report.add_count("irradiance_cache_checked_records", checked);
   if (checked > 0 && mean > 0.0) {
     const double interpolation = std::sqrt(std::max(0.0, squares - noise) / double(checked)) / mean;
     report.set_number("irradiance_cache_interpolation_error", interpolation);
+    // A target's prediction covers the records' noise; what interpolation adds comes on top.
+    if (adaptive) {
+      const double noise_only = report.number("sampling_predicted_error");
+      report.set_number("sampling_predicted_error",
+                        std::sqrt(noise_only * noise_only + interpolation * interpolation));
+    }
     if (interpolation > kWarnInterpolationError) {
       report.warn("the irradiance cache's interpolation may add about " +
                   std::to_string(int(100.0 * interpolation + 0.5)) +

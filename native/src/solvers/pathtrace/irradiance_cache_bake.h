@@ -12,7 +12,10 @@
 // 4. Where a record's radius came out smaller than its pilot said, points may be left
 //    uncovered: they are placed and gathered again, up to kRounds rounds, the last of which
 //    makes every uncovered point a record.
-// 5. Every other point is interpolated.
+// 5. With a target error, rounds add paths to the records whose noise needs them (whole
+//    blocks of 2^8, so every block stratifies the cells), until the noise the records' spread
+//    predicts meets the target; placement and radii stay.
+// 6. Every other point is interpolated.
 // A point's pilot radius also bounds which records it may use (irradiance_cache.h: R_x), and
 // placement and the rounds test coverage with it: on Sponza, without it, vertices enclosed by
 // other geometry (no light reaches them) took the light of records beside them in the open.
@@ -42,6 +45,9 @@ struct IrradianceCacheSettings {
   int64_t seed = 0;
   int64_t sample_offset = 0;
   int max_bounces = 64;
+  // > 0: records start with kIrradianceCacheMinSamples paths and rounds add more where their
+  // noise is until the noise predicted over the records meets it (`samples` caps a record).
+  double target_error = 0.0;
 };
 
 inline constexpr int kPilotRays = 32;

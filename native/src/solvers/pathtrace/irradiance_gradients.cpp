@@ -74,6 +74,8 @@ IrradianceGather HemisphereCells::estimate(const Frame& frame) const {
   out.value = glm::vec3(mean);
   out.harmonic_distance = inverse_distance_sum_ > 0.0 ? float(n / inverse_distance_sum_)
                                                       : std::numeric_limits<float>::infinity();
+  out.luminance_sum = luminance_sum_;
+  out.luminance_squares = luminance_squares_;
   if (samples_ > 1) {
     const double y = luminance_sum_ / n;
     out.luminance_variance_of_mean =
@@ -128,8 +130,8 @@ IrradianceGather HemisphereCells::estimate(const Frame& frame) const {
       translation[at(j, k - 1)] -= azimuthal;
     }
   }
-  const auto combine = [&](const std::array<glm::dvec3, kCells>& coefficient) {
-    std::array<glm::vec3, 3> gradient;
+  const auto gradient_of = [&](const std::array<glm::dvec3, kCells>& coefficient,
+                               std::array<glm::vec3, 3>& gradient, glm::vec3& noise_out) {
     for (int channel = 0; channel < 3; ++channel) {
       glm::dvec3 g(0.0);
       double noise = 0.0;
@@ -138,15 +140,66 @@ IrradianceGather HemisphereCells::estimate(const Frame& frame) const {
         noise += glm::dot(coefficient[size_t(c)], coefficient[size_t(c)]) *
                  mean_variance[size_t(c)][channel];
       }
-      // E|ĝ|² = |g|² + noise: keep the part of the estimate above its noise.
-      const double squared = glm::dot(g, g);
-      const double keep = squared > 0.0 ? std::max(0.0, squared - noise) / squared : 0.0;
-      gradient[size_t(channel)] = frame.to_world(glm::vec3(keep * g));
+      gradient[size_t(channel)] = frame.to_world(glm::vec3(g));
+      noise_out[channel] = float(noise);
     }
-    return gradient;
   };
-  out.rotational = combine(rotation);
-  out.translational = combine(translation);
+  gradient_of(rotation, out.rotational, out.rotational_noise);
+  gradient_of(translation, out.translational, out.translational_noise);
+  return out;
+}
+
+namespace {
+
+// E|ĝ|² = |g|² + noise: keeps the part of the estimate above its noise, per channel.
+void shrink(std::array<glm::vec3, 3>& gradient, glm::vec3& noise) {
+  for (int channel = 0; channel < 3; ++channel) {
+    glm::vec3& g = gradient[size_t(channel)];
+    const double squared = glm::dot(glm::dvec3(g), glm::dvec3(g));
+    const double keep =
+        squared > 0.0 ? std::max(0.0, squared - double(noise[channel])) / squared : 0.0;
+    g *= float(keep);
+    noise[channel] = 0.0f;
+  }
+}
+
+}  // namespace
+
+IrradianceGather shrink_gradients(const IrradianceGather& gather) {
+  IrradianceGather out = gather;
+  shrink(out.rotational, out.rotational_noise);
+  shrink(out.translational, out.translational_noise);
+  return out;
+}
+
+IrradianceGather combine_gathers(const IrradianceGather& a, const IrradianceGather& b) {
+  if (a.samples == 0) return b;
+  if (b.samples == 0) return a;
+  const double n = double(a.samples + b.samples);
+  const float wa = float(double(a.samples) / n), wb = float(double(b.samples) / n);
+  IrradianceGather out;
+  out.samples = a.samples + b.samples;
+  out.value = wa * a.value + wb * b.value;
+  for (size_t c = 0; c < 3; ++c) {
+    out.rotational[c] = wa * a.rotational[c] + wb * b.rotational[c];
+    out.translational[c] = wa * a.translational[c] + wb * b.translational[c];
+  }
+  out.rotational_noise = wa * wa * a.rotational_noise + wb * wb * b.rotational_noise;
+  out.translational_noise = wa * wa * a.translational_noise + wb * wb * b.translational_noise;
+  // Σ 1/r of each gather is samples / harmonic mean (0 for +inf).
+  const auto inverse_sum = [](const IrradianceGather& g) {
+    return std::isfinite(g.harmonic_distance) && g.harmonic_distance > 0.0f
+               ? double(g.samples) / double(g.harmonic_distance)
+               : 0.0;
+  };
+  const double inverse = inverse_sum(a) + inverse_sum(b);
+  out.harmonic_distance =
+      inverse > 0.0 ? float(n / inverse) : std::numeric_limits<float>::infinity();
+  out.luminance_sum = a.luminance_sum + b.luminance_sum;
+  out.luminance_squares = a.luminance_squares + b.luminance_squares;
+  const double y = out.luminance_sum / n;
+  out.luminance_variance_of_mean =
+      float(std::max(0.0, (out.luminance_squares - n * y * y) / (n - 1.0)) / n);
   return out;
 }
 

@@ -50,7 +50,19 @@ struct IrradianceGather {
   float harmonic_distance = 0.0f;
   float luminance_variance_of_mean = 0.0f;  // of `value`, from the samples' spread
   int64_t samples = 0;
+  // Per channel: the variance of each gradient (the sum over its components), from the
+  // cells' spread; 0 once shrink_gradients() has used it.
+  glm::vec3 rotational_noise{0.0f}, translational_noise{0.0f};
+  double luminance_sum = 0.0, luminance_squares = 0.0;  // of the samples
 };
+
+// The gradients shrunk by their noise (see "Noise" above).
+IrradianceGather shrink_gradients(const IrradianceGather& gather);
+
+// The gather of a's and b's samples together (independent samples at the same point, each
+// gather stratified on its own): values and gradients weighted by samples, their noise
+// likewise (squared weights), harmonic means through their sums. Neither may be shrunk.
+IrradianceGather combine_gathers(const IrradianceGather& a, const IrradianceGather& b);
 
 class HemisphereCells {
  public:
@@ -65,7 +77,8 @@ class HemisphereCells {
   // One sample: the numbers its direction came from, the radiance it brought, and the
   // distance to its hit (+inf for a miss).
   void add(float u1, float u2, const glm::vec3& radiance, float distance);
-  // The gather in world space (frame: the point's, as local_direction's directions used).
+  // The gather in world space (frame: the point's, as local_direction's directions used),
+  // its gradients as measured (shrink_gradients() takes their noise out).
   // Cells without a sample count as the mean of the others (gradients then are rough).
   IrradianceGather estimate(const Frame& frame) const;
   int64_t samples() const { return samples_; }

@@ -16,10 +16,12 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
                      "the noise is, `samples` caps each point; 0 = exactly `samples` per point"),
       number_setting("irradiance_cache", 0.0, 0.0, 1.0, SettingRole::kLighting,
                      "accuracy a of an irradiance cache (Ward & Heckbert; docs/methods/"
-                     "pathtrace.md): `samples` paths (>= 256) at sparse records, the other "
-                     "points interpolated with gradients; smaller a places records closer "
-                     "(0.2-0.3 measured best, docs/benchmarks.md 0g); not with target_error; "
-                     "declines (warning) where over half the points would be records; 0 = off"),
+                     "pathtrace.md): `samples` paths (>= 256; a cap with target_error) at "
+                     "sparse records, the other points interpolated with gradients; smaller a "
+                     "places records closer "
+                     "(0.2-0.3 measured best, docs/benchmarks.md 0g); with target_error the "
+                     "records sample in rounds; declines (warning) where over half the points "
+                     "would be records; 0 = off"),
   };
   return specs;
 }

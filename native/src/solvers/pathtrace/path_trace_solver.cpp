@@ -16,11 +16,6 @@ PathTraceSettings PathTraceSettings::from(const Settings& settings) {
   s.max_bounces = int(reader.get_int("max_bounces"));
   s.irradiance_cache = reader.get_float("irradiance_cache");
   if (s.irradiance_cache > 0.0) {
-    if (s.sampling.target_error > 0.0) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "irradiance_cache does not aim at a target_error: set target_error=0 and the "
-                  "paths per record with samples");
-    }
     if (s.sampling.samples < kIrradianceCacheMinSamples) {
       throw Error(
           BAKEGI_ERROR_INVALID_ARGUMENT,
@@ -45,6 +40,7 @@ bool PathTracedField::evaluate_with_variance(const BakePoints& points, std::span
     cache.seed = settings_.sampling.seed;
     cache.sample_offset = settings_.sampling.sample_offset;
     cache.max_bounces = max_bounces;
+    cache.target_error = settings_.sampling.target_error;
     if (bake_with_irradiance_cache(direct_, points, cache, out, variance_of_mean, context)) {
       return !variance_of_mean.empty();
     }
