@@ -113,6 +113,21 @@ def object_names_at(info, indices):
     return names
 
 
+def suite_scene(cli, work, scene, target="CORNER"):
+    """An exported suite scene for studies that bake it whole and compare at its subset:
+    (scene.bgs, subset indices, reference, its noise, its paths per point, object names at
+    the subset). Exits with a message when tools/real_scenes.py has not set it up."""
+    folder = os.path.join(work, scene, target.lower())
+    bgs = os.path.join(folder, "scene.bgs")
+    if not os.path.exists(bgs):
+        sys.exit("%s: no export in %s: run tools/real_scenes.py for it first" % (scene, folder))
+    with open(os.path.join(folder, "export.json")) as f:
+        info = json.load(f)
+    indices = numpy.load(os.path.join(folder, "subset_indices.npy")).astype(numpy.int64)
+    ref, ref_noise, ref_samples = reference(cli, os.path.join(folder, "subset.bgs"), folder)
+    return bgs, indices, ref, ref_noise, ref_samples, object_names_at(info, indices)
+
+
 def reference(cli, subset_bgs, folder):
     """(reference (k, 3), noise, samples) on the subset: chunks until the noise of the mean of
     two interleaved halves is at most TARGET_NOISE."""

@@ -24,7 +24,7 @@ import numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from real_scene_metrics import compare_at_subset  # noqa: E402
-from real_scenes import object_names_at, reference  # noqa: E402
+from real_scenes import suite_scene  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -68,15 +68,8 @@ def main():
     args = parser.parse_args()
     rows = []
     for scene in args.scenes.split(","):
-        folder = os.path.join(args.work, scene, "corner")
-        bgs = os.path.join(folder, "scene.bgs")
-        if not os.path.exists(bgs):
-            sys.exit("%s: no export in %s: run tools/real_scenes.py for it first" % (scene, folder))
-        with open(os.path.join(folder, "export.json")) as f:
-            info = json.load(f)
-        indices = numpy.load(os.path.join(folder, "subset_indices.npy")).astype(numpy.int64)
-        ref, ref_noise, ref_samples = reference(args.cli, os.path.join(folder, "subset.bgs"), folder)
-        names = object_names_at(info, indices)
+        bgs, indices, ref, ref_noise, ref_samples, names = suite_scene(args.cli, args.work, scene)
+        folder = os.path.dirname(bgs)
         print("%s: reference %d paths per point, its noise %.2f%%" % (scene, ref_samples, 100 * ref_noise))
         for target in args.targets:
             for denoise in args.denoise:

@@ -179,11 +179,27 @@ TEST(IrradianceCacheBake, ClosedSphereKeepsTheClosedForm) {
 // A closed box lit by a point light near a corner, a dense grid of points on its floor: the
 // cache against the plain path tracer with many paths, and against its settings' limits.
 struct LitBox {
-  SceneDescription d;
-  LitBox() {
+  static SceneDescription describe() {
+    SceneDescription d;
     const uint32_t wall = test::add_material(d, glm::vec3(0.6f, 0.6f, 0.6f));
     d.meshes.push_back(test::make_cube({0, 0, 0}, {2, 2, 2}, test::Facing::kInward, wall));
     d.lights.push_back(test::point_light({0.5f, 0.6f, 1.6f}, glm::vec3(3.0f)));
+    return d;
+  }
+  test::Baker baker{describe()};
+
+  // The path tracer through a cache of accuracy 0.2 with `samples` paths a record.
+  static PathTraceSettings cached(int64_t samples) {
+    PathTraceSettings settings;
+    settings.sampling.samples = samples;
+    settings.irradiance_cache = 0.2;
+    return settings;
+  }
+  std::vector<glm::vec3> bake(const BakePoints& points, const PathTraceSettings& settings,
+                              JobContext& context) {
+    std::vector<glm::vec3> out(points.size());
+    PathTracedField(baker.direct(), settings).evaluate(points, out, context);
+    return out;
   }
   static BakePoints floor_grid(int n) {
     std::vector<glm::vec3> positions, normals;
@@ -224,17 +240,13 @@ double error_against_plain(test::Baker& baker, const BakePoints& points,
 // With a target error the records sample in rounds until the noise they predict meets it.
 TEST(IrradianceCacheBake, SamplesTheRecordsToATargetError) {
   LitBox box;
-  test::Baker baker(box.d);
   const BakePoints points = LitBox::floor_grid(40);
-  PathTraceSettings cached;
-  cached.sampling.samples = 1 << 16;
+  PathTraceSettings cached = LitBox::cached(1 << 16);
   cached.sampling.target_error = 0.02;
-  cached.irradiance_cache = 0.2;
   JobContext context;
-  std::vector<glm::vec3> out(points.size());
-  PathTracedField(baker.direct(), cached).evaluate(points, out, context);
+  const std::vector<glm::vec3> out = box.bake(points, cached, context);
   const Report& report = context.report();
-  const double nrmse = error_against_plain(baker, points, out);
+  const double nrmse = error_against_plain(box.baker, points, out);
   std::printf("%d records, %d paths, %d rounds, predicted %.2f%%, NRMSE %.2f%%\n",
               int(report.count("irradiance_cache_records")), int(report.count("samples")),
               int(report.count("sampling_rounds")), 100 * report.number("sampling_predicted_error"),
@@ -249,17 +261,12 @@ TEST(IrradianceCacheBake, SamplesTheRecordsToATargetError) {
 
 TEST(IrradianceCacheBake, AgreesWithThePlainPathTracerInALitBox) {
   LitBox box;
-  test::Baker baker(box.d);
   const BakePoints points = LitBox::floor_grid(40);
-  PathTraceSettings cached;
-  cached.sampling.samples = 1024;
-  cached.irradiance_cache = 0.2;
   JobContext context;
-  std::vector<glm::vec3> out(points.size());
-  PathTracedField(baker.direct(), cached).evaluate(points, out, context);
+  const std::vector<glm::vec3> out = box.bake(points, LitBox::cached(1024), context);
   const uint64_t records = context.report().count("irradiance_cache_records");
 
-  const double nrmse = error_against_plain(baker, points, out);
+  const double nrmse = error_against_plain(box.baker, points, out);
   std::printf("%d records for %d points; NRMSE %.2f%%\n", int(records), int(points.size()),
               100 * nrmse);
   // Measured: 183 records, NRMSE 1.87%. A record's 1,024 paths leave about 2-3% noise and
@@ -274,22 +281,17 @@ TEST(IrradianceCacheBake, AgreesWithThePlainPathTracerInALitBox) {
 // records: the cache declines, says so, and the bake is the plain path tracer's, bit for bit.
 TEST(IrradianceCacheBake, DeclinesWhereThePointsAreSparse) {
   LitBox box;
-  test::Baker baker(box.d);
   const BakePoints points = LitBox::floor_grid(4);
-  PathTraceSettings cached;
-  cached.sampling.samples = 256;
-  cached.irradiance_cache = 0.2;
+  const PathTraceSettings cached = LitBox::cached(256);
   JobContext context;
-  std::vector<glm::vec3> out(points.size());
-  PathTracedField(baker.direct(), cached).evaluate(points, out, context);
+  const std::vector<glm::vec3> out = box.bake(points, cached, context);
   EXPECT_EQ(context.report().count("irradiance_cache_declined"), 1u);
   ASSERT_FALSE(context.report().warnings().empty());
   EXPECT_NE(context.report().warnings()[0].find("irradiance cache not used"), std::string::npos);
   PathTraceSettings plain = cached;
   plain.irradiance_cache = 0.0;
   JobContext plain_context;
-  std::vector<glm::vec3> expected(points.size());
-  PathTracedField(baker.direct(), plain).evaluate(points, expected, plain_context);
+  const std::vector<glm::vec3> expected = box.bake(points, plain, plain_context);
   for (size_t i = 0; i < points.size(); ++i) EXPECT_EQ(out[i], expected[i]) << i;
 }
 
@@ -307,16 +309,10 @@ TEST(IrradianceCacheBake, SaysWhatItCannotDo) {
 
 TEST(IrradianceCacheBake, StopsWhenCancelled) {
   LitBox box;
-  test::Baker baker(box.d);
-  const BakePoints points = LitBox::floor_grid(20);
-  PathTraceSettings cached;
-  cached.sampling.samples = 256;
-  cached.irradiance_cache = 0.2;
   JobContext context;
   context.cancel();
-  std::vector<glm::vec3> out(points.size());
   try {
-    PathTracedField(baker.direct(), cached).evaluate(points, out, context);
+    box.bake(LitBox::floor_grid(20), LitBox::cached(256), context);
     FAIL() << "a cancelled bake went on";
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), BAKEGI_ERROR_CANCELLED);
