@@ -288,10 +288,10 @@ TEST(BakeJob, EveryFullBakeEstimatesItsOwnError) {
     weights.insert(weights.end(), {0.5f, 0.5f, 0.0f, 0.0f});
   }
   const uint64_t display_count = indices.size() / 4;
-  ASSERT_EQ(bakegi_points_set_display_probes(points.get(), probe_positions.data(),
-                                             probe_normals.data(), nullptr, indices.data(),
-                                             weights.data(), display_count),
-            BAKEGI_OK)
+  ASSERT_EQ(
+      bakegi_points_set_display_probes(points.get(), probe_positions.data(), probe_normals.data(),
+                                       nullptr, indices.data(), weights.data(), display_count),
+      BAKEGI_OK)
       << bakegi_last_error();
   auto run = [&](const char* method, int64_t probes) {
     SettingsPtr settings = new_settings();
@@ -331,12 +331,11 @@ TEST(BakeJob, EveryFullBakeEstimatesItsOwnError) {
 
   // Probes that point past the bake points are refused at the door.
   indices[0] = 400;
-  EXPECT_EQ(bakegi_points_set_display_probes(points.get(), probe_positions.data(),
-                                             probe_normals.data(), nullptr, indices.data(),
-                                             weights.data(), display_count),
-            BAKEGI_ERROR_INVALID_ARGUMENT);
-  EXPECT_NE(last_error().find("display probe 0: bake point 400 is out of range"),
-            std::string::npos)
+  EXPECT_EQ(
+      bakegi_points_set_display_probes(points.get(), probe_positions.data(), probe_normals.data(),
+                                       nullptr, indices.data(), weights.data(), display_count),
+      BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_error().find("display probe 0: bake point 400 is out of range"), std::string::npos)
       << last_error();
 }
 
@@ -392,6 +391,35 @@ TEST(BakeJob, MemoryBudgetRefusesBeforeAllocating) {
   Json report = parse_report(job);
   EXPECT_EQ(report.members["status"].text, "BAKEGI_ERROR_OUT_OF_MEMORY");
   EXPECT_GT(report.members["memory_estimate_bytes"].number, 1 << 20);
+  EXPECT_EQ(report.members["seconds"].members["bvh"].number, 0.0);  // never got there
+}
+
+// The irradiance cache's work counts in the estimate: 30,000 points fit 2 MB for the plain
+// path tracer (28 + 12 bytes each and the box: about 1.2 MB) and not with the cache
+// (kIrradianceCacheBytesPerPoint more each: 30,000 x ~390 bytes), which is refused before
+// any of it is allocated.
+TEST(BakeJob, MemoryBudgetCountsTheIrradianceCache) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(30000);
+  const auto start = [&](bool cache) {
+    SettingsPtr settings = new_settings();
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "memory_budget_mb", 2), BAKEGI_OK);
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "error_probes", 0), BAKEGI_OK);
+    EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", cache ? 256 : 1), BAKEGI_OK);
+    if (cache) {
+      EXPECT_EQ(bakegi_settings_set_float(settings.get(), "irradiance_cache", 0.2), BAKEGI_OK);
+    }
+    bakegi_job* job = nullptr;
+    EXPECT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK);
+    return JobPtr(job);
+  };
+  JobPtr plain = start(false);
+  EXPECT_EQ(bakegi_job_wait(plain.get()), BAKEGI_OK) << bakegi_last_error();
+  JobPtr cached = start(true);
+  EXPECT_EQ(bakegi_job_wait(cached.get()), BAKEGI_ERROR_OUT_OF_MEMORY);
+  const std::string message = bakegi_last_error();
+  EXPECT_NE(message.find("memory_budget_mb"), std::string::npos) << message;
+  Json report = parse_report(cached.get());
   EXPECT_EQ(report.members["seconds"].members["bvh"].number, 0.0);  // never got there
 }
 

@@ -21,6 +21,7 @@
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
+#include "solvers/pathtrace/irradiance_cache_bake.h"
 #include "solvers/solver.h"
 #include "util/error.h"
 
@@ -77,11 +78,12 @@ size_t triangle_count(const SceneDescription& d) {
 }  // namespace
 
 size_t BakeJob::estimate_memory(const SceneDescription& description, size_t point_count,
-                                bool denoise) {
+                                bool denoise, bool irradiance_cache) {
   // The Scene holds a second copy of the description next to its triangles.
   return description_bytes(description) + estimate_scene_bytes(description) +
          triangle_count(description) * kEmbreeBytesPerTriangle +
-         point_count * (kBytesPerPoint + kBytesPerResult + (denoise ? kDenoiseBytesPerPoint : 0));
+         point_count * (kBytesPerPoint + kBytesPerResult + (denoise ? kDenoiseBytesPerPoint : 0) +
+                        (irradiance_cache ? kIrradianceCacheBytesPerPoint : 0));
 }
 
 BakeJob::BakeJob(SceneDescription description, BakePoints points, Settings settings,
@@ -139,6 +141,7 @@ void BakeJob::start() {
   threads_ = int(settings.get_int("threads"));
   error_probes_ = settings.get_int("error_probes");
   denoise_ = settings.get_int("denoise") != 0;
+  irradiance_cache_ = method_ == "pathtrace" && settings.get_float("irradiance_cache") > 0.0;
   error_probe_samples_ = settings.get_int("error_probe_samples");
   memory_budget_bytes_ = size_t(settings.get_int("memory_budget_mb")) << 20;
   fallback_ = settings.get_int("fallback") != 0;
@@ -443,7 +446,8 @@ const Scene& BakeJob::build_scene_and_report(Report& report,
 std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   context_.set_stage("validating", 0.0, 0.02);
   auto stage_start = std::chrono::steady_clock::now();
-  const size_t estimate = estimate_memory(description_, points_.size(), denoise_);
+  const size_t estimate =
+      estimate_memory(description_, points_.size(), denoise_, irradiance_cache_);
   report.add_count("memory_estimate_bytes", estimate);
   if (estimate > memory_budget_bytes_) {
     throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,

@@ -15,14 +15,14 @@
 #include <glm/glm.hpp>
 
 #include "bake/error_probes.h"
+#include "field/indirect_field.h"
 #include "grid/grid_gather.h"
 #include "grid/irradiance_vector_grid.h"
 #include "scene/bake_points.h"
-#include "field/indirect_field.h"
 #include "scene/scene.h"
+#include "settings/settings.h"
 #include "util/job_context.h"
 #include "util/memory_budget.h"
-#include "settings/settings.h"
 
 namespace bakegi {
 
@@ -93,10 +93,10 @@ class BakeJob {
   // The points the job bakes (a relight may reuse them).
   const BakePoints& points() const { return points_; }
 
-  // Bytes a bake is expected to need (flattened scene, BVH, points and results), before
-  // any of it is allocated.
+  // Bytes a bake is expected to need (flattened scene, BVH, points and results, the
+  // denoiser's and the irradiance cache's work), before any of it is allocated.
   static size_t estimate_memory(const SceneDescription& description, size_t point_count,
-                                bool denoise = false);
+                                bool denoise = false, bool irradiance_cache = false);
 
  private:
   void run() noexcept;
@@ -146,6 +146,7 @@ class BakeJob {
   int threads_ = 0;
   int64_t error_probes_ = 0;
   bool denoise_ = false;
+  bool irradiance_cache_ = false;  // the path tracer's irradiance_cache > 0
   int64_t error_probe_samples_ = 0;
   size_t memory_budget_bytes_ = 0;
   // A solver that cannot model the scene within the memory budget hands the bake to the path

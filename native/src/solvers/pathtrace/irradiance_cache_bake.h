@@ -33,6 +33,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/bake_points.h"
+#include "solvers/pathtrace/irradiance_cache.h"
 
 namespace bakegi {
 
@@ -58,6 +59,13 @@ inline constexpr int64_t kIrradianceCacheMinSamples = 256;
 inline constexpr double kMaxRecordFraction = 0.5;
 // The leave-one-out estimate above which the report warns (the "Good" quality's 5%).
 inline constexpr double kWarnInterpolationError = 0.05;
+// Bytes per bake point, for the job's memory estimate: per point the pilot radius, its
+// record, the shuffled order and its keys, the coverage lists; per record (at most
+// kMaxRecordFraction of the points: the cache declines beyond) the record in the list and
+// in the two caches alive at once, its gather as measured, its point and index entry.
+inline constexpr size_t kIrradianceCacheBytesPerPoint =
+    4 + 4 + 4 + 8 + 4 + 1 +
+    (3 * sizeof(IrradianceRecord) + sizeof(IrradianceGather) + 4 + 3 * 16) / 2;
 
 // false: declined (nothing written) because the first placement made more than
 // kMaxRecordFraction of the points records; the caller then bakes every point.
