@@ -23,7 +23,7 @@ import time
 import numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from real_scene_metrics import compare_at_subset  # noqa: E402
+from real_scene_metrics import compare_at_subset, row_metrics  # noqa: E402
 from real_scenes import suite_scene  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -89,11 +89,7 @@ def main():
                 "record_fraction": report.get("irradiance_cache_record_fraction"),
                 "rounds": report.get("irradiance_cache_rounds"),
                 "predicted_interpolation_error": report.get("irradiance_cache_interpolation_error"),
-                "reference_samples": ref_samples, "reference_noise": ref_noise,
-                "nrmse": metrics["nrmse"],
-                "nrmse_without_reference_noise": metrics["nrmse_without_reference_noise"],
-                "weighted_relative_rmse": metrics["weighted_relative_rmse"],
-                "bias": metrics["bias"], "worst_objects": metrics["per_object"][:3],
+                **row_metrics(metrics, ref_samples, ref_noise),
             }
             rows.append(row)
             print("%s %s: %.2f s, %s records of %s points, NRMSE %.2f%% (%.2f%% without the "

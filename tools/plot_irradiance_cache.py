@@ -1,9 +1,12 @@
 """Chart of tools/irradiance_cache_study.py results: error (NRMSE, the reference's noise
 removed) against seconds, the plain path tracer and the irradiance cache at each accuracy a,
-one panel per scene and target.
+one panel per scene and target; with --table, the tables of docs/benchmarks.md section 0g
+(markdown on stdout), whose "plain at that error" is the plain bake of nearest error scaled
+by 1/error² and "gain" that time over the bake's.
 
     /usr/bin/python3 tools/plot_irradiance_cache.py docs/irradiance_cache.json \\
         docs/irradiance_cache_lightmap.json --out docs/irradiance_cache.png
+    /usr/bin/python3 tools/plot_irradiance_cache.py docs/irradiance_cache_lightmap.json --table
 """
 
 import argparse
@@ -20,9 +23,56 @@ from matplotlib import ticker  # noqa: E402
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("studies", nargs="+")
-    parser.add_argument("--out", required=True)
+    parser.add_argument("--out", help="the chart to write")
+    parser.add_argument("--table", action="store_true", help="print the markdown table")
     args = parser.parse_args()
     rows = [row for path in args.studies for row in json.load(open(path))["rows"]]
+    if args.table:
+        print_table(rows)
+    if args.out:
+        plot(rows, args.out)
+
+
+def plain_time_at(plain, error):
+    """Seconds the plain path tracer needs for `error`: its bake of nearest error, 1/error²."""
+    nearest = min(plain, key=lambda r: abs(r["nrmse_without_reference_noise"] - error))
+    return nearest["seconds"] * (nearest["nrmse_without_reference_noise"] / error) ** 2
+
+
+def print_table(rows):
+    print("| scene (points evaluated, reference noise) | bake | seconds | records (first placement) "
+          "| NRMSE / wRRMSE | leave-one-out | plain at that error | gain |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        mine = [r for r in rows if r["scene"] == scene]
+        plain = [r for r in mine if r["accuracy"] == 0 and not r.get("denoised_target")]
+        for r in mine:
+            error = r["nrmse_without_reference_noise"]
+            records, loo, extra = "—", "", "| | |"
+            if r.get("denoised_target"):
+                name = "default bake: target %g%%, denoised" % (100 * r["denoised_target"])
+                seconds = plain_time_at(plain, error)
+                extra = "| %.1f s | %.1f× |" % (seconds, seconds / r["seconds"])
+            elif r["accuracy"] == 0:
+                name = "plain, %d paths" % r["samples"]
+            else:
+                name = "a = %g, %d paths a record" % (r["accuracy"], r["samples"])
+                if r.get("cache_target"):
+                    name = "a = %g, target %g%%" % (r["accuracy"], 100 * r["cache_target"])
+                if not r.get("records"):
+                    records = "declined (%.0f%%)" % (100 * (r.get("record_fraction") or 0))
+                else:
+                    records = "%d (%.0f%%)" % (r["records"], 100 * r["record_fraction"])
+                    loo = "%.1f%%" % (100 * (r["predicted_interpolation_error"] or 0))
+                    seconds = plain_time_at(plain, error)
+                    extra = "| %.1f s | **%.1f×** |" % (seconds, seconds / r["seconds"])
+            print("| %s (%d, %.2f%%) | %s | %.2f | %s | %.2f%% / %.2f%% | %s %s"
+                  % (scene.replace("_", " "), r["evaluated_points"], 100 * r["reference_noise"],
+                     name, r["seconds"], records, 100 * error,
+                     100 * r["weighted_relative_rmse"], loo, extra))
+
+
+def plot(rows, out):
     panels = []
     for row in rows:
         key = (row["scene"], row.get("target", "CORNER"))
@@ -67,7 +117,7 @@ def main():
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
     figure.tight_layout()
-    figure.savefig(args.out, dpi=110)
+    figure.savefig(out, dpi=110)
 
 
 if __name__ == "__main__":

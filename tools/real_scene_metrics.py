@@ -34,6 +34,17 @@ def without_noise(error, noise):
     return float(numpy.sqrt(max(error * error - noise * noise, 0.0)))
 
 
+def row_metrics(metrics, reference_samples, reference_noise):
+    """The fields of compare_at_subset's figures that every study's rows carry."""
+    return {
+        "reference_samples": reference_samples, "reference_noise": reference_noise,
+        "nrmse": metrics["nrmse"],
+        "nrmse_without_reference_noise": metrics["nrmse_without_reference_noise"],
+        "weighted_relative_rmse": metrics["weighted_relative_rmse"],
+        "bias": metrics["bias"], "worst_objects": metrics["per_object"][:3],
+    }
+
+
 def compare_at_subset(values, reference, reference_noise, object_names):
     """The suite's figures for one method at the subset; per object (names per point) the
     NRMSE, the bias and the share of the squared error, largest share first."""

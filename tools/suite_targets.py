@@ -23,7 +23,7 @@ import time
 import numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from real_scene_metrics import compare_at_subset  # noqa: E402
+from real_scene_metrics import compare_at_subset, row_metrics  # noqa: E402
 from real_scenes import suite_scene  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -88,11 +88,7 @@ def main():
                     "denoise_mean_shift": report.get("denoise_mean_shift"),
                     "denoise_local_bias": report.get("denoise_local_bias"),
                     "denoise_applied": report.get("denoise_applied"),
-                    "reference_samples": ref_samples, "reference_noise": ref_noise,
-                    "nrmse": metrics["nrmse"],
-                    "nrmse_without_reference_noise": metrics["nrmse_without_reference_noise"],
-                    "weighted_relative_rmse": metrics["weighted_relative_rmse"],
-                    "bias": metrics["bias"], "worst_objects": metrics["per_object"][:3],
+                        **row_metrics(metrics, ref_samples, ref_noise),
                 }
                 rows.append(row)
                 print("%s target %g denoise %d: %.1f s, %s paths, predicted %.2f%%, NRMSE %.2f%% "

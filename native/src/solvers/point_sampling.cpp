@@ -17,6 +17,7 @@
 #include "util/job_context.h"
 #include "util/random.h"
 #include "util/report.h"
+#include "util/sampling.h"
 #include "util/luminance.h"
 
 namespace bakegi {
@@ -29,10 +30,6 @@ constexpr size_t kPointsPerBlock = 16;
 // Cancel and progress are checked every this many samples of a point, so that a point
 // with millions of samples still stops promptly (one sample costs microseconds).
 constexpr int64_t kSamplesPerCheck = 32;
-
-bool is_finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 }  // namespace
 

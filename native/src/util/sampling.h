@@ -70,4 +70,9 @@ inline float max_component(const glm::vec3& v) {
   return std::max(v.x, std::max(v.y, v.z));
 }
 
+// No component NaN or infinite (a Monte Carlo sample that is not is dropped and reported).
+inline bool is_finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
 }  // namespace bakegi

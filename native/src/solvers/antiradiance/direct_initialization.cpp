@@ -101,10 +101,6 @@ void finish(const ElementHierarchy& hierarchy, RadianceTables& tables) {
   pull(hierarchy, tables);
 }
 
-bool is_finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 // Where sample s of `samples` of a patch's direct light is taken: its centre, or on a merged
 // patch a point of one of its triangles, chosen by area (stratified over the samples) with
 // that triangle's normals. A merged patch thus holds its triangles' mean direct light: a sun

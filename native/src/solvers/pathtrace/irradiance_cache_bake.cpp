@@ -36,10 +36,6 @@ constexpr uint64_t kPilotSeedSalt = 0x51f15e11ull;
 // Cancel is checked every this many samples of a gather.
 constexpr int64_t kSamplesPerCheck = 32;
 
-bool is_finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 SurfacePoint surface_of(const BakePoints& points, size_t i) {
   return {points.positions[i], points.normals[i], points.normals[i]};
 }
@@ -166,25 +162,31 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
   const std::vector<uint32_t> order = shuffled_order(count, uint64_t(settings.seed));
   std::vector<uint32_t> uncovered = order;
   std::atomic<uint64_t> dropped{0};
+  // The records as they stand: placement adds new ones to it with their pilot radii; after
+  // each gather it is made again with the gathered radii (a record's reach is its key in
+  // the index) and serves the next round's placement, the coverage test and interpolation.
+  IrradianceCache cache(settings.accuracy, smallest_radius);
+  const auto rebuild_cache = [&] {
+    cache = IrradianceCache(settings.accuracy, smallest_radius);
+    for (const IrradianceRecord& r : records) cache.add(r);
+  };
   int rounds = 0;
   double slice = 0.9;
   for (int round = 0; round < kIrradianceCacheRounds && !uncovered.empty(); ++round) {
     ++rounds;
     // Placement: against the records so far (their radii from their gathers) and the new
     // ones (their pilot radii).
-    IrradianceCache placed(settings.accuracy, smallest_radius);
-    for (const IrradianceRecord& r : records) placed.add(r);
     const size_t first_new = records.size();
     const bool last_round = round + 1 == kIrradianceCacheRounds;
     for (const uint32_t i : uncovered) {
       const glm::vec3& x = points.positions[i];
       const glm::vec3& n = points.normals[i];
-      if (!last_round && placed.covers(x, n, pilot[i])) continue;
+      if (!last_round && cache.covers(x, n, pilot[i])) continue;
       IrradianceRecord r;
       r.position = x;
       r.normal = n;
       r.radius = pilot[i];
-      placed.add(r);
+      cache.add(r);
       record_of[i] = uint32_t(records.size());
       records.push_back(r);
       measured.emplace_back();
@@ -231,8 +233,7 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
     slice /= 2.0;
 
     // What the records with their gathered radii leave uncovered.
-    IrradianceCache cache(settings.accuracy, smallest_radius);
-    for (const IrradianceRecord& r : records) cache.add(r);
+    rebuild_cache();
     std::vector<uint8_t> left(count, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, uncovered.size(), 256),
                       [&](const tbb::blocked_range<size_t>& block) {
@@ -304,8 +305,7 @@ bool bake_with_irradiance_cache(const DirectLight& direct, const BakePoints& poi
   context.set_stage_text("irradiance cache: interpolating " +
                          std::to_string(count - records.size()) + " points from " +
                          std::to_string(records.size()) + " records");
-  IrradianceCache cache(settings.accuracy, smallest_radius);
-  for (const IrradianceRecord& r : records) cache.add(r);
+  if (adaptive) rebuild_cache();  // the rounds changed the records' values
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 256),
                     [&](const tbb::blocked_range<size_t>& block) {
                       context.throw_if_cancelled();

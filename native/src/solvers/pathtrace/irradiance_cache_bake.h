@@ -62,7 +62,8 @@ inline constexpr double kWarnInterpolationError = 0.05;
 // Bytes per bake point, for the job's memory estimate: per point the pilot radius, its
 // record, the shuffled order and its keys, the coverage lists; per record (at most
 // kMaxRecordFraction of the points: the cache declines beyond) the record in the list and
-// in the two caches alive at once, its gather as measured, its point and index entry.
+// in the cache (twice while it is made again), its gather as measured, its point and index
+// entry.
 inline constexpr size_t kIrradianceCacheBytesPerPoint =
     4 + 4 + 4 + 8 + 4 + 1 +
     (3 * sizeof(IrradianceRecord) + sizeof(IrradianceGather) + 4 + 3 * 16) / 2;
