@@ -217,6 +217,61 @@ TEST(SplattingUpsampling, KeepsConstantLightAndLeavesEmptyTexelsEmpty) {
   }
 }
 
+// A plane seen straight on, tilted in depth along x (continuous everywhere).
+EyeGBuffer plane_gbuffer(uint32_t width, uint32_t height) {
+  EyeGBuffer g = step_gbuffer(width, height, width);
+  for (uint32_t y = 0; y < height; ++y) {
+    for (uint32_t x = 0; x < width; ++x) {
+      const size_t i = g.index(x, y);
+      g.depth[i] = 1.0f + 0.001f * float(x);
+      g.position[i] = glm::vec3(float(x), float(y), -g.depth[i]);
+    }
+  }
+  return g;
+}
+
+// A subsplat stands for its texel's centre, so it must read the surface there: between the
+// four middle pixels of a texel of 8, not at any one pixel (half a pixel off at best; the
+// children's representatives alone drift 1.5 pixels).
+TEST(SplattingMipmap, SubsplatsReadTheSurfaceAtTheirTexelCentre) {
+  const EyeGBuffer g = plane_gbuffer(64, 64);
+  DiscontinuityTest test;
+  const MinMaxMipmap mipmap(g, 4, test);
+  const MipLevel& l = mipmap.level(3);
+  EXPECT_EQ(l.representative[l.index(1, 2)], g.index(12, 20));  // the pixel at the centre
+  const SurfacePoint p = mipmap.point(g, 3, 1, 2, test);
+  EXPECT_NEAR(p.position.x, 11.5f, 1e-5f);
+  EXPECT_NEAR(p.position.y, 19.5f, 1e-5f);
+  EXPECT_NEAR(p.shading_normal.z, 1.0f, 1e-6f);
+  const SurfacePoint pixel = mipmap.point(g, 0, 5, 7, test);
+  EXPECT_EQ(pixel.position, g.position[g.index(5, 7)]);
+}
+
+// Light that changes linearly across a surface is what bilinear interpolation reproduces
+// exactly: with every subsplat at the coarsest level, the upsampled image equals the light
+// at every pixel but the border's (a texel there lacks the neighbour beyond the image and
+// holds its light constant; each finer level carries that half a texel further in: 8 + 4 +
+// 2 + 1 pixels from 16-pixel texels).
+TEST(SplattingUpsampling, ReproducesLinearLightFromCoarseSubsplats) {
+  const EyeGBuffer g = plane_gbuffer(64, 64);
+  DiscontinuityTest test;
+  const MinMaxMipmap mipmap(g, 4, test);
+  const SubsplatSet set = refine_subsplats(mipmap, 4, 0, test);
+  ASSERT_EQ(set.per_level[4], set.subsplats.size());  // nothing to refine on a plane
+  const auto linear = [](const glm::vec3& p) { return 1.0f + 0.02f * p.x + 0.05f * p.y; };
+  MultiresolutionBuffer buffer(64, 64, mipmap.levels());
+  render_subsplats(
+      set, mipmap, g, test, [&](const SurfacePoint& p) { return glm::vec3(linear(p.position)); },
+      buffer);
+  const std::vector<glm::vec3> image = buffer.upsample(Upsampling::kInterpolated);
+  for (uint32_t y = 15; y < 49; ++y) {
+    for (uint32_t x = 15; x < 49; ++x) {
+      ASSERT_NEAR(image[g.index(x, y)].x, linear(g.position[g.index(x, y)]), 1e-4f)
+          << x << "," << y;
+    }
+  }
+}
+
 SceneDescription lit_room() {
   SceneDescription d;
   const uint32_t white = add_material(d, glm::vec3(0.7f));
@@ -265,6 +320,26 @@ TEST(SplattingPreview, MultiresolutionMatchesFullResolution) {
   for (const glm::vec3& v : multi.indirect) {
     ASSERT_TRUE(std::isfinite(v.x) && v.x >= 0.0f);
   }
+}
+
+// While the camera stays, a frame keeps the min-max mipmap and the buffer's memory: the
+// same image as a first frame, bit for bit; a moved camera rebuilds them.
+TEST(SplattingPreview, KeepsTheMipmapWhileTheCameraStays) {
+  SplattingPreview preview(lit_room());
+  SplattingSettings settings;
+  settings.direct_samples = 0;
+  const PreviewFrame first = preview.render(room_camera(), 80, 60, settings);
+  EXPECT_FALSE(first.statistics.splat.mipmap_reused);
+  const PreviewFrame again = preview.render(room_camera(), 80, 60, settings);
+  EXPECT_TRUE(again.statistics.splat.mipmap_reused);
+  ASSERT_EQ(again.indirect.size(), first.indirect.size());
+  for (size_t i = 0; i < first.indirect.size(); ++i)
+    ASSERT_EQ(again.indirect[i], first.indirect[i]);
+  PreviewCamera moved = room_camera();
+  moved.position.x += 0.3f;
+  EXPECT_FALSE(preview.render(moved, 80, 60, settings).statistics.splat.mipmap_reused);
+  settings.discontinuity.normal = NormalTest::kCurvature;  // another mipmap
+  EXPECT_FALSE(preview.render(moved, 80, 60, settings).statistics.splat.mipmap_reused);
 }
 
 // Moving the light moves the bounce; a scene without lights gives black indirect light.

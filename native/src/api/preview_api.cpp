@@ -125,7 +125,7 @@ bakegi_status bakegi_preview_render(bakegi_preview* preview, const float* camera
     if (!given.has("near_field_split")) given.set("near_field_split", 0.0);
     bakegi::SplattingSettings parsed = bakegi::SplattingSettings::from(given);
     parsed.record_pixel_levels = out_levels != nullptr;
-    const bakegi::PreviewFrame frame = preview->preview->render(view, width, height, parsed);
+    const bakegi::PreviewFrame& frame = preview->preview->render(view, width, height, parsed);
     const size_t n = size_t(width) * height;
     for (size_t i = 0; i < n; ++i) {
       if (out_rgba) {

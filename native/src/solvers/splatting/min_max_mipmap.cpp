@@ -77,8 +77,9 @@ MipLevel pixel_level(const EyeGBuffer& g, const Needs& needs) {
 }
 
 // `gbuffer`: the pixels' depth and normal when `fine` is the pixel level, else null.
-MipLevel reduce(const MipLevel& fine, uint32_t image_width, const Needs& needs,
+MipLevel reduce(const MipLevel& fine, const EyeGBuffer& pixels, const Needs& needs,
                 const EyeGBuffer* gbuffer) {
+  const uint32_t image_width = pixels.width;
   MipLevel l = make_level((fine.width + 1) / 2, (fine.height + 1) / 2, fine.cell * 2, needs);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, l.height, 8), [&](const auto& rows) {
     for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
@@ -86,10 +87,16 @@ MipLevel reduce(const MipLevel& fine, uint32_t image_width, const Needs& needs,
         const size_t o = l.index(x, y);
         // The representative: the pixel at the texel's centre if seen, else the children's
         // representative nearest that centre (an off-centre sample shifts the light by up to
-        // half a texel, which the upsampling cannot undo).
+        // half a texel, which the upsampling cannot undo; the children's representatives
+        // alone drift from it, 1.5 pixels at 8-pixel texels, a 1.7% bias on the office's
+        // gradients).
         const float centre_x = (float(x) + 0.5f) * float(l.cell) - 0.5f;
         const float centre_y = (float(y) + 0.5f) * float(l.cell) - 0.5f;
-        float nearest = 1e30f;
+        const uint32_t middle_x = x * l.cell + l.cell / 2, middle_y = y * l.cell + l.cell / 2;
+        const bool middle_seen = middle_x < pixels.width && middle_y < pixels.height &&
+                                 pixels.hit[pixels.index(middle_x, middle_y)];
+        if (middle_seen) l.representative[o] = uint32_t(pixels.index(middle_x, middle_y));
+        float nearest = middle_seen ? 0.0f : 1e30f;
         for (uint32_t c = 0; c < 4; ++c) {
           const uint32_t fx = 2 * x + (c & 1), fy = 2 * y + (c >> 1);
           if (fx >= fine.width || fy >= fine.height) continue;
@@ -140,8 +147,43 @@ MinMaxMipmap::MinMaxMipmap(const EyeGBuffer& gbuffer, uint32_t coarsest,
   const Needs needs(test);
   levels_.push_back(pixel_level(gbuffer, needs));
   for (uint32_t k = 1; k <= coarsest; ++k) {
-    levels_.push_back(reduce(levels_.back(), gbuffer.width, needs, k == 1 ? &gbuffer : nullptr));
+    levels_.push_back(reduce(levels_.back(), gbuffer, needs, k == 1 ? &gbuffer : nullptr));
   }
+}
+
+SurfacePoint MinMaxMipmap::point(const EyeGBuffer& g, uint32_t k, uint32_t x, uint32_t y,
+                                 const DiscontinuityTest& test) const {
+  const MipLevel& l = levels_[k];
+  const uint32_t r = l.representative[l.index(x, y)];
+  const SurfacePoint own{g.position[r], g.normal[r], g.geometric[r]};  // (shading, geometric)
+  if (k == 0) return own;
+  const uint32_t x1 = x * l.cell + l.cell / 2, y1 = y * l.cell + l.cell / 2;
+  if (x1 >= g.width || y1 >= g.height) return own;
+  const size_t middle[4] = {g.index(x1 - 1, y1 - 1), g.index(x1, y1 - 1), g.index(x1 - 1, y1),
+                            g.index(x1, y1)};
+  float depth_lo = kInf, depth_hi = 0.0f;
+  glm::vec3 normal_lo(kInf), normal_hi(-kInf);
+  SurfacePoint mean{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+  for (const size_t i : middle) {
+    if (!g.hit[i]) return own;
+    depth_lo = std::min(depth_lo, g.depth[i]);
+    depth_hi = std::max(depth_hi, g.depth[i]);
+    normal_lo = glm::min(normal_lo, g.normal[i]);
+    normal_hi = glm::max(normal_hi, g.normal[i]);
+    mean.position += 0.25f * g.position[i];
+    mean.shading_normal += g.normal[i];
+    mean.geometric_normal += g.geometric[i];
+  }
+  const glm::vec3 range = normal_hi - normal_lo;
+  if (depth_hi - depth_lo > test.depth_threshold * depth_lo ||
+      std::max(range.x, std::max(range.y, range.z)) > test.normal_threshold ||
+      glm::dot(mean.shading_normal, mean.shading_normal) < 1e-12f ||
+      glm::dot(mean.geometric_normal, mean.geometric_normal) < 1e-12f) {
+    return own;
+  }
+  mean.shading_normal = glm::normalize(mean.shading_normal);
+  mean.geometric_normal = glm::normalize(mean.geometric_normal);
+  return mean;
 }
 
 bool MinMaxMipmap::discontinuous(uint32_t k, uint32_t x, uint32_t y,

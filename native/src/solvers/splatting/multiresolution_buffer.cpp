@@ -22,31 +22,45 @@ MultiresolutionBuffer::MultiresolutionBuffer(uint32_t width, uint32_t height, ui
 void MultiresolutionBuffer::add(const Subsplat& s, const glm::vec3& value) {
   Level& l = levels_[s.level];
   const size_t i = size_t(s.y) * l.width + s.x;
-  l.light[i] += value;
+  l.light[i] = l.at(i) + value;
   l.filled[i] = 1;
 }
 
 void MultiresolutionBuffer::add(const MultiresolutionBuffer& other) {
   for (size_t k = 0; k < levels_.size(); ++k) {
-    for (size_t i = 0; i < levels_[k].light.size(); ++i) {
-      levels_[k].light[i] += other.levels_[k].light[i];
-      levels_[k].filled[i] |= other.levels_[k].filled[i];
+    const Level& o = other.levels_[k];
+    Level& l = levels_[k];
+    for (size_t i = 0; i < l.light.size(); ++i) {
+      if (!o.filled[i]) continue;
+      l.light[i] = l.at(i) + o.light[i];
+      l.filled[i] = 1;
     }
   }
 }
 
+void MultiresolutionBuffer::clear() {
+  for (Level& l : levels_) std::fill(l.filled.begin(), l.filled.end(), uint8_t(0));
+}
+
 std::vector<glm::vec3> MultiresolutionBuffer::upsample(Upsampling mode) {
+  std::vector<glm::vec3> image;
+  upsample(mode, image);
+  return image;
+}
+
+void MultiresolutionBuffer::upsample(Upsampling mode, std::vector<glm::vec3>& image) {
+  image.resize(size_t(width_) * height_);
   switch (mode) {
     case Upsampling::kNearest:
-      return upsample_nearest();
+      return upsample_nearest(image);
     case Upsampling::kBilinear:
-      return upsample_bilinear();
+      return upsample_bilinear(image);
     default:
-      return upsample_interpolated();
+      return upsample_interpolated(image);
   }
 }
 
-std::vector<glm::vec3> MultiresolutionBuffer::upsample_interpolated() {
+void MultiresolutionBuffer::upsample_interpolated(std::vector<glm::vec3>& image) {
   // Each level's own light becomes, in place, its light plus what the coarser levels hand
   // down: the data of that level.
   for (int k = int(levels_.size()) - 1; k > 0; --k) {
@@ -75,18 +89,20 @@ std::vector<glm::vec3> MultiresolutionBuffer::upsample_interpolated() {
             }
           }
           const size_t t = size_t(y) * fine.width + x;
-          fine.light[t] += sum / total;
+          fine.light[t] = fine.at(t) + sum / total;
           fine.filled[t] = 1;
         }
       }
     });
   }
-  return std::move(levels_[0].light);
+  const Level& pixels = levels_[0];
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, image.size(), 4096), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) image[i] = pixels.at(i);
+  });
 }
 
 template <typename Sample>
-std::vector<glm::vec3> MultiresolutionBuffer::sum_levels(Sample&& sample) const {
-  std::vector<glm::vec3> out(size_t(width_) * height_, glm::vec3(0.0f));
+void MultiresolutionBuffer::sum_levels(Sample&& sample, std::vector<glm::vec3>& out) const {
   for (uint32_t y = 0; y < height_; ++y) {
     for (uint32_t x = 0; x < width_; ++x) {
       glm::vec3 sum(0.0f);
@@ -94,42 +110,40 @@ std::vector<glm::vec3> MultiresolutionBuffer::sum_levels(Sample&& sample) const 
       out[size_t(y) * width_ + x] = sum;
     }
   }
-  return out;
 }
 
-std::vector<glm::vec3> MultiresolutionBuffer::upsample_nearest() const {
-  return sum_levels([](const Level& l, uint32_t k, uint32_t x, uint32_t y) {
-    return l.light[size_t(y >> k) * l.width + (x >> k)];
-  });
+void MultiresolutionBuffer::upsample_nearest(std::vector<glm::vec3>& image) const {
+  sum_levels([](const Level& l, uint32_t k, uint32_t x,
+                uint32_t y) { return l.at(size_t(y >> k) * l.width + (x >> k)); },
+             image);
 }
 
-std::vector<glm::vec3> MultiresolutionBuffer::upsample_bilinear() const {
-  return sum_levels([](const Level& l, uint32_t k, uint32_t x, uint32_t y) {
-    // The pixel centre in this level's texel coordinates (texel centres at +0.5).
-    const float scale = 1.0f / float(1u << k);
-    const float fx = std::clamp((float(x) + 0.5f) * scale - 0.5f, 0.0f, float(l.width - 1));
-    const float fy = std::clamp((float(y) + 0.5f) * scale - 0.5f, 0.0f, float(l.height - 1));
-    const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy);
-    const uint32_t x1 = std::min(x0 + 1, l.width - 1), y1 = std::min(y0 + 1, l.height - 1);
-    const float ax = fx - float(x0), ay = fy - float(y0);
-    const auto at = [&](uint32_t u, uint32_t v) { return l.light[size_t(v) * l.width + u]; };
-    return (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) +
-           (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
-  });
+void MultiresolutionBuffer::upsample_bilinear(std::vector<glm::vec3>& image) const {
+  sum_levels(
+      [](const Level& l, uint32_t k, uint32_t x, uint32_t y) {
+        // The pixel centre in this level's texel coordinates (texel centres at +0.5).
+        const float scale = 1.0f / float(1u << k);
+        const float fx = std::clamp((float(x) + 0.5f) * scale - 0.5f, 0.0f, float(l.width - 1));
+        const float fy = std::clamp((float(y) + 0.5f) * scale - 0.5f, 0.0f, float(l.height - 1));
+        const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy);
+        const uint32_t x1 = std::min(x0 + 1, l.width - 1), y1 = std::min(y0 + 1, l.height - 1);
+        const float ax = fx - float(x0), ay = fy - float(y0);
+        const auto at = [&](uint32_t u, uint32_t v) { return l.at(size_t(v) * l.width + u); };
+        return (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) +
+               (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
+      },
+      image);
 }
 
-void render_subsplats(const SubsplatSet& set, const MinMaxMipmap& mipmap,
-                      const PixelLight& pixel_light, MultiresolutionBuffer& buffer) {
-  std::vector<glm::vec3> light(set.subsplats.size());
+void render_subsplats(const SubsplatSet& set, const MinMaxMipmap& mipmap, const EyeGBuffer& gbuffer,
+                      const DiscontinuityTest& test, const SurfaceLight& light,
+                      MultiresolutionBuffer& buffer) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, set.subsplats.size(), 64), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const Subsplat& s = set.subsplats[i];
-      const MipLevel& l = mipmap.level(s.level);
-      const uint32_t pixel = l.representative[l.index(s.x, s.y)];
-      light[i] = pixel_light(pixel);
+      buffer.add(s, light(mipmap.point(gbuffer, s.level, s.x, s.y, test)));  // own texels
     }
   });
-  for (size_t i = 0; i < set.subsplats.size(); ++i) buffer.add(set.subsplats[i], light[i]);
 }
 
 }  // namespace bakegi

@@ -29,7 +29,7 @@ class MultiresolutionBuffer {
  public:
   MultiresolutionBuffer(uint32_t width, uint32_t height, uint32_t levels);
 
-  // Adds light at a subsplat's texel (not thread-safe: one writer per buffer).
+  // Adds light at a subsplat's texel (thread-safe only between distinct texels).
   void add(const Subsplat& s, const glm::vec3& value);
   // Adds another buffer of the same size (the per-thread buffers of §3.3.1's variant).
   void add(const MultiresolutionBuffer& other);
@@ -37,32 +37,38 @@ class MultiresolutionBuffer {
   // The combined full-resolution image (row order); pixels no subsplat covers are 0. The
   // interpolated upsampling works in the buffer's own levels, which it leaves changed.
   std::vector<glm::vec3> upsample(Upsampling mode);
+  // The same into `image`, whose memory is reused (a frame's 3.7 MB at 640x480).
+  void upsample(Upsampling mode, std::vector<glm::vec3>& image);
+  // Empties every texel and keeps the memory, for the next frame (a fresh buffer of 640x480
+  // costs a frame 2 ms of page faults and zeroing; this clears one byte per texel).
+  void clear();
 
   uint32_t levels() const { return uint32_t(levels_.size()); }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
 
  private:
   struct Level {
     uint32_t width = 0, height = 0;
-    std::vector<glm::vec3> light;
+    std::vector<glm::vec3> light;  // meaningful only where filled
     std::vector<uint8_t> filled;
+    glm::vec3 at(size_t i) const { return filled[i] ? light[i] : glm::vec3(0.0f); }
   };
-  std::vector<glm::vec3> upsample_interpolated();
+  void upsample_interpolated(std::vector<glm::vec3>& image);
   // Σ over levels of sample(level, k, x, y) at every pixel (the two Fig. 7 combinations).
   template <typename Sample>
-  std::vector<glm::vec3> sum_levels(Sample&& sample) const;
-  std::vector<glm::vec3> upsample_nearest() const;
-  std::vector<glm::vec3> upsample_bilinear() const;
+  void sum_levels(Sample&& sample, std::vector<glm::vec3>& image) const;
+  void upsample_nearest(std::vector<glm::vec3>& image) const;
+  void upsample_bilinear(std::vector<glm::vec3>& image) const;
 
   uint32_t width_, height_;
   std::vector<Level> levels_;
 };
 
-// The indirect light at one pixel of the G-buffer (thread-safe).
-using PixelLight = std::function<glm::vec3(size_t pixel)>;
-
-// Renders every subsplat of `set` into `buffer`: the light at the subsplat's pixel (the
-// mipmap texel's representative), in parallel.
-void render_subsplats(const SubsplatSet& set, const MinMaxMipmap& mipmap, const PixelLight& light,
+// Renders every subsplat of `set` into `buffer`: the light at the subsplat's point
+// (MinMaxMipmap::point), in parallel.
+void render_subsplats(const SubsplatSet& set, const MinMaxMipmap& mipmap, const EyeGBuffer& gbuffer,
+                      const DiscontinuityTest& test, const SurfaceLight& light,
                       MultiresolutionBuffer& buffer);
 
 }  // namespace bakegi

@@ -7,8 +7,6 @@
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
-#include "solvers/splatting/min_max_mipmap.h"
-#include "solvers/splatting/multiresolution_buffer.h"
 #include "solvers/splatting/subsplat_refinement.h"
 #include "solvers/splatting/virtual_point_lights.h"
 #include "solvers/splatting/vpl_visibility.h"
@@ -65,11 +63,10 @@ float scene_extent_of(const EyeGBuffer& g) {
 }
 
 // Steps 3-6 with the multiresolution buffer (refinement shared, by light, or per VPL).
-std::vector<glm::vec3> splat_multiresolution(const EyeGBuffer& gbuffer,
-                                             const VirtualPointLights& vpls,
-                                             const SplattingSettings& settings,
-                                             const PixelLight& pixel_light,
-                                             SplatStatistics& statistics) {
+void splat_multiresolution(const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
+                           const SplattingSettings& settings, const SurfaceLight& surface_light,
+                           SplatStatistics& statistics, SplatFrameCache& cache,
+                           std::vector<glm::vec3>& image) {
   auto start = std::chrono::steady_clock::now();
   const uint32_t coarsest =
       coarsest_level_for(gbuffer.width, gbuffer.height, settings.base_resolution);
@@ -79,11 +76,27 @@ std::vector<glm::vec3> splat_multiresolution(const EyeGBuffer& gbuffer,
                                                                       settings.max_resolution));
   statistics.coarsest_level = coarsest;
   statistics.finest_level = finest;
-  const MinMaxMipmap mipmap(gbuffer, coarsest, settings.discontinuity);
+  const DiscontinuityTest& test = settings.discontinuity;
+  statistics.mipmap_reused = cache.mipmap && cache.mipmap_coarsest == coarsest &&
+                             cache.mipmap_depth == test.depth && cache.mipmap_normal == test.normal;
+  if (!statistics.mipmap_reused) {
+    cache.mipmap = std::make_unique<MinMaxMipmap>(gbuffer, coarsest, test);
+    cache.mipmap_coarsest = coarsest;
+    cache.mipmap_depth = test.depth;
+    cache.mipmap_normal = test.normal;
+  }
+  const MinMaxMipmap& mipmap = *cache.mipmap;
   statistics.seconds_mipmap = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  MultiresolutionBuffer buffer(gbuffer.width, gbuffer.height, mipmap.levels());
+  if (cache.buffer && cache.buffer->width() == gbuffer.width &&
+      cache.buffer->height() == gbuffer.height && cache.buffer->levels() == mipmap.levels()) {
+    cache.buffer->clear();
+  } else {
+    cache.buffer =
+        std::make_unique<MultiresolutionBuffer>(gbuffer.width, gbuffer.height, mipmap.levels());
+  }
+  MultiresolutionBuffer& buffer = *cache.buffer;
   const bool per_vpl = settings.refinement == SubsplatRefinement::kIllumination;
   if (per_vpl) {
     buffer = render_illumination_refined(mipmap, gbuffer, vpls, coarsest, finest,
@@ -95,16 +108,21 @@ std::vector<glm::vec3> splat_multiresolution(const EyeGBuffer& gbuffer,
     if (settings.light_threshold > 0.0f) {
       // Refinement and rendering at once: the light decides the last splits.
       std::vector<glm::vec3> values;
-      set = refine_subsplats_by_light(
-          mipmap, coarsest, finest, settings.discontinuity, settings.light_threshold,
-          [&](uint32_t p) { return pixel_light(p); }, values);
-      for (size_t i = 0; i < set.subsplats.size(); ++i) buffer.add(set.subsplats[i], values[i]);
+      set = refine_subsplats_by_light(mipmap, gbuffer, coarsest, finest, settings.discontinuity,
+                                      settings.light_threshold, surface_light, values);
+      // Each subsplat has a texel of its own, so threads never write the same one.
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, set.subsplats.size(), 1024),
+                        [&](const auto& r) {
+                          for (size_t i = r.begin(); i != r.end(); ++i) {
+                            buffer.add(set.subsplats[i], values[i]);
+                          }
+                        });
       statistics.seconds_render = seconds_since(start);
     } else {
       set = refine_subsplats(mipmap, coarsest, finest, settings.discontinuity);
       statistics.seconds_refine = seconds_since(start);
       start = std::chrono::steady_clock::now();
-      render_subsplats(set, mipmap, pixel_light, buffer);
+      render_subsplats(set, mipmap, gbuffer, settings.discontinuity, surface_light, buffer);
       statistics.seconds_render = seconds_since(start);
     }
     statistics.subsplats_per_level = set.per_level;
@@ -125,18 +143,16 @@ std::vector<glm::vec3> splat_multiresolution(const EyeGBuffer& gbuffer,
   // The per-VPL variant's subsplats differ between VPLs, so a texel's neighbours hold other
   // VPLs' light: the interpolation, which averages neighbours that hold light, would mix
   // them; each VPL's subsplats are whole pieces of its light, which nearest upsampling sums.
-  std::vector<glm::vec3> image =
-      buffer.upsample(per_vpl ? Upsampling::kNearest : settings.upsampling);
+  buffer.upsample(per_vpl ? Upsampling::kNearest : settings.upsampling, image);
   statistics.seconds_upsample = seconds_since(start);
-  return image;
 }
 
 }  // namespace
 
-std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
-                                      const SplattingSettings& settings,
-                                      SplatStatistics& statistics, const RayTracer* tracer,
-                                      float ray_epsilon) {
+void splat_indirect(const EyeGBuffer& gbuffer, const VirtualPointLights& vpls,
+                    const SplattingSettings& settings, SplatStatistics& statistics,
+                    std::vector<glm::vec3>& image, const RayTracer* tracer, float ray_epsilon,
+                    SplatFrameCache* cache) {
   // The light at a pixel: through the clustered shadow rays, or the paper's VPL light.
   VirtualPointLights clustered;
   VplClusters clusters;
@@ -144,32 +160,33 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
     clustered = vpls;
     clusters = cluster_vpls(clustered, settings.visibility_clusters);
   }
-  const PixelLight pixel_light = [&](size_t p) {
+  const SurfaceLight surface_light = [&](const SurfacePoint& p) {
     if (clusters.count() > 0) {
       uint64_t rays = 0;  // a frame reports times, not rays
       return visible_vpl_light(
-          clusters, *tracer, ray_epsilon, gbuffer.position[p], gbuffer.geometric[p],
+          clusters, *tracer, ray_epsilon, p.position, p.geometric_normal,
           [&](size_t begin, size_t end) {
-            return near_field_light(clustered, gbuffer.position[p], gbuffer.normal[p], begin, end,
+            return near_field_light(clustered, p.position, p.shading_normal, begin, end,
                                     settings.near_field_split);
           },
           rays);
     }
     if (settings.near_field_split > 0.0f) {
-      return near_field_light(vpls, gbuffer.position[p], gbuffer.normal[p], 0, vpls.size(),
+      return near_field_light(vpls, p.position, p.shading_normal, 0, vpls.size(),
                               settings.near_field_split);
     }
-    return vpl_irradiance_over_pi(vpls, gbuffer.position[p], gbuffer.normal[p]);
+    return vpl_irradiance_over_pi(vpls, p.position, p.shading_normal);
   };
 
-  std::vector<glm::vec3> image;
   if (settings.refinement == SubsplatRefinement::kNone) {
     // Full-resolution splatting, the baseline: every seen pixel gathers, nothing else.
     const auto start = std::chrono::steady_clock::now();
     image.assign(gbuffer.size(), glm::vec3(0.0f));
     tbb::parallel_for(tbb::blocked_range<size_t>(0, gbuffer.size(), 256), [&](const auto& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
-        if (gbuffer.hit[i]) image[i] = pixel_light(i);
+        if (gbuffer.hit[i]) {
+          image[i] = surface_light({gbuffer.position[i], gbuffer.normal[i], gbuffer.geometric[i]});
+        }
       }
     });
     statistics.seconds_render = seconds_since(start);
@@ -182,25 +199,28 @@ std::vector<glm::vec3> splat_indirect(const EyeGBuffer& gbuffer, const VirtualPo
       }
     }
   } else {
-    image = splat_multiresolution(gbuffer, vpls, settings, pixel_light, statistics);
+    SplatFrameCache own;  // a single frame keeps nothing
+    splat_multiresolution(gbuffer, vpls, settings, surface_light, statistics, cache ? *cache : own,
+                          image);
   }
   statistics.subsplats = 0;
   for (uint64_t c : statistics.subsplats_per_level) statistics.subsplats += c;
 
   // §4.3: detail the coarse levels smoothed away, from the angle to the eye (equation 3).
   const auto start = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < image.size(); ++i) {
-    if (!gbuffer.hit[i]) {
-      image[i] = glm::vec3(0.0f);
-      continue;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, image.size(), 4096), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      if (!gbuffer.hit[i]) {
+        image[i] = glm::vec3(0.0f);
+        continue;
+      }
+      if (settings.detail_alpha > 0.0f) {
+        const float facing = std::max(0.0f, glm::dot(gbuffer.view[i], gbuffer.normal[i]));
+        image[i] *= settings.detail_alpha * facing + (1.0f - settings.detail_alpha);
+      }
     }
-    if (settings.detail_alpha > 0.0f) {
-      const float facing = std::max(0.0f, glm::dot(gbuffer.view[i], gbuffer.normal[i]));
-      image[i] *= settings.detail_alpha * facing + (1.0f - settings.detail_alpha);
-    }
-  }
+  });
   statistics.seconds_upsample += seconds_since(start);
-  return image;
 }
 
 }  // namespace bakegi

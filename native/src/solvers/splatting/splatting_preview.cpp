@@ -30,10 +30,11 @@ void SplattingPreview::set_lights(const std::vector<Light>& lights,
   scene_->description.world_radiance = world_radiance;
 }
 
-PreviewFrame SplattingPreview::render(const PreviewCamera& camera, uint32_t width, uint32_t height,
-                                      const SplattingSettings& settings) {
+const PreviewFrame& SplattingPreview::render(const PreviewCamera& camera, uint32_t width,
+                                             uint32_t height, const SplattingSettings& settings) {
   const auto frame_start = std::chrono::steady_clock::now();
-  PreviewFrame frame;
+  PreviewFrame& frame = frame_;  // its memory serves the next frame too
+  frame.statistics = PreviewStatistics();
   frame.width = width;
   frame.height = height;
   PreviewStatistics& stats = frame.statistics;
@@ -44,6 +45,7 @@ PreviewFrame SplattingPreview::render(const PreviewCamera& camera, uint32_t widt
     stats.gbuffer_reused = true;
   } else {
     gbuffer_ = trace_eye_gbuffer(*scene_, *tracer_, camera, width, height);
+    splat_cache_.reset();
     gbuffer_camera_ = camera;
     gbuffer_valid_ = true;
   }
@@ -67,8 +69,8 @@ PreviewFrame SplattingPreview::render(const PreviewCamera& camera, uint32_t widt
   stats.vpls = vpls.size();
   stats.seconds_vpls = seconds_since(start);
 
-  frame.indirect =
-      splat_indirect(gbuffer_, vpls, settings, stats.splat, tracer_.get(), direct.ray_epsilon());
+  splat_indirect(gbuffer_, vpls, settings, stats.splat, frame.indirect, tracer_.get(),
+                 direct.ray_epsilon(), &splat_cache_);
 
   const size_t n = gbuffer_.size();
   frame.combined.assign(n, scene_->description.world_radiance);

@@ -45,8 +45,9 @@ class SplattingPreview {
 
   // Replaces the lights and the world's radiance; geometry and materials stay.
   void set_lights(const std::vector<Light>& lights, const glm::vec3& world_radiance);
-  PreviewFrame render(const PreviewCamera& camera, uint32_t width, uint32_t height,
-                      const SplattingSettings& settings);
+  // The frame stays valid until the next call (its memory is reused).
+  const PreviewFrame& render(const PreviewCamera& camera, uint32_t width, uint32_t height,
+                             const SplattingSettings& settings);
 
   const Scene& scene() const { return *scene_; }
 
@@ -56,6 +57,8 @@ class SplattingPreview {
   EyeGBuffer gbuffer_;
   PreviewCamera gbuffer_camera_;
   bool gbuffer_valid_ = false;
+  SplatFrameCache splat_cache_;  // follows the G-buffer
+  PreviewFrame frame_;
 };
 
 }  // namespace bakegi

@@ -75,54 +75,81 @@ SubsplatSet refine_subsplats(const MinMaxMipmap& mipmap, uint32_t coarsest, uint
   return counted(std::move(done), mipmap.levels());
 }
 
-SubsplatSet refine_subsplats_by_light(const MinMaxMipmap& mipmap, uint32_t coarsest,
-                                      uint32_t finest, const DiscontinuityTest& test,
-                                      float threshold, const SubsplatLight& light,
-                                      std::vector<glm::vec3>& values) {
+SubsplatSet refine_subsplats_by_light(const MinMaxMipmap& mipmap, const EyeGBuffer& gbuffer,
+                                      uint32_t coarsest, uint32_t finest,
+                                      const DiscontinuityTest& test, float threshold,
+                                      const SurfaceLight& light, std::vector<glm::vec3>& values) {
   std::vector<Subsplat> current = coarsest_subsplats(mipmap, coarsest);
   std::vector<Subsplat> done;
   values.clear();
+  // Which texel of a level holds which kept subsplat (-1: none), sized once for the finest
+  // level and reused by the coarser ones.
+  std::vector<int32_t> at;
+  // Per subsplat of a pass: whether it splits (bytes, so that threads write their own).
+  std::vector<uint8_t> splits;
+  const auto in_parallel = [](size_t n, auto&& body) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+    });
+  };
   for (uint32_t k = coarsest;; --k) {
+    // The geometry's splits first: their subsplats never read light at this level.
+    splits.assign(current.size(), 0);
+    if (k > finest) {
+      in_parallel(current.size(), [&](size_t i) {
+        splits[i] = mipmap.refines(k, current[i].x, current[i].y, test) ? 1 : 0;
+      });
+    }
     std::vector<Subsplat> next, kept;
-    for (const Subsplat& s : current) {
-      if (k > finest && mipmap.refines(k, s.x, s.y, test)) {
-        for_each_child(mipmap, s, [&](const Subsplat& c) { next.push_back(c); });
+    for (size_t i = 0; i < current.size(); ++i) {
+      if (splits[i]) {
+        for_each_child(mipmap, current[i], [&](const Subsplat& c) { next.push_back(c); });
       } else {
-        kept.push_back(s);
+        kept.push_back(current[i]);
       }
     }
     const MipLevel& l = mipmap.level(k);
     std::vector<glm::vec3> light_of(kept.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, kept.size(), 32), [&](const auto& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
-        light_of[i] = light(l.representative[l.index(kept[i].x, kept[i].y)]);
+        light_of[i] = light(mipmap.point(gbuffer, k, kept[i].x, kept[i].y, test));
       }
     });
-    // Which texel of this level holds which kept subsplat (-1: none).
-    std::vector<int32_t> at(size_t(l.width) * l.height, -1);
-    for (size_t i = 0; i < kept.size(); ++i) at[l.index(kept[i].x, kept[i].y)] = int32_t(i);
-    const auto y_of = [&](int32_t i) { return float(luminance(light_of[size_t(i)])); };
-    const auto neighbour = [&](const Subsplat& s, int dx, int dy) {
-      const int x = int(s.x) + dx, y = int(s.y) + dy;
-      if (x < 0 || y < 0 || x >= int(l.width) || y >= int(l.height)) return int32_t(-1);
-      return at[l.index(uint32_t(x), uint32_t(y))];
-    };
-    for (size_t i = 0; i < kept.size(); ++i) {
-      const Subsplat& s = kept[i];
-      bool curved = false;
-      if (k > finest && threshold > 0.0f) {
+    splits.assign(kept.size(), 0);
+    if (k > finest && threshold > 0.0f) {
+      at.assign(size_t(l.width) * l.height, -1);
+      for (size_t i = 0; i < kept.size(); ++i) at[l.index(kept[i].x, kept[i].y)] = int32_t(i);
+      const auto y_of = [&](int32_t i) { return float(luminance(light_of[size_t(i)])); };
+      const auto neighbour = [&](const Subsplat& s, int dx, int dy) {
+        const int x = int(s.x) + dx, y = int(s.y) + dy;
+        if (x < 0 || y < 0 || x >= int(l.width) || y >= int(l.height)) return int32_t(-1);
+        return at[l.index(uint32_t(x), uint32_t(y))];
+      };
+      in_parallel(kept.size(), [&](size_t i) {
         const float v = y_of(int32_t(i));
-        for (const auto& axis : {std::pair{1, 0}, std::pair{0, 1}}) {
-          const int32_t a = neighbour(s, -axis.first, -axis.second);
-          const int32_t b = neighbour(s, axis.first, axis.second);
-          if (a < 0 || b < 0) continue;
-          if (std::abs(y_of(a) + y_of(b) - 2.0f * v) > threshold * v) curved = true;
+        for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+          const int32_t a = neighbour(kept[i], -dx, -dy);
+          const int32_t b = neighbour(kept[i], dx, dy);
+          float second = 0.0f;
+          if (a >= 0 && b >= 0) {
+            second = y_of(a) + y_of(b) - 2.0f * v;
+          } else if (a >= 0 || b >= 0) {
+            // Beside a region refined further (an edge, where light often peaks): the
+            // one-sided second difference over the next two texels away from it.
+            const int side = a >= 0 ? -1 : 1;
+            const int32_t far = neighbour(kept[i], 2 * side * dx, 2 * side * dy);
+            if (far < 0) continue;
+            second = v + y_of(far) - 2.0f * y_of(a >= 0 ? a : b);
+          }
+          if (std::abs(second) > threshold * v) splits[i] = 1;
         }
-      }
-      if (curved) {
-        for_each_child(mipmap, s, [&](const Subsplat& c) { next.push_back(c); });
+      });
+    }
+    for (size_t i = 0; i < kept.size(); ++i) {
+      if (splits[i]) {
+        for_each_child(mipmap, kept[i], [&](const Subsplat& c) { next.push_back(c); });
       } else {
-        done.push_back(s);
+        done.push_back(kept[i]);
         values.push_back(light_of[i]);
       }
     }

@@ -36,15 +36,14 @@ SubsplatSet refine_subsplats(const MinMaxMipmap& mipmap, uint32_t coarsest, uint
 // The shared set with a test on the summed light as well (the paper's §3.3.1 idea applied to
 // all VPLs at once, for flat surfaces near bright VPLs, which no depth or normal test
 // splits): level by level, each subsplat that the geometry keeps reads its light
-// (`light(pixel)`), and splits after all where the light's second difference to its
+// (`light` at MinMaxMipmap::point), and splits after all where the light's second difference to its
 // neighbours of the same level, along x or y, exceeds `threshold` times its own light
 // (bilinear interpolation is exact for light that changes linearly, so only curvature
 // needs finer texels). Returns the set and each subsplat's light, in the same order.
-using SubsplatLight = std::function<glm::vec3(uint32_t pixel)>;
-SubsplatSet refine_subsplats_by_light(const MinMaxMipmap& mipmap, uint32_t coarsest,
-                                      uint32_t finest, const DiscontinuityTest& test,
-                                      float threshold, const SubsplatLight& light,
-                                      std::vector<glm::vec3>& values);
+SubsplatSet refine_subsplats_by_light(const MinMaxMipmap& mipmap, const EyeGBuffer& gbuffer,
+                                      uint32_t coarsest, uint32_t finest,
+                                      const DiscontinuityTest& test, float threshold,
+                                      const SurfaceLight& light, std::vector<glm::vec3>& values);
 
 // §3.3.1 for one VPL: starting from the coarsest texels, a subsplat splits while the VPL's
 // light (vpl_term_over_pi at the four children's pixels) differs by more than `threshold`
