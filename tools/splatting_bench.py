@@ -2,8 +2,11 @@
 docs/splatting.json and the pictures of docs/methods/splatting.md (docs/images/splatting_*):
 
     /usr/bin/python3 tools/splatting_bench.py [--build build] [--work /tmp/bakegi_splatting]
-        [--scenes cornell_box,office,sponza] [--bake-scenes cornell_box,office]
+        [--scenes cornell_box,office,sponza,living_room,bunny_dragon,two_rooms]
+        [--pictures cornell_box,office,sponza] [--bake-scenes cornell_box,office]
         [--json docs/splatting.json]
+
+Sections not run (--bake-scenes '' skips the bakes) keep their numbers from the JSON.
 
 Preview (bakegi preview, 640x480, 256 VPLs, the scene's camera): multiresolution against
 full-resolution splatting of the same VPLs (error and time), the discontinuity tests and
@@ -77,7 +80,7 @@ class Previewer:
         self.cli, self.bgs, self.work = cli, bgs, work
         self.camera = ",".join(f"{v:.7g}" for v in camera)
 
-    def frame(self, settings, repeat=6, layers=("indirect",)):
+    def frame(self, settings, repeat=11, layers=("indirect",)):
         """(reports of each frame, arrays by layer) of `repeat` frames with these settings."""
         args = [self.cli, "preview", self.bgs, "--camera", self.camera, "--width", str(WIDTH),
                 "--height", str(HEIGHT), "--repeat", str(repeat)]
@@ -113,11 +116,14 @@ def preview_scene(cli, work, build, scene, images):
                                   "render_seconds": fastest(full_reports,
                                                             lambda r: r["seconds"]["render"])}}
     variants = {
-        "default (range, components, diagonal)": {},
-        "depth derivative": {"depth_test": "derivative", "depth_threshold": 0.02},
-        "curvature": {"normal_test": "curvature", "normal_threshold": 0.1},
-        "no neighbours": {"refine_neighbours": "none"},
+        "default (range, curvature, no neighbours, light)": {},
+        "components, diagonal (the bake's)": {"normal_test": "components",
+                                              "normal_threshold": 0.5,
+                                              "refine_neighbours": "diagonal"},
+        "diagonal neighbours": {"refine_neighbours": "diagonal"},
         "all neighbours": {"refine_neighbours": "all"},
+        "no light test": {"light_threshold": 0},
+        "depth derivative": {"depth_test": "derivative", "depth_threshold": 0.02},
         "depth threshold 0.1": {"depth_threshold": 0.1},
         "upsampling nearest": {"upsampling": "nearest"},
         "upsampling bilinear": {"upsampling": "bilinear"},
@@ -127,11 +133,15 @@ def preview_scene(cli, work, build, scene, images):
     for name, settings in variants.items():
         reports, arrays = previewer.frame(dict(base, **settings), layers=("indirect", "levels"))
         seconds = fastest(reports)
+        # Relit frames keep the mipmap; a moved camera rebuilds it (the first frame's).
+        rebuilt = seconds + reports[0]["seconds"]["mipmap"]
         rows[name] = dict(metrics(arrays["indirect"], reference),
                           subsplats=reports[-1]["subsplats"],
                           subsplats_per_level=reports[-1]["subsplats_per_level"],
                           splat_seconds=seconds,
-                          speedup=result["full_resolution"]["splat_seconds"] / seconds)
+                          speedup=result["full_resolution"]["splat_seconds"] / seconds,
+                          speedup_mipmap_rebuilt=result["full_resolution"]["splat_seconds"] /
+                          rebuilt)
         if name.startswith("default"):
             images["levels"] = arrays["levels"]
             images["indirect"] = arrays["indirect"]
@@ -301,7 +311,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--work", default="/tmp/bakegi_splatting")
-    parser.add_argument("--scenes", default="cornell_box,office,sponza")
+    parser.add_argument("--scenes",
+                        default="cornell_box,office,sponza,living_room,bunny_dragon,two_rooms")
+    parser.add_argument("--pictures", default="cornell_box,office,sponza")
     parser.add_argument("--bake-scenes", default="cornell_box,office")
     parser.add_argument("--samples", type=int, default=1024)
     parser.add_argument("--json", default=os.path.join(ROOT, "docs", "splatting.json"))
@@ -310,15 +322,23 @@ def main():
     cli = os.path.join(build, "bakegi")
     os.makedirs(args.work, exist_ok=True)
     images_folder = os.path.join(ROOT, "docs", "images")
-    results = {"command": "/usr/bin/python3 tools/splatting_bench.py " + " ".join(sys.argv[1:]),
-               "machine": "2 cores", "preview": {}, "bake": {}}
+    results = {"preview": {}, "bake": {}}
+    if os.path.exists(args.json):
+        with open(args.json) as f:
+            results = json.load(f)
+    results["command"] = "/usr/bin/python3 tools/splatting_bench.py " + " ".join(sys.argv[1:])
+    results["machine"] = "2 cores"
+    results["preview"] = {}
+    pictures = set(filter(None, args.pictures.split(",")))
     for scene in filter(None, args.scenes.split(",")):
         images = {}
         results["preview"][scene] = preview_scene(cli, args.work, build, scene, images)
-        save_pictures(scene, images, images_folder)
-    for scene in filter(None, args.bake_scenes.split(",")):
+        if scene in pictures:
+            save_pictures(scene, images, images_folder)
+    baked = list(filter(None, args.bake_scenes.split(",")))
+    for scene in baked:
         results["bake"][scene] = bake_scene(cli, args.work, build, scene, args.samples)
-    if results["bake"]:
+    if baked:
         save_bake_chart(results["bake"], os.path.join(ROOT, "docs", "splatting_bake.png"))
     results["leak"] = leak(cli, args.work, build)
     with open(args.json, "w") as f:

@@ -67,27 +67,36 @@ void MultiresolutionBuffer::upsample_interpolated(std::vector<glm::vec3>& image)
     const Level& l = levels_[size_t(k)];
     Level& fine = levels_[size_t(k) - 1];
     // Each child of a texel with data is interpolated bilinearly from the texel and the
-    // neighbours on its side (weights 9, 3, 3, 1 / 16), among those that hold data.
+    // neighbours on its side (weights 9, 3, 3, 1 / 16). A neighbour without data (refined
+    // further, or beyond the image) is extrapolated linearly from the texel and the one
+    // opposite; holding the light constant instead would flatten every gradient that runs
+    // into a refined region.
+    const auto data = [&](int nx, int ny, glm::vec3& v) {
+      if (nx < 0 || ny < 0 || nx >= int(l.width) || ny >= int(l.height)) return false;
+      const size_t n = size_t(ny) * l.width + size_t(nx);
+      if (!l.filled[n]) return false;
+      v = l.light[n];
+      return true;
+    };
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, fine.height, 16), [&](const auto& rows) {
       for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
         for (uint32_t x = 0; x < fine.width; ++x) {
-          const uint32_t px = x / 2, py = y / 2;
-          const size_t parent = size_t(py) * l.width + px;
-          if (!l.filled[parent]) continue;
+          const int px = int(x / 2), py = int(y / 2);
+          glm::vec3 p;
+          if (!data(px, py, p)) continue;
           const int sx = (x & 1) ? 1 : -1, sy = (y & 1) ? 1 : -1;
-          glm::vec3 sum(0.0f);
-          float total = 0.0f;
-          for (int j = 0; j <= 1; ++j) {
-            for (int i = 0; i <= 1; ++i) {
-              const int nx = int(px) + i * sx, ny = int(py) + j * sy;
-              if (nx < 0 || ny < 0 || nx >= int(l.width) || ny >= int(l.height)) continue;
-              const size_t n = size_t(ny) * l.width + size_t(nx);
-              if (!l.filled[n]) continue;
-              const float w = (i ? 0.25f : 0.75f) * (j ? 0.25f : 0.75f);
-              sum += w * l.light[n];
-              total += w;
-            }
-          }
+          glm::vec3 a, b, c, o;
+          bool has_a = data(px + sx, py, a), has_b = data(px, py + sy, b);
+          if (!has_a && data(px - sx, py, o)) a = 2.0f * p - o, has_a = true;
+          if (!has_b && data(px, py - sy, o)) b = 2.0f * p - o, has_b = true;
+          bool has_c = data(px + sx, py + sy, c);
+          if (!has_c && has_a && has_b) c = a + b - p, has_c = true;
+          glm::vec3 sum = 0.5625f * p;
+          float total = 0.5625f;
+          if (has_a) sum += 0.1875f * a, total += 0.1875f;
+          if (has_b) sum += 0.1875f * b, total += 0.1875f;
+          if (has_c) sum += 0.0625f * c, total += 0.0625f;
+          sum = glm::max(sum, glm::vec3(0.0f));  // extrapolation never makes light negative
           const size_t t = size_t(y) * fine.width + x;
           fine.light[t] = fine.at(t) + sum / total;
           fine.filled[t] = 1;

@@ -46,11 +46,14 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
       number_setting("depth_threshold", 0.03, 0.0, 100.0, R::kLighting,
                      "relative depth range (or derivative per pixel) that splits a subsplat"),
       text_setting("normal_test", "components", {"components", "curvature"}, R::kLighting,
-                   "min-max of each normal component, or max curvature 2 sin(angle/2) (3.2.2)"),
+                   "min-max of each normal component, or max curvature 2 sin(angle/2) (3.2.2); "
+                   "the preview: curvature unless set (the bake's point cells test components)"),
       number_setting("normal_threshold", 0.5, 0.0, 2.0, R::kLighting,
-                     "normal component range (or curvature) that splits a subsplat"),
+                     "normal component range (or curvature) that splits a subsplat; the "
+                     "preview's curvature test: 0.1 unless set"),
       text_setting("refine_neighbours", "diagonal", {"none", "diagonal", "all"}, R::kLighting,
-                   "neighbours whose discontinuity also splits a subsplat (paper 5.2)"),
+                   "neighbours whose discontinuity also splits a subsplat (paper 5.2); the "
+                   "preview: none unless set"),
       number_setting("illumination_threshold", 0.25, 0.0, 100.0, R::kLighting,
                      "refinement 'illumination': relative difference that splits a subsplat"),
       number_setting("light_threshold", 0.05, 0.0, 100.0, R::kLighting,
