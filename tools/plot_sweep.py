@@ -6,8 +6,9 @@ per method.
 
 Input: the JSON written by tools/sweep_cornell.py: {"title": ..., "methods": {name: [run,
 ...]}, "reference_noise": e or null, ...}, each run with "seconds", "error" and "settings"
-(the sample count, the antiradiance bin count or the meshless settings are written next to each
-point; meshless has two curves, the full bake and the relight alone). A horizontal line marks the reference's
+(the sample count, the antiradiance bin count, the splatting VPL count or the meshless settings
+are written next to each point; meshless has two curves, the full bake and the relight alone).
+A horizontal line marks the reference's
 own noise: errors near it are not resolved; a dotted one marks how far Cycles' converged
 bake lies from the reference beyond both noises (agreement.bias_estimate), where Cycles'
 curve must flatten.
@@ -28,6 +29,7 @@ STYLES = {
     "meshless": {"color": "tab:purple", "marker": "D", "label": "bakegi meshless: precompute + first solve"},
     "meshless_relight": {"color": "tab:purple", "marker": "d", "linestyle": "--",
                          "label": "bakegi meshless: relight alone"},
+    "splatting": {"color": "tab:red", "marker": "v", "label": "bakegi splatting (one bounce; VPLs)"},
 }
 
 
@@ -38,7 +40,7 @@ def plot(sweep, out_path):
         if not runs:
             continue
         runs.sort(key=lambda r: (r.get("settings", {}).get("samples", 0), r.get("settings", {}).get("bins", 0),
-                                 r["seconds"]))
+                                 r.get("settings", {}).get("vpls", 0), r["seconds"]))
         style = dict(STYLES.get(method, {"marker": "^", "label": method}))
         linestyle = style.pop("linestyle", "-")
         xs = [r["seconds"] for r in runs]
@@ -46,7 +48,7 @@ def plot(sweep, out_path):
         axes.plot(xs, ys, linestyle=linestyle, linewidth=1.5, markersize=5, **style)
         for r in runs:
             settings = r.get("settings", {})
-            label = settings.get("samples", settings.get("bins", r.get("label")))
+            label = settings.get("samples", settings.get("bins", settings.get("vpls", r.get("label"))))
             if label is not None:
                 axes.annotate(str(label), (r["seconds"], r["error"]), textcoords="offset points",
                               xytext=(4, 4), fontsize=7, color=style.get("color", "black"))

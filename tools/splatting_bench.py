@@ -6,7 +6,9 @@ docs/splatting.json and the pictures of docs/methods/splatting.md (docs/images/s
         [--pictures cornell_box,office,sponza] [--bake-scenes cornell_box,office]
         [--json docs/splatting.json]
 
-Sections not run (--bake-scenes '' skips the bakes) keep their numbers from the JSON.
+Sections not run (--bake-scenes '' skips the bakes; --scenes names the preview scenes) keep
+their numbers from the JSON. With cornell_box among --pictures it also renders the glossy
+receivers' picture (docs/images/splatting_glossy.png).
 
 Preview (bakegi preview, 640x480, 256 VPLs, the scene's camera): multiresolution against
 full-resolution splatting of the same VPLs (error and time), the discontinuity tests and
@@ -174,6 +176,64 @@ def preview_scene(cli, work, build, scene, images):
     return result
 
 
+METAL_SCRIPT = """
+import sys, bpy
+sys.path.insert(0, %r)
+import cornell_box
+bpy.ops.wm.read_factory_settings(use_empty=True)
+cornell_box.build_cornell_box(cornell_box.DEFAULT_SUBDIVISIONS, cornell_box.LIGHT_POWER,
+                              surface="PRINCIPLED_METAL")
+bpy.ops.wm.save_as_mainfile(filepath=sys.argv[-1])
+""" % os.path.join(ROOT, "scenes")
+
+
+def glossy_preview(cli, work, build, folder):
+    """Glossy receivers: the Cornell box with Principled BSDFs (their coats fold into the
+    albedo) and the tall box a rough metal (its lobe gathered at every pixel it covers),
+    against the box of Diffuse BSDFs, from the same camera; frame times as in the frame rows."""
+    log("glossy preview")
+    blend = os.path.join(work, "cornell_metal.blend")
+    bgs = os.path.join(work, "cornell_metal.bgs")
+    if not os.path.exists(bgs):
+        script = os.path.join(work, "cornell_metal.py")
+        with open(script, "w") as f:
+            f.write(METAL_SCRIPT)
+        subprocess.run(["blender", "-b", "--factory-startup", "--python", script, "--", blend],
+                       check=True, stdout=subprocess.DEVNULL)
+        expression = (f"import bakegi; bakegi.export_scene_file({bgs!r}, target='CORNER', "
+                      "objects='VISIBLE')")
+        subprocess.run(["blender", "-b", blend, "--addons", "bakegi", "--python-exit-code", "1",
+                        "--python-expr", expression], check=True, stdout=subprocess.DEVNULL,
+                       env=addon_environment(work, build))
+    camera = scene_camera(work, build, "cornell_box")
+    result, frames = {}, {}
+    for name, scene_file in (("diffuse", export(work, build, "cornell_box")), ("metal", bgs)):
+        reports, arrays = Previewer(cli, scene_file, camera, work).frame({}, repeat=6,
+                                                                         layers=("rgba",))
+        relit = sorted(r["seconds"]["total"] for r in reports[1:])
+        result[name] = {"relit_median_seconds": relit[len(relit) // 2],
+                        "glossy_pixels": reports[-1]["glossy_pixels"],
+                        "glossy_seconds": sorted(r["seconds"]["glossy"]
+                                                 for r in reports[1:])[len(relit) // 2]}
+        frames[name] = arrays["rgba"]
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    scale = numpy.percentile(frames["diffuse"][..., :3], 99.5)
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
+    titles = {"diffuse": "Diffuse BSDFs",
+              "metal": "Principled BSDFs, the tall box a rough metal (lobe per pixel)"}
+    for axis, (name, frame) in zip(axes, frames.items()):
+        axis.imshow(numpy.clip((frame[..., :3] / scale) ** (1 / 2.2), 0, 1))
+        axis.set_title(f"{titles[name]}: {1000 * result[name]['relit_median_seconds']:.0f} ms")
+        axis.axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "splatting_glossy.png"), dpi=60, bbox_inches="tight")
+    plt.close(fig)
+    return result
+
+
 def bake(cli, bgs, out, arguments):
     start = time.perf_counter()
     completed = subprocess.run([cli, "bake", bgs, "--out", out] + arguments, check=True,
@@ -328,13 +388,15 @@ def main():
             results = json.load(f)
     results["command"] = "/usr/bin/python3 tools/splatting_bench.py " + " ".join(sys.argv[1:])
     results["machine"] = "2 cores"
-    results["preview"] = {}
+    results.setdefault("preview", {})  # the scenes run replace their own entries
     pictures = set(filter(None, args.pictures.split(",")))
     for scene in filter(None, args.scenes.split(",")):
         images = {}
         results["preview"][scene] = preview_scene(cli, args.work, build, scene, images)
         if scene in pictures:
             save_pictures(scene, images, images_folder)
+    if "cornell_box" in pictures:
+        results["glossy"] = glossy_preview(cli, args.work, build, images_folder)
     baked = list(filter(None, args.bake_scenes.split(",")))
     for scene in baked:
         results["bake"][scene] = bake_scene(cli, args.work, build, scene, args.samples)

@@ -251,6 +251,33 @@ def meshless_sweep(cli, bgs, reference, work, configurations, threads, repeat, c
     return runs, relit
 
 
+def splatting_sweep(cli, bgs, reference, work, vpl_counts, threads, repeat):
+    """The splatting draft (issue 17) at each VPL count, its other settings at the bake's
+    defaults: one bounce only, so its error against the full reference is the light it leaves
+    out. Timed without the error probes (they would double a 0.1 s bake; the bake reports its
+    one-bounce shortfall through them when they run), each `repeat` times keeping the
+    fastest."""
+    runs = []
+    for vpls in vpl_counts:
+        values = os.path.join(work, f"splatting_{vpls}.npy")
+        report_path = os.path.join(work, f"splatting_{vpls}.json")
+        best = None
+        for _ in range(repeat):
+            run([cli, "bake", bgs, "--method", "splatting", "--set", f"vpl_count={vpls}", "--set",
+                 "error_probes=0", "--threads", str(threads), "--out", values, "--report", report_path],
+                quiet=True)
+            with open(report_path) as f:
+                report = json.load(f)
+            if best is None or report["seconds"]["total"] < best["seconds"]["total"]:
+                best = report
+        entry = {"method": "splatting", "settings": {"vpls": vpls}, "label": f"{vpls} VPLs",
+                 "seconds": best["seconds"]["total"], "error": compare(cli, values, reference),
+                 "bake_points": best["bake_points"]}
+        log(f"splatting {vpls} VPLs: {entry['seconds']:.3f} s, error {entry['error']:.4f}")
+        runs.append(entry)
+    return runs
+
+
 def cycles_sweep(work, build, blend, samples, objects, cli, reference, positions, repeat):
     out_dir = os.path.join(work, "cycles")
     command = ["blender", "-b", blend, "--python-exit-code", "1", "--python", os.path.join(ROOT, "tools", "sweep_cycles.py"),
@@ -379,7 +406,20 @@ def markdown_table(sweep):
         table += "\n\n" + antiradiance_table(sweep)
     if sweep["methods"].get("meshless"):
         table += "\n\n" + meshless_table(sweep)
+    if sweep["methods"].get("splatting"):
+        table += "\n\n" + splatting_table(sweep)
     return table
+
+
+def splatting_table(sweep):
+    """Splatting runs (one bounce) with the time pathtrace needs for the same error."""
+    lines = ["| splatting VPLs (one bounce) | seconds | error | pathtrace time at equal error / splatting time |",
+             "|---:|---:|---:|---:|"]
+    for r in sweep["methods"]["splatting"]:
+        t = interpolate_time_at_error(sweep["methods"]["pathtrace"], r["error"])
+        ratio = f"{t / r['seconds']:.1f}x" if t else "outside its range"
+        lines.append(f"| {r['settings']['vpls']} | {r['seconds']:.3f} | {r['error']:.4f} | {ratio} |")
+    return "\n".join(lines)
 
 
 def meshless_table(sweep):
@@ -452,6 +492,10 @@ def main():
                              "(empty: no meshless curves)")
     parser.add_argument("--only-meshless", action="store_true",
                         help="like --only-antiradiance, for the two meshless curves")
+    parser.add_argument("--splatting-vpls", default="256,1024,4096",
+                        help="VPL counts of the splatting curve (empty: no splatting curve)")
+    parser.add_argument("--only-splatting", action="store_true",
+                        help="like --only-antiradiance, for the splatting curve")
     parser.add_argument("--threads", type=int, default=0, help="path tracer threads (0 = all cores, as Cycles)")
     parser.add_argument("--repeat", type=int, default=2, help="time each setting R times (both methods), keep the fastest")
     parser.add_argument("--reuse", action="store_true", help="reuse scene, export and reference already in --work")
@@ -472,7 +516,7 @@ def main():
     reference = os.path.join(work, "reference.npy")
     reference_info_path = os.path.join(work, "reference.json")
     export_path = os.path.join(work, "export_objects.json")
-    if arguments.only_antiradiance or arguments.only_meshless:
+    if arguments.only_antiradiance or arguments.only_meshless or arguments.only_splatting:
         arguments.reuse = True
     if arguments.reuse and all(os.path.exists(p) for p in (blend, bgs, reference, reference_info_path, export_path)):
         log("reusing scene, export and reference")
@@ -496,6 +540,18 @@ def main():
     sweep_json = os.path.join(DOCS if arguments.docs else work, f"{stem}_sweep.json")
     bins_list = [int(b) for b in arguments.antiradiance_bins.split(",") if b.strip()]
     meshless_configurations = parse_setting_list(arguments.meshless_settings)
+    splatting_vpls = [int(v) for v in arguments.splatting_vpls.split(",") if v.strip()]
+    if arguments.only_splatting:
+        with open(sweep_json) as f:
+            sweep = json.load(f)
+        load_before = os.getloadavg()
+        sweep["methods"]["splatting"] = splatting_sweep(cli, bgs, reference, work, splatting_vpls,
+                                                        arguments.threads, arguments.repeat)
+        sweep["splatting_date"] = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+        sweep["splatting_load_average"] = [load_before, os.getloadavg()]
+        sweep["splatting_command"] = "/usr/bin/python3 tools/sweep_cornell.py " + " ".join(sys.argv[1:])
+        write_results(sweep, sweep_json, work, arguments.docs, started)
+        return
     if arguments.only_meshless:
         with open(sweep_json) as f:
             sweep = json.load(f)
@@ -525,6 +581,8 @@ def main():
     antiradiance_runs = antiradiance_sweep(cli, bgs, reference, work, bins_list, arguments.threads, arguments.repeat)
     meshless_runs, meshless_relit = meshless_sweep(cli, bgs, reference, work, meshless_configurations,
                                                    arguments.threads, arguments.repeat)
+    splatting_runs = splatting_sweep(cli, bgs, reference, work, splatting_vpls, arguments.threads,
+                                     arguments.repeat)
     cycles_runs, cycles_extra, cycles_result = cycles_sweep(
         work, build, blend, [int(s) for s in arguments.cycles_samples.split(",")], objects, cli, reference, positions, arguments.repeat)
     load_after = os.getloadavg()
@@ -562,7 +620,7 @@ def main():
         "methods": {"pathtrace": pathtrace_runs,
                     "cycles": [{k: v for k, v in r.items() if k != "file"} for r in cycles_runs],
                     "antiradiance": antiradiance_runs, "meshless": meshless_runs,
-                    "meshless_relight": meshless_relit},
+                    "meshless_relight": meshless_relit, "splatting": splatting_runs},
         "agreement": agreement,
         "command": "/usr/bin/python3 tools/sweep_cornell.py " + " ".join(sys.argv[1:]),
     }

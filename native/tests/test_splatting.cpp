@@ -7,7 +7,10 @@
 #include <cmath>
 
 #include "light_transport_fixtures.h"
+#include "lights/direct_light.h"
+#include "scene/phong_lobe.h"
 #include "solvers/splatting/eye_gbuffer.h"
+#include "solvers/splatting/glossy_receivers.h"
 #include "solvers/splatting/min_max_mipmap.h"
 #include "solvers/splatting/multiresolution_buffer.h"
 #include "solvers/splatting/near_field_gather.h"
@@ -354,6 +357,113 @@ TEST(SplattingPreview, FollowsTheLightsAndSurvivesNone) {
   const PreviewFrame dark = preview.render(room_camera(), 64, 48, settings);
   EXPECT_EQ(dark.statistics.vpls, 0u);
   for (const glm::vec3& v : dark.indirect) ASSERT_EQ(v.x, 0.0f);
+}
+
+// A Phong lobe of exponent 0 is ρ_g/π wherever its mirror axis lies within 90° of the light;
+// seen along the normal that is the whole hemisphere, so it reflects irradiance / π.
+TEST(SplattingGlossy, AFlatLobeSeenAlongTheNormalReflectsTheIrradiance) {
+  VirtualPointLights vpls;
+  RandomStream rng(sample_pcg(5, 0, 0));
+  for (int v = 0; v < 64; ++v) {
+    const glm::vec3 p(rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, 0.2f + rng.next_float());
+    vpls.push(p, glm::normalize(glm::vec3(0.1f, 0.0f, -1.0f)), glm::vec3(rng.next_float()), 0.01f);
+  }
+  const glm::vec3 x(0.1f, -0.2f, 0.0f), n(0, 0, 1);
+  const glm::vec3 glossy = vpl_glossy_reflection(vpls, x, n, n, 0.0f);
+  const glm::vec3 diffuse = vpl_irradiance_over_pi(vpls, x, n);
+  EXPECT_NEAR(glossy.x, diffuse.x, 1e-5f * diffuse.x);
+  // A sharp lobe keeps only the VPLs near the mirror direction.
+  EXPECT_LT(
+      luminance(vpl_glossy_reflection(vpls, x, n, glm::normalize(glm::vec3(1, 0, 0.05f)), 1000.0f)),
+      1e-3 * luminance(diffuse));
+}
+
+// Direct light on a glossy floor: one point light, so light sampling is exact and the lobe's
+// ray never meets the lamp; the pixel's glossy radiance is f_g toward the lamp times its
+// irradiance. A diffuse wall reflects none.
+TEST(SplattingGlossy, DirectLightThroughTheLobeIsFTimesTheIrradiance) {
+  SceneDescription d;
+  const uint32_t floor = add_material(d, glm::vec3(0.2f));
+  d.materials[floor].glossy = glm::vec3(0.5f, 0.4f, 0.3f);
+  d.materials[floor].glossy_exponent = 20.0f;
+  const uint32_t wall = add_material(d, glm::vec3(0.6f));
+  test::add_quad(d, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 4.0f, 4.0f, floor);
+  test::add_quad(d, {0, 3, 1}, {1, 0, 0}, {0, 0, 1}, 4.0f, 1.0f, wall);
+  d.lights.push_back(test::point_light({0.3f, 0.8f, 1.5f}, glm::vec3(10.0f)));
+  const BuiltScene built(d);
+  PreviewCamera camera;
+  camera.position = {0.0f, -2.0f, 1.5f};
+  camera.forward = glm::normalize(glm::vec3(0.0f, 1.0f, -0.45f));
+  camera.up = {0, 0, 1};
+  const EyeGBuffer g = trace_eye_gbuffer(*built.scene, *built.tracer, camera, 48, 36);
+  const DirectLight direct(*built.scene, *built.tracer);
+  std::vector<glm::vec3> reflected;
+  const uint64_t glossy_pixels =
+      glossy_reflection(g, direct, VirtualPointLights(), 1, 3, 0.0f, reflected);
+  EXPECT_GT(glossy_pixels, 100u);
+  const PhongLobe lobe{20.0f};
+  int checked = 0;
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (!g.hit[i]) continue;
+    if (max_component(g.glossy[i]) == 0.0f) {
+      ASSERT_EQ(reflected[i], glm::vec3(0.0f));
+      continue;
+    }
+    const SurfacePoint x{g.position[i], g.normal[i], g.geometric[i]};
+    RandomStream rng(sample_pcg(0, i, 0));
+    uint64_t rays = 0;
+    const glm::vec3 irradiance = direct.lamp_irradiance(x, rng, rays);
+    const glm::vec3 to_light = glm::normalize(glm::vec3(0.3f, 0.8f, 1.5f) - x.position);
+    const glm::vec3 axis = mirror_direction(x.shading_normal, g.view[i]);
+    const glm::vec3 expected = g.glossy[i] * lobe.value(glm::dot(axis, to_light)) * irradiance;
+    ASSERT_NEAR(reflected[i].x, expected.x, 1e-4f * (1.0f + expected.x)) << i;
+    ASSERT_NEAR(reflected[i].z, expected.z, 1e-4f * (1.0f + expected.z)) << i;
+    checked += expected.x > 1e-3f;
+  }
+  EXPECT_GT(checked, 50);  // the highlight is in view
+}
+
+// The preview adds the glossy reflection to the frame, and only on glossy surfaces.
+TEST(SplattingGlossy, ThePreviewAddsTheLobeToGlossyPixelsOnly) {
+  SceneDescription d = lit_room();
+  d.materials[1].glossy = glm::vec3(0.15f);  // the red box
+  d.materials[1].glossy_exponent = 50.0f;
+  SplattingPreview preview(d);
+  SplattingSettings settings;
+  const PreviewFrame frame = preview.render(room_camera(), 80, 60, settings);
+  EXPECT_GT(frame.statistics.glossy_pixels, 0u);
+  double lobe = 0.0;
+  uint64_t seen = 0, lit = 0;
+  for (size_t i = 0; i < frame.combined.size(); ++i) {
+    if (!frame.seen[i]) continue;
+    ++seen;
+    lit += max_component(frame.glossy[i]) > 0.0f;
+    lobe += luminance(frame.glossy[i]);
+  }
+  EXPECT_GT(lobe, 0.0);
+  EXPECT_LE(lit, frame.statistics.glossy_pixels);
+  EXPECT_LT(frame.statistics.glossy_pixels, seen / 2);  // the walls stay diffuse
+  // A wide lobe (a Principled coat's exponent 7.5) folds into the albedo: nothing gathered,
+  // the diffuse light brighter by its hemispherical albedo times rho_g.
+  d.materials[1].glossy_exponent = 7.5f;
+  SplattingPreview folded(d);
+  const PreviewFrame wide = folded.render(room_camera(), 80, 60, settings);
+  EXPECT_EQ(wide.statistics.glossy_pixels, 0u);
+  const EyeGBuffer g =
+      trace_eye_gbuffer(folded.scene(), RayTracer(folded.scene()), room_camera(), 80, 60);
+  std::vector<glm::vec3> albedo;
+  folded_albedo(g, settings.glossy_fold_exponent, albedo);
+  const float fold = float(phong_hemispherical_albedo(7.5));
+  int box = 0;
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (max_component(g.glossy[i]) == 0.0f) {
+      ASSERT_EQ(albedo[i], g.albedo[i]);
+      continue;
+    }
+    ++box;
+    ASSERT_NEAR(albedo[i].x, g.albedo[i].x + fold * 0.15f, 1e-6f);
+  }
+  EXPECT_GT(box, 0);
 }
 
 // The optional visibility removes light that passes through a wall between two rooms.

@@ -63,7 +63,8 @@ std::string report_json(const bakegi::PreviewFrame& frame) {
   o << "{\"width\": " << frame.width << ", \"height\": " << frame.height << ", \"vpls\": " << s.vpls
     << ", \"rsm_texels\": " << s.rsm_texels
     << ", \"gbuffer_reused\": " << (s.gbuffer_reused ? "true" : "false")
-    << ", \"subsplats\": " << s.splat.subsplats << ", \"subsplats_per_level\": [";
+    << ", \"glossy_pixels\": " << s.glossy_pixels << ", \"subsplats\": " << s.splat.subsplats
+    << ", \"subsplats_per_level\": [";
   for (size_t k = 0; k < s.splat.subsplats_per_level.size(); ++k) {
     o << (k ? ", " : "") << s.splat.subsplats_per_level[k];
   }
@@ -73,7 +74,7 @@ std::string report_json(const bakegi::PreviewFrame& frame) {
     << ", \"rsm\": " << s.seconds_rsm << ", \"vpls\": " << s.seconds_vpls
     << ", \"mipmap\": " << s.splat.seconds_mipmap << ", \"refine\": " << s.splat.seconds_refine
     << ", \"render\": " << s.splat.seconds_render << ", \"upsample\": " << s.splat.seconds_upsample
-    << ", \"total\": " << s.seconds_total << "}}";
+    << ", \"glossy\": " << s.seconds_glossy << ", \"total\": " << s.seconds_total << "}}";
   return o.str();
 }
 

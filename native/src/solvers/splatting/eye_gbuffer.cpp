@@ -27,6 +27,8 @@ EyeGBuffer trace_eye_gbuffer(const Scene& scene, const RayTracer& tracer,
   g.normal.assign(n, glm::vec3(0.0f));
   g.geometric.assign(n, glm::vec3(0.0f));
   g.albedo.assign(n, glm::vec3(0.0f));
+  g.glossy.assign(n, glm::vec3(0.0f));
+  g.glossy_exponent.assign(n, 0.0f);
   g.emission.assign(n, glm::vec3(0.0f));
   g.view.assign(n, glm::vec3(0.0f));
 
@@ -66,6 +68,10 @@ EyeGBuffer trace_eye_gbuffer(const Scene& scene, const RayTracer& tracer,
         g.albedo[i] = scene.albedo_at(triangle, hit.b1, hit.b2);
         g.view[i] = -ray.direction;
         const Material& material = scene.material_of(triangle);
+        if (material.has_glossy()) {
+          g.glossy[i] = material.glossy;
+          g.glossy_exponent[i] = material.glossy_exponent;
+        }
         if (material.is_emissive() &&
             (material.emission_two_sided || glm::dot(triangle.face_normal, ray.direction) < 0)) {
           g.emission[i] = scene.emission_at(triangle, hit.b1, hit.b2);

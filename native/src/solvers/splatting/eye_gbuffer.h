@@ -35,8 +35,10 @@ struct EyeGBuffer {
   std::vector<glm::vec3> normal;     // shading normal facing the camera
   std::vector<glm::vec3> geometric;  // geometric normal facing the camera
   std::vector<glm::vec3> albedo;
-  std::vector<glm::vec3> emission;  // radiance towards the camera
-  std::vector<glm::vec3> view;      // unit direction from the surface to the eye
+  std::vector<glm::vec3> glossy;       // the Phong lobe's reflectance (0: diffuse only)
+  std::vector<float> glossy_exponent;  // its exponent where glossy
+  std::vector<glm::vec3> emission;     // radiance towards the camera
+  std::vector<glm::vec3> view;         // unit direction from the surface to the eye
   size_t size() const { return size_t(width) * height; }
   size_t index(uint32_t x, uint32_t y) const { return size_t(y) * width + x; }
 };

@@ -5,6 +5,7 @@
 #include "lights/direct_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
+#include "solvers/splatting/glossy_receivers.h"
 #include "solvers/splatting/reflective_shadow_map.h"
 #include "solvers/splatting/virtual_point_lights.h"
 
@@ -72,13 +73,20 @@ const PreviewFrame& SplattingPreview::render(const PreviewCamera& camera, uint32
   splat_indirect(gbuffer_, vpls, settings, stats.splat, frame.indirect, tracer_.get(),
                  direct.ray_epsilon(), &splat_cache_);
 
+  start = std::chrono::steady_clock::now();
+  stats.glossy_pixels =
+      glossy_reflection(gbuffer_, direct, vpls, settings.direct_samples, settings.seed,
+                        settings.glossy_fold_exponent, frame.glossy);
+  folded_albedo(gbuffer_, settings.glossy_fold_exponent, albedo_);
+  stats.seconds_glossy = seconds_since(start);
+
   const size_t n = gbuffer_.size();
   frame.combined.assign(n, scene_->description.world_radiance);
   frame.seen = gbuffer_.hit;
   for (size_t i = 0; i < n; ++i) {
     if (!gbuffer_.hit[i]) continue;
     frame.combined[i] =
-        gbuffer_.emission[i] + gbuffer_.albedo[i] * (frame.direct[i] + frame.indirect[i]);
+        gbuffer_.emission[i] + albedo_[i] * (frame.direct[i] + frame.indirect[i]) + frame.glossy[i];
   }
   stats.seconds_total = seconds_since(frame_start);
   return frame;

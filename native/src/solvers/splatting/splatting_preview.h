@@ -23,6 +23,8 @@ class RayTracer;
 struct PreviewStatistics {
   SplatStatistics splat;
   double seconds_gbuffer = 0, seconds_direct = 0, seconds_rsm = 0, seconds_vpls = 0;
+  double seconds_glossy = 0;
+  uint64_t glossy_pixels = 0;
   double seconds_total = 0;
   bool gbuffer_reused = false;
   uint64_t vpls = 0, rsm_texels = 0;
@@ -32,8 +34,11 @@ struct PreviewFrame {
   uint32_t width = 0, height = 0;
   std::vector<glm::vec3> direct;    // E_direct / pi per pixel
   std::vector<glm::vec3> indirect;  // E_indirect / pi per pixel
-  std::vector<glm::vec3> combined;  // radiance: emission + albedo (direct + indirect)
-  std::vector<uint8_t> seen;        // 1 where a surface was seen (0: the world shows)
+  std::vector<glm::vec3> glossy;    // radiance the gathered glossy lobes reflect
+  // radiance: emission + albedo (direct + indirect) + glossy, the albedo with the folded
+  // lobes (glossy_receivers.h)
+  std::vector<glm::vec3> combined;
+  std::vector<uint8_t> seen;  // 1 where a surface was seen (0: the world shows)
   PreviewStatistics statistics;
 };
 
@@ -59,6 +64,7 @@ class SplattingPreview {
   bool gbuffer_valid_ = false;
   SplatFrameCache splat_cache_;  // follows the G-buffer
   PreviewFrame frame_;
+  std::vector<glm::vec3> albedo_;  // the G-buffer's, folded glossy lobes added
 };
 
 }  // namespace bakegi

@@ -68,6 +68,10 @@ const std::vector<SettingSpec>& SplattingSettings::specs() {
                      "surface detail from the view angle (paper 4.3, equation 3); 0: off"),
       integer_setting("direct_samples", 1, 0, 4096, R::kLighting,
                       "preview: light samples per pixel for direct light"),
+      number_setting("glossy_fold_exponent", 16.0, 0.0, 1e6, R::kLighting,
+                     "preview: glossy lobes with a lower exponent reflect as diffuse (energy "
+                     "kept; 16 is roughness above about 0.42, a Principled coat's 7.5 folds); "
+                     "0 keeps every lobe"),
       integer_setting("visibility_clusters", 64, 0, 4096, R::kLighting,
                       "shadow rays per receiver towards clustered VPLs (0: no visibility for "
                       "the indirect bounce, as in the paper; the preview: 0 unless set)"),
@@ -119,6 +123,7 @@ SplattingSettings SplattingSettings::from(const Settings& settings) {
                                                        {"nearest", Upsampling::kNearest},
                                                        {"bilinear", Upsampling::kBilinear}});
   s.detail_alpha = float(read.get_float("detail_alpha"));
+  s.glossy_fold_exponent = float(read.get_float("glossy_fold_exponent"));
   s.direct_samples = uint32_t(read.get_int("direct_samples"));
   s.visibility_clusters = uint32_t(read.get_int("visibility_clusters"));
   s.near_field_split = float(read.get_float("near_field_split"));

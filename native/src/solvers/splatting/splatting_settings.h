@@ -35,6 +35,8 @@ struct SplattingSettings {
   Upsampling upsampling = Upsampling::kInterpolated;
   float detail_alpha = 0.0f;  // §4.3, equation 3
   uint32_t direct_samples = 1;
+  // Preview: glossy lobes wider than this exponent reflect as diffuse (glossy_receivers.h).
+  float glossy_fold_exponent = 16.0f;
   // Shadow rays per receiver towards clustered VPLs (0: none, the paper's approximation).
   uint32_t visibility_clusters = 64;
   // A VPL closer than this many radii of its surface sends its texels' light (0: never).
