@@ -4,7 +4,9 @@ grid with bakegi, writes the web folder (Export for Web) and renders the referen
 camera, BakeGI_Indirect from that grid read as the page reads it (the paper's reading: no
 visibility test, n^2 weights, trilinear), shown flat by Workbench with the Standard view
 transform. Then addon/web/test/run.mjs streams the folder with `bakegi serve` into Debian's
-Chromium (playwright-core) and checks the page against it.
+Chromium (playwright-core) and checks the page against it. A second scene (a box on a floor
+under a point light) checks the page's shadows: a floor point in the box's shadow against
+one as far from the light in the open.
 
     /usr/bin/python3 tools/web_test.py [--work out/web_tests] [--build build] [--fig6]
         [--cells 16] [--size 480x360] [--junit out.xml]
@@ -61,6 +63,32 @@ scene.render.filepath = {reference!r}
 bpy.ops.render.render(write_still=True)
 """
 
+SHADOW_SIDE = """
+import bpy, bakegi, json
+for thing in list(bpy.data.objects):
+    bpy.data.objects.remove(thing)
+scene = bpy.context.scene
+bpy.ops.mesh.primitive_plane_add(size=6.0)
+bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.0, 0.0, 0.4))
+lamp = bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", "POINT"))
+lamp.data.energy = 300.0
+lamp.data.shadow_soft_size = 0.0
+lamp.location = (-1.5, 0.0, 1.6)
+scene.collection.objects.link(lamp)
+camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+camera.location = (0.0, 0.0, 8.0)
+camera.data.angle = 0.9
+scene.collection.objects.link(camera)
+scene.camera = camera
+scene.render.resolution_x, scene.render.resolution_y = {width}, {height}
+bakegi.bake(target="GRID", method="pathtrace", grid_cell_size=0.5, grid_rays=16,
+            grid_folder={work!r}, objects="VISIBLE")
+print("web", bakegi.export_web({site!r}), flush=True)
+# In the box's shadow (the ray from the lamp over the box's far top edge meets the floor at
+# x = 2.3), and a point as far from the lamp at the same height, in the open.
+json.dump({{"shadowed": [1.2, 0.0, 0.0], "open": [-1.5, 2.7, 0.0]}}, open({points!r}, "w"))
+"""
+
 
 def run(command, env=None, timeout=1200):
     print("$", " ".join(command), flush=True)
@@ -103,10 +131,24 @@ def main():
                   env=addon_environment(work, build))
     ok = blender.returncode == 0 and os.path.isfile(reference)
     log = "" if ok else "Blender could not make the scene, its grid, web folder or reference"
+    shadow_site = os.path.join(work, "site_shadow")
+    shadow_points = os.path.join(work, "shadow_points.json")
+    shutil.rmtree(shadow_site, ignore_errors=True)
+    if ok:
+        script = os.path.join(work, "blender_shadow.py")
+        with open(script, "w") as f:
+            f.write(SHADOW_SIDE.format(width=width, height=height, work=work, site=shadow_site,
+                                       points=shadow_points))
+        blender = run(["blender", "-b", "--factory-startup", "--addons", "bakegi",
+                       "--python-exit-code", "1", "--python", script],
+                      env=addon_environment(work, build))
+        ok = blender.returncode == 0 and os.path.isfile(shadow_points)
+        log = "" if ok else "Blender could not make the shadow scene or its web folder"
     if ok:
         command = ["node", os.path.join(ROOT, "addon", "web", "test", "run.mjs"), "--cli",
                    os.path.join(build, "bakegi"), "--folder", site, "--out", work,
-                   "--reference", reference, "--size", args.size]
+                   "--reference", reference, "--size", args.size,
+                   "--shadow-folder", shadow_site, "--shadow-points", shadow_points]
         if args.fig6:
             command.append("--fig6")
         browser = run(command)

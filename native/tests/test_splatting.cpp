@@ -378,6 +378,27 @@ TEST(SplattingGlossy, AFlatLobeSeenAlongTheNormalReflectsTheIrradiance) {
       1e-3 * luminance(diffuse));
 }
 
+// A near mirror reflects a VPL through a lobe widened to the VPL's own extent (virtual
+// spherical lights): the exponent 2 r^2 / a - 1 instead of a spike of (n + 2) / (2 pi).
+TEST(SplattingGlossy, AMirrorSeesAVplAsWideAsItsDisk) {
+  VirtualPointLights vpls;
+  const float a = 0.01f;  // disk area / pi
+  vpls.push(glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::vec3(1.0f), a * kPi);
+  const glm::vec3 x(0.0f), n(0, 0, 1);
+  const float widest = 2.0f * 1.0f / a - 1.0f;  // 199
+  const float e = 1.0f / (kPi * (1.0f + a));    // the VPL's irradiance per unit flux
+  const glm::vec3 on_axis = vpl_glossy_reflection(vpls, x, n, n, 10000.0f);
+  EXPECT_NEAR(on_axis.x, PhongLobe{widest}.value(1.0f) * e, 1e-4f);
+  // 0.05 rad off the mirror direction: outside the exponent-10000 lobe, inside the widened.
+  const glm::vec3 tilted = glm::normalize(glm::vec3(std::sin(0.05f), 0.0f, std::cos(0.05f)));
+  const glm::vec3 off_axis = vpl_glossy_reflection(vpls, x, n, tilted, 10000.0f);
+  EXPECT_NEAR(off_axis.x, PhongLobe{widest}.value(std::cos(0.05f)) * e, 1e-4f);
+  EXPECT_GT(off_axis.x, 0.5f * on_axis.x);
+  // A lobe already wider than the disk is left as it is.
+  EXPECT_NEAR(vpl_glossy_reflection(vpls, x, n, n, 20.0f).x, PhongLobe{20.0f}.value(1.0f) * e,
+              1e-5f);
+}
+
 // Direct light on a glossy floor: one point light, so light sampling is exact and the lobe's
 // ray never meets the lamp; the pixel's glossy radiance is f_g toward the lamp times its
 // irradiance. A diffuse wall reflects none.

@@ -1,7 +1,8 @@
 // What the page takes from scene.gltf (written by bakegi web export): materials (base colour,
 // emission as radiance), lights (KHR_lights_punctual in the core's units, which three.js'
-// physically based lights read the same way: W/sr, W/m^2; area lights from the extras as
-// RectAreaLights of that radiance), the camera, and each primitive's progressive data.
+// physically based lights read the same way: W/sr, W/m^2, with shadow maps; area lights from
+// the extras as RectAreaLights of that radiance, unshadowed), the camera, and each
+// primitive's progressive data.
 import * as THREE from "three";
 import { RectAreaLightUniformsLib } from "three/examples/jsm/lights/RectAreaLightUniformsLib.js";
 
@@ -40,8 +41,54 @@ function nodeTransform(object, node) {
   if (node.rotation) object.quaternion.fromArray(node.rotation);
 }
 
+// The scene's bounds from its POSITION accessors' min and max (glTF requires them), for the
+// shadow cameras: [centre, radius], or null when no accessor has them.
+export function sceneBounds(gltf) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (const mesh of gltf.meshes ?? []) {
+    for (const primitive of mesh.primitives) {
+      const accessor = gltf.accessors?.[primitive.attributes?.POSITION];
+      if (!accessor?.min || !accessor?.max) continue;
+      for (let a = 0; a < 3; ++a) {
+        lo[a] = Math.min(lo[a], accessor.min[a]);
+        hi[a] = Math.max(hi[a], accessor.max[a]);
+      }
+    }
+  }
+  if (!(lo[0] <= hi[0])) return null;
+  const centre = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
+  const radius = Math.max(1e-3, 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]));
+  return [centre, radius];
+}
+
+// Shadow maps for a point, spot or sun light (three.js has none for RectAreaLights): its
+// camera spans the scene's bounds, and the biases scale with them (self-shadowing acne on
+// one side, light leaking under contact on the other).
+function castShadows(light, holder, bounds) {
+  if (!bounds) return;
+  const [centre, radius] = bounds;
+  light.castShadow = true;
+  light.shadow.mapSize.set(1024, 1024);
+  light.shadow.bias = -0.0005;
+  light.shadow.normalBias = 0.004 * radius;
+  const camera = light.shadow.camera;
+  if (light.isDirectionalLight) {
+    // A sun has no position: stand it off the bounds along its direction so that its
+    // orthographic camera sees all of them.
+    const direction = new THREE.Vector3(0, 0, -1).applyQuaternion(holder.quaternion);
+    holder.position.copy(centre).addScaledVector(direction, -2 * radius);
+    Object.assign(camera, { left: -radius, right: radius, top: radius, bottom: -radius, near: 0.5 * radius, far: 3.5 * radius });
+  } else {
+    const reach = holder.position.distanceTo(centre) + radius;
+    camera.near = Math.max(1e-3 * radius, 0.01);
+    camera.far = 1.1 * reach;
+  }
+  camera.updateProjectionMatrix();
+}
+
 export function makeLights(gltf) {
   const lights = [];
+  const bounds = sceneBounds(gltf);
   const punctual = gltf.extensions?.KHR_lights_punctual?.lights ?? [];
   for (const node of gltf.nodes ?? []) {
     const index = node.extensions?.KHR_lights_punctual?.light;
@@ -66,6 +113,7 @@ export function makeLights(gltf) {
       light.target.position.set(0, 0, -1);
       holder.add(light.target);
     }
+    castShadows(light, holder, bounds);
     lights.push(holder);
   }
   const areas = gltf.extras?.bakegi?.area_lights ?? [];

@@ -39,6 +39,9 @@ state.timeline.context = performance.now();
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
 state.timeline.context = performance.now() - state.timeline.context;
 renderer.outputColorSpace = THREE.SRGBColorSpace; // Blender's "Standard" view transform
+// Direct light is shadowed (point, spot and sun lights; gltf_scene.js), as the bake's is.
+renderer.shadowMap.enabled = true;
+renderer.shadowMap.type = THREE.PCFShadowMap;
 renderer.toneMapping = THREE.NoToneMapping;
 const size = query.get("size")?.split("x").map(Number);
 function resize() {
@@ -84,6 +87,11 @@ function showProgress() {
     (state.doneMs !== null ? `, all ${state.doneMs.toFixed(0)} ms` : "");
 }
 
+function shadowed(mesh) {
+  mesh.castShadow = mesh.receiveShadow = true;
+  return mesh;
+}
+
 // The scene's fixed parts from the glTF: materials, lights, camera, one mesh per primitive.
 function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   view.grid = grid;
@@ -110,9 +118,9 @@ function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
       flat.flatShading = true;
       flat.onBeforeCompile = material.onBeforeCompile;
       flat.customProgramCacheKey = material.customProgramCacheKey;
-      view.scene.add(new THREE.Mesh(geometry.geometry, keep(flat)));
+      view.scene.add(shadowed(new THREE.Mesh(geometry.geometry, keep(flat))));
     } else {
-      view.scene.add(new THREE.Mesh(geometry.geometry, keep(material)));
+      view.scene.add(shadowed(new THREE.Mesh(geometry.geometry, keep(material))));
     }
     view.geometries.push(geometry);
   });

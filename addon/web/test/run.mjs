@@ -13,6 +13,9 @@
 //  - with --reference (Blender's render of the same camera showing BakeGI_Indirect from
 //    the same grid, read as the page reads it), the page's "light" view matches it within
 //    the tolerance below;
+//  - with --shadow-folder G --shadow-points P.json (a box on a floor under a point light),
+//    direct light alone: the floor in the box's shadow is dark beside a floor point as far
+//    from the light in the open (three.js' shadow maps; without them both read the same);
 //  - --fig6 (--only-fig6: that alone): the grid's transfer time and bytes per request size, quantized against
 //    floats (the paper's Fig. 6), into DIR/transfer.json.
 // Writes DIR/results.json and the screenshots (PNG).
@@ -46,9 +49,9 @@ function check(condition, message) {
   if (!condition) failures.push(message);
 }
 
-function startServer(extra = []) {
+function startServer(extra = [], folder = args.folder) {
   return new Promise((resolve, reject) => {
-    const server = spawn(args.cli, ["serve", args.folder, "--port", "0", ...extra], { stdio: ["ignore", "pipe", "inherit"] });
+    const server = spawn(args.cli, ["serve", folder, "--port", "0", ...extra], { stdio: ["ignore", "pipe", "inherit"] });
     let text = "";
     server.stdout.on("data", (chunk) => {
       text += chunk;
@@ -170,6 +173,37 @@ try {
   if (error !== "skip") throw error;
 } finally {
   server.kill();
+}
+
+// The page's pixel (8-bit sRGB, mean of R, G, B) where a world point projects.
+async function pixelAt(page, point) {
+  const [x, y] = await page.evaluate(([px, py, pz, w, h]) => {
+    const camera = window.bakegiView.camera;
+    const v = camera.position.clone().set(px, py, pz).project(camera);
+    return [Math.round((v.x + 1) / 2 * w - 0.5), Math.round((1 - v.y) / 2 * h - 0.5)];
+  }, [...point, width, height]);
+  const all = await pixels(page);
+  const i = 4 * (y * width + x);
+  return (all[i] + all[i + 1] + all[i + 2]) / 3;
+}
+
+if (args["shadow-folder"] && !args["only-fig6"]) {
+  const points = JSON.parse(readFileSync(args["shadow-points"], "utf8"));
+  const { server: shadowServer, url: shadowUrl } = await startServer([], args["shadow-folder"]);
+  try {
+    const page = await browser.newPage({ viewport: { width: width + 20, height: height + 20 } });
+    page.on("pageerror", (error) => failures.push(`page error (shadow scene): ${error.message}`));
+    await load(page, shadowUrl, "until=1&mode=direct");
+    await page.locator("#view").screenshot({ path: join(out, "shadow_direct.png") });
+    const shadowed = await pixelAt(page, points.shadowed);
+    const open = await pixelAt(page, points.open);
+    results.shadow = { shadowed, open };
+    check(open > 40 && shadowed < 0.1 * open,
+      `direct light is shadowed: the floor behind the box reads ${shadowed.toFixed(1)}, in the open ${open.toFixed(1)} (of 255)`);
+    await page.close();
+  } finally {
+    shadowServer.kill();
+  }
 }
 
 if (args.fig6 || args["only-fig6"]) {

@@ -21,7 +21,6 @@ constexpr uint64_t kGlossySalt = 0x676C6F7373794C6Full;  // apart from the diffu
 
 glm::vec3 vpl_glossy_reflection(const VirtualPointLights& vpls, const glm::vec3& position,
                                 const glm::vec3& normal, const glm::vec3& axis, float exponent) {
-  const PhongLobe lobe{exponent};
   // Directions where cos^n α < 1e-4 of the peak add nothing visible: a VPL outside that cone
   // is dropped before the rest of its arithmetic and the power (most VPLs, for a lobe of
   // exponent 16 or more; 30% faster than computing every VPL's geometry over plain floats).
@@ -33,13 +32,20 @@ glm::vec3 vpl_glossy_reflection(const VirtualPointLights& vpls, const glm::vec3&
     const float r = std::sqrt(r2);
     if (!(r > 0.0f)) continue;
     const float cos_alpha = glm::dot(axis, d) / r;
-    if (!(cos_alpha > cutoff)) continue;
+    // A VPL stands for a disk of area π a that subtends about π a / r² from here; a lobe
+    // narrower than that would reflect it as a spike (a near mirror: one bright dot per
+    // VPL). The lobe widens to the disk's solid angle, 2π / (n + 1) ≥ π a / r², as virtual
+    // spherical lights (Hašan et al. 2009) integrate the BRDF over the light's extent.
+    const float a = vpls.disk_areas[v];
+    const float widest = a > 0.0f ? 2.0f * r2 / a - 1.0f : exponent;
+    const bool widened = widest < exponent;
+    if (!widened && !(cos_alpha > cutoff)) continue;
     const float cos_receiver = glm::dot(normal, d) / r;
     const float cos_vpl = -glm::dot(vpls.normals[v], d) / r;
     if (!(cos_receiver > 0.0f) || !(cos_vpl > 0.0f)) continue;
+    const PhongLobe lobe{widened ? std::max(0.0f, widest) : exponent};
     // E = Φ cos cos / (π (r² + A/π)), the VPL's irradiance bounded by its disk.
-    sum += vpls.fluxes[v] *
-           (lobe.value(cos_alpha) * cos_receiver * cos_vpl * kInvPi / (r2 + vpls.disk_areas[v]));
+    sum += vpls.fluxes[v] * (lobe.value(cos_alpha) * cos_receiver * cos_vpl * kInvPi / (r2 + a));
   }
   return sum;
 }
