@@ -187,6 +187,19 @@ def pathtrace_sweep(cli, bgs, reference, work, samples, threads, repeat):
     return runs
 
 
+def fastest_bake(cli, bgs, arguments, values, report_path, repeat):
+    """Bakes `repeat` times with `arguments` (method, settings, threads) and returns the
+    report of the fastest run (core job seconds); the values of the last run are in `values`."""
+    best = None
+    for _ in range(repeat):
+        run([cli, "bake", bgs] + arguments + ["--out", values, "--report", report_path], quiet=True)
+        with open(report_path) as f:
+            report = json.load(f)
+        if best is None or report["seconds"]["total"] < best["seconds"]["total"]:
+            best = report
+    return best
+
+
 def antiradiance_sweep(cli, bgs, reference, work, bins_list, threads, repeat):
     """One antiradiance bake per bin count (other settings at their defaults), each timed
     `repeat` times keeping the fastest; seconds are the core's job time, as for the path
@@ -195,14 +208,8 @@ def antiradiance_sweep(cli, bgs, reference, work, bins_list, threads, repeat):
     for bins in bins_list:
         values = os.path.join(work, f"antiradiance_{bins}.npy")
         report_path = os.path.join(work, f"antiradiance_{bins}.json")
-        best = None
-        for _ in range(repeat):
-            run([cli, "bake", bgs, "--method", "antiradiance", "--set", f"bins={bins}", "--threads", str(threads),
-                 "--out", values, "--report", report_path], quiet=True)
-            with open(report_path) as f:
-                report = json.load(f)
-            if best is None or report["seconds"]["total"] < best["seconds"]["total"]:
-                best = report
+        best = fastest_bake(cli, bgs, ["--method", "antiradiance", "--set", f"bins={bins}", "--threads",
+                                       str(threads)], values, report_path, repeat)
         entry = {"method": "antiradiance", "settings": {"bins": bins}, "label": f"{bins} bins",
                  "seconds": best["seconds"]["total"], "error": compare(cli, values, reference),
                  "bake_points": best["bake_points"], "memory_bytes": best.get("memory_bytes"),
@@ -261,15 +268,8 @@ def splatting_sweep(cli, bgs, reference, work, vpl_counts, threads, repeat):
     for vpls in vpl_counts:
         values = os.path.join(work, f"splatting_{vpls}.npy")
         report_path = os.path.join(work, f"splatting_{vpls}.json")
-        best = None
-        for _ in range(repeat):
-            run([cli, "bake", bgs, "--method", "splatting", "--set", f"vpl_count={vpls}", "--set",
-                 "error_probes=0", "--threads", str(threads), "--out", values, "--report", report_path],
-                quiet=True)
-            with open(report_path) as f:
-                report = json.load(f)
-            if best is None or report["seconds"]["total"] < best["seconds"]["total"]:
-                best = report
+        best = fastest_bake(cli, bgs, ["--method", "splatting", "--set", f"vpl_count={vpls}", "--set",
+                                       "error_probes=0", "--threads", str(threads)], values, report_path, repeat)
         entry = {"method": "splatting", "settings": {"vpls": vpls}, "label": f"{vpls} VPLs",
                  "seconds": best["seconds"]["total"], "error": compare(cli, values, reference),
                  "bake_points": best["bake_points"]}
