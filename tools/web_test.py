@@ -5,8 +5,8 @@ camera, BakeGI_Indirect from that grid read as the page reads it (the paper's re
 visibility test, n^2 weights, trilinear), shown flat by Workbench with the Standard view
 transform. Then addon/web/test/run.mjs streams the folder with `bakegi serve` into Debian's
 Chromium (playwright-core) and checks the page against it. A second scene (a box on a floor
-under a point light) checks the page's shadows: a floor point in the box's shadow against
-one as far from the light in the open.
+under a sun 45 degrees from the zenith) checks the page's shadows and the sun's direction: a
+floor point in the box's shadow against one in the open.
 
     /usr/bin/python3 tools/web_test.py [--work out/web_tests] [--build build] [--fig6]
         [--cells 16] [--size 480x360] [--junit out.xml]
@@ -70,10 +70,12 @@ for thing in list(bpy.data.objects):
 scene = bpy.context.scene
 bpy.ops.mesh.primitive_plane_add(size=6.0)
 bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.0, 0.0, 0.4))
-lamp = bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", "POINT"))
-lamp.data.energy = 300.0
-lamp.data.shadow_soft_size = 0.0
-lamp.location = (-1.5, 0.0, 1.6)
+# A sun shining towards +x, 45 degrees from the zenith (a sun points along its local -Z).
+lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+lamp.data.energy = 3.0
+lamp.data.angle = 0.0
+lamp.rotation_euler = (0.0, -0.7853981633974483, 0.0)
+lamp.location = (0.0, 0.0, 3.0)
 scene.collection.objects.link(lamp)
 camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
 camera.location = (0.0, 0.0, 8.0)
@@ -84,9 +86,10 @@ scene.render.resolution_x, scene.render.resolution_y = {width}, {height}
 bakegi.bake(target="GRID", method="pathtrace", grid_cell_size=0.5, grid_rays=16,
             grid_folder={work!r}, objects="VISIBLE")
 print("web", bakegi.export_web({site!r}), flush=True)
-# In the box's shadow (the ray from the lamp over the box's far top edge meets the floor at
-# x = 2.3), and a point as far from the lamp at the same height, in the open.
-json.dump({{"shadowed": [1.2, 0.0, 0.0], "open": [-1.5, 2.7, 0.0]}}, open({points!r}, "w"))
+# The box (0.8 m high, its far side at x = 0.4) shades the floor from x = 0.4 to 1.2; a
+# point in that shadow, and one in the open on the lit side (a sun turned the wrong way
+# would light the first or shade the second).
+json.dump({{"shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0]}}, open({points!r}, "w"))
 """
 
 

@@ -13,9 +13,10 @@
 //  - with --reference (Blender's render of the same camera showing BakeGI_Indirect from
 //    the same grid, read as the page reads it), the page's "light" view matches it within
 //    the tolerance below;
-//  - with --shadow-folder G --shadow-points P.json (a box on a floor under a point light),
-//    direct light alone: the floor in the box's shadow is dark beside a floor point as far
-//    from the light in the open (three.js' shadow maps; without them both read the same);
+//  - with --shadow-folder G --shadow-points P.json (a box on a floor under a tilted sun),
+//    direct light alone: the floor in the box's shadow is dark beside a floor point in the
+//    open (three.js' shadow maps, and the sun shining the way the glTF says; without shadow
+//    maps both read the same);
 //  - --fig6 (--only-fig6: that alone): the grid's transfer time and bytes per request size, quantized against
 //    floats (the paper's Fig. 6), into DIR/transfer.json.
 // Writes DIR/results.json and the screenshots (PNG).
@@ -175,7 +176,8 @@ try {
   server.kill();
 }
 
-// The page's pixel (8-bit sRGB, mean of R, G, B) where a world point projects.
+// The page's pixel (8-bit sRGB, mean of R, G, B) where a world point projects, and the
+// spread (max - min) of the 7x7 pixels around it.
 async function pixelAt(page, point) {
   const [x, y] = await page.evaluate(([px, py, pz, w, h]) => {
     const camera = window.bakegiView.camera;
@@ -183,8 +185,18 @@ async function pixelAt(page, point) {
     return [Math.round((v.x + 1) / 2 * w - 0.5), Math.round((1 - v.y) / 2 * h - 0.5)];
   }, [...point, width, height]);
   const all = await pixels(page);
-  const i = 4 * (y * width + x);
-  return (all[i] + all[i + 1] + all[i + 2]) / 3;
+  const value = (px, py) => {
+    const i = 4 * (py * width + px);
+    return (all[i] + all[i + 1] + all[i + 2]) / 3;
+  };
+  let lo = Infinity, hi = -Infinity;
+  for (let dy = -3; dy <= 3; ++dy) {
+    for (let dx = -3; dx <= 3; ++dx) {
+      lo = Math.min(lo, value(x + dx, y + dy));
+      hi = Math.max(hi, value(x + dx, y + dy));
+    }
+  }
+  return [value(x, y), hi - lo];
 }
 
 if (args["shadow-folder"] && !args["only-fig6"]) {
@@ -195,11 +207,12 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
     page.on("pageerror", (error) => failures.push(`page error (shadow scene): ${error.message}`));
     await load(page, shadowUrl, "until=1&mode=direct");
     await page.locator("#view").screenshot({ path: join(out, "shadow_direct.png") });
-    const shadowed = await pixelAt(page, points.shadowed);
-    const open = await pixelAt(page, points.open);
-    results.shadow = { shadowed, open };
+    const [shadowed] = await pixelAt(page, points.shadowed);
+    const [open, spread] = await pixelAt(page, points.open);
+    results.shadow = { shadowed, open, open_spread: spread };
+    check(spread <= 8, `the sunlit floor is even, no shadow acne: its pixels spread ${spread.toFixed(1)} of 255`);
     check(open > 40 && shadowed < 0.1 * open,
-      `direct light is shadowed: the floor behind the box reads ${shadowed.toFixed(1)}, in the open ${open.toFixed(1)} (of 255)`);
+      `the sun's direct light is shadowed: the floor behind the box reads ${shadowed.toFixed(1)}, in the open ${open.toFixed(1)} (of 255)`);
     await page.close();
   } finally {
     shadowServer.kill();
