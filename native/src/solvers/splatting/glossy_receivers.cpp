@@ -37,13 +37,13 @@ glm::vec3 vpl_glossy_reflection(const VirtualPointLights& vpls, const glm::vec3&
     // VPL). The lobe widens to the disk's solid angle, 2π / (n + 1) ≥ π a / r², as virtual
     // spherical lights (Hašan et al. 2009) integrate the BRDF over the light's extent.
     const float a = vpls.disk_areas[v];
-    const float widest = a > 0.0f ? 2.0f * r2 / a - 1.0f : exponent;
-    const bool widened = widest < exponent;
+    // 2 r² / a - 1 < n without the division: most VPLs are far and skip on the cone test.
+    const bool widened = 2.0f * r2 < a * (exponent + 1.0f);
     if (!widened && !(cos_alpha > cutoff)) continue;
     const float cos_receiver = glm::dot(normal, d) / r;
     const float cos_vpl = -glm::dot(vpls.normals[v], d) / r;
     if (!(cos_receiver > 0.0f) || !(cos_vpl > 0.0f)) continue;
-    const PhongLobe lobe{widened ? std::max(0.0f, widest) : exponent};
+    const PhongLobe lobe{widened ? std::max(0.0f, 2.0f * r2 / a - 1.0f) : exponent};
     // E = Φ cos cos / (π (r² + A/π)), the VPL's irradiance bounded by its disk.
     sum += vpls.fluxes[v] * (lobe.value(cos_alpha) * cos_receiver * cos_vpl * kInvPi / (r2 + a));
   }
@@ -56,16 +56,31 @@ bool gathers_lobe(const EyeGBuffer& g, size_t i, float fold_below) {
 
 void folded_albedo(const EyeGBuffer& g, float fold_below, std::vector<glm::vec3>& out) {
   out.resize(g.size());
-  std::map<float, float> albedo_by_exponent;  // the quadrature is slow; scenes have few lobes
+  // The quadrature is slow and a scene has few lobes: one value per exponent, found before
+  // the pixels are visited in parallel.
+  std::map<float, float> albedo_by_exponent;
   for (size_t i = 0; i < g.size(); ++i) {
-    out[i] = g.albedo[i];
-    if (!g.hit[i] || !(max_component(g.glossy[i]) > 0.0f) || gathers_lobe(g, i, fold_below)) {
-      continue;
+    if (g.hit[i] && max_component(g.glossy[i]) > 0.0f && !gathers_lobe(g, i, fold_below)) {
+      albedo_by_exponent.try_emplace(g.glossy_exponent[i], 0.0f);
     }
-    auto [it, inserted] = albedo_by_exponent.try_emplace(g.glossy_exponent[i], 0.0f);
-    if (inserted) it->second = float(phong_hemispherical_albedo(g.glossy_exponent[i]));
-    out[i] += it->second * g.glossy[i];
   }
+  for (auto& [exponent, albedo] : albedo_by_exponent) {
+    albedo = float(phong_hemispherical_albedo(exponent));
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, g.size(), 4096), [&](const auto& range) {
+    float last_exponent = -1.0f, last_albedo = 0.0f;  // neighbouring pixels share a material
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      out[i] = g.albedo[i];
+      if (!g.hit[i] || !(max_component(g.glossy[i]) > 0.0f) || gathers_lobe(g, i, fold_below)) {
+        continue;
+      }
+      if (g.glossy_exponent[i] != last_exponent) {
+        last_exponent = g.glossy_exponent[i];
+        last_albedo = albedo_by_exponent.at(last_exponent);
+      }
+      out[i] += last_albedo * g.glossy[i];
+    }
+  });
 }
 
 uint64_t glossy_reflection(const EyeGBuffer& g, const DirectLight& direct,
