@@ -24,14 +24,10 @@ const state = (window.bakegiState = {
   pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, timeline: { script: performance.now() },
 });
 
-// The stream's first request leaves before the WebGL context is made (0.6-0.8 s with
-// software WebGL here, measured), so that the answer is there when it is.
-const streamParameters = new URLSearchParams();
-for (const key of ["vectors", "vertices", "encoding"]) if (query.has(key)) streamParameters.set(key, query.get(key));
-const suffix = streamParameters.toString() ? `?${streamParameters}` : "";
-const early = location.protocol.startsWith("http")
-  ? fetch(`stream/manifest.json${suffix}`).then((r) => (r.ok ? r.json() : null)).catch(() => null)
-  : Promise.resolve(null);
+// The stream's first requests were started by index.html before this script arrived
+// (window.bakegiEarly).
+const early = window.bakegiEarly;
+const suffix = early.suffix;
 
 const canvas = document.getElementById("view");
 const status = document.getElementById("status");
@@ -46,8 +42,13 @@ renderer.toneMapping = THREE.NoToneMapping;
 const size = query.get("size")?.split("x").map(Number);
 function resize() {
   const [w, h] = size ?? [innerWidth, innerHeight];
-  renderer.setPixelRatio(size ? 1 : devicePixelRatio);
-  renderer.setSize(w, h, !size);
+  // Setting a canvas' size, even to its own, clears its drawing buffer: only when it changed.
+  const ratio = size ? 1 : devicePixelRatio;
+  const sized = canvas.width === Math.floor(w * ratio) && canvas.height === Math.floor(h * ratio);
+  if (!sized || renderer.getPixelRatio() !== ratio || renderer.getSize(new THREE.Vector2()).x !== w) {
+    renderer.setPixelRatio(ratio);
+    renderer.setSize(w, h, !size);
+  }
   if (size) Object.assign(canvas.style, { width: `${w}px`, height: `${h}px` });
   if (view.camera) {
     view.camera.aspect = w / h;
@@ -174,23 +175,44 @@ async function fetchBytes(url) {
 }
 
 async function stream(manifest) {
-  const gltf = await (await fetch(manifest.gltf)).json();
+  const gltf = (early.gltf?.url === manifest.gltf && (await early.gltf.json)) || (await (await fetch(manifest.gltf)).json());
   state.timeline.manifest = performance.now();
   state.packetCount = manifest.packets.length;
   state.totalBytes = manifest.total_bytes;
+  const until = Number(query.get("until") ?? 1);
+  const gridOnly = query.get("only") === "grid";
+  if (gridOnly) state.totalBytes = manifest.packets.filter((p) => p.kind === "grid").reduce((a, p) => a + p.bytes, 0);
+  // The packets this page asks for, in the stream's order.
+  const wanted = [];
+  let planned = 0;
+  for (let k = 0; k < manifest.packets.length; ++k) {
+    if (gridOnly && manifest.packets[k].kind !== "grid") continue;
+    if (planned + manifest.packets[k].bytes > until * state.totalBytes + 0.5) break;
+    planned += manifest.packets[k].bytes;
+    wanted.push(k);
+  }
+  // Requests run ahead of the drawing: the first two while the scene is built, then the next
+  // while this one is decoded and drawn, so that the page never waits on a round trip.
+  const requests = [];
+  const request = (i) => {
+    if (i >= wanted.length || requests[i]) return;
+    requests[i] = fetchBytes(`stream/packet/${wanted[i]}${suffix}`);
+    requests[i].then(() => (arrived[i] = true), () => {}); // a failure is reported where awaited
+  };
+  const arrived = [];
+  request(0);
+  request(1);
   const g = manifest.grid;
   buildScene(gltf, g ? new IrradianceGrid(g.resolution, g.bounds_min, g.bounds_max) : null, manifest.primitives);
   state.timeline.built = performance.now();
   state.phase = "streaming";
   state.startMs = performance.now();
-  const until = Number(query.get("until") ?? 1);
-  const gridOnly = query.get("only") === "grid";
-  if (gridOnly) state.totalBytes = manifest.packets.filter((p) => p.kind === "grid").reduce((a, p) => a + p.bytes, 0);
-  for (let k = 0; k < manifest.packets.length; ++k) {
-    if (gridOnly && manifest.packets[k].kind !== "grid") continue;
-    if (state.bytes + manifest.packets[k].bytes > until * state.totalBytes + 0.5) break;
+  for (let i = 0; i < wanted.length; ++i) {
+    const k = wanted[i];
     const fetchStart = performance.now();
-    const bytes = await fetchBytes(`stream/packet/${k}${suffix}`);
+    const bytes = await requests[i];
+    requests[i] = null;
+    request(i + 1);
     state.fetchMs += performance.now() - fetchStart;
     const packet = readPacket(bytes);
     state.bytes += manifest.packets[k].bytes;
@@ -198,13 +220,16 @@ async function stream(manifest) {
     if (packet.kind === GRID_PACKET) {
       const record = packet.encoding === 1 ? 42 : 144;
       const decodeStart = performance.now();
-      packet.vertices.forEach((v, i) => view.grid.receive(v, packet.view, packet.recordsOffset + i * record, packet.encoding));
+      packet.vertices.forEach((v, j) => view.grid.receive(v, packet.view, packet.recordsOffset + j * record, packet.encoding));
       state.decodeMs += performance.now() - decodeStart;
       refreshGrid();
     } else if (packet.kind === GEOMETRY_PACKET) {
       for (const entry of packet.entries) view.geometries[entry.primitive].add(entry);
       refreshGeometry();
     }
+    // Drawn when no further packet is waiting: a packet already here is taken first (one
+    // draw for both), the image follows the stream as fast as the page can draw.
+    if (arrived[i + 1]) continue;
     const renderStart = performance.now();
     render();
     state.timeline[`render${k}`] = performance.now() - renderStart;
@@ -246,7 +271,7 @@ document.getElementById("push-pull").addEventListener("change", () => { refreshG
 addEventListener("resize", () => { resize(); render(); });
 
 async function main() {
-  const manifest = await early;
+  const manifest = await early.manifest;
   if (manifest) return stream(manifest);
   document.body.classList.add("local");
   state.phase = "waiting for a folder";
