@@ -6,7 +6,8 @@ visibility test, n^2 weights, trilinear), shown flat by Workbench with the Stand
 transform. Then addon/web/test/run.mjs streams the folder with `bakegi serve` into Debian's
 Chromium (playwright-core) and checks the page against it. A second scene (a box on a floor
 under a sun 45 degrees from the zenith) checks the page's shadows and the sun's direction: a
-floor point in the box's shadow against one in the open.
+floor point in the box's shadow against one in the open; and a tile textured red and blue
+beside it, that textures reach the page.
 
     /usr/bin/python3 tools/web_test.py [--work out/web_tests] [--build build] [--fig6]
         [--cells 16] [--size 480x360] [--junit out.xml]
@@ -70,6 +71,20 @@ for thing in list(bpy.data.objects):
 scene = bpy.context.scene
 bpy.ops.mesh.primitive_plane_add(size=6.0)
 bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.0, 0.0, 0.4))
+# A textured tile in the sun: a 2 x 1 image, red on its left half, blue on its right (u from 0
+# to 1 along +x), so that the page must carry the texture through glTF to show both.
+bpy.ops.mesh.primitive_plane_add(size=0.8, location=(-1.5, 1.5, 0.01))
+image = bpy.data.images.new("Tile", 2, 1)
+image.pixels = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0]
+image.pack()
+material = bpy.data.materials.new("Tile")
+material.use_nodes = True
+texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+texture.image = image
+texture.interpolation = "Closest"
+material.node_tree.links.new(texture.outputs["Color"],
+                             material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+bpy.context.active_object.data.materials.append(material)
 # A sun shining towards +x, 45 degrees from the zenith (a sun points along its local -Z).
 lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
 lamp.data.energy = 3.0
@@ -89,7 +104,10 @@ print("web", bakegi.export_web({site!r}), flush=True)
 # The box (0.8 m high, its far side at x = 0.4) shades the floor from x = 0.4 to 1.2; a
 # point in that shadow, and one in the open on the lit side (a sun turned the wrong way
 # would light the first or shade the second).
-json.dump({{"shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0]}}, open({points!r}, "w"))
+# The tile's red and blue halves at the middle of each texel. The points are in the page's
+# frame, glTF's: Blender's (x, y, z) is (x, z, -y) there.
+json.dump({{"shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0],
+           "red": [-1.7, 0.01, -1.5], "blue": [-1.3, 0.01, -1.5]}}, open({points!r}, "w"))
 """
 
 

@@ -14,7 +14,10 @@ export function makeMaterial(description, gltf = {}, imageUrl = (uri) => uri) {
   let map = null;
   if (textureIndex !== undefined) {
     const image = gltf.images[gltf.textures[textureIndex].source];
-    map = new THREE.TextureLoader().load(imageUrl(image.uri), () => onTextureLoaded());
+    let settle;
+    pendingTextures.push(new Promise((resolve) => (settle = resolve)));
+    // A texture that fails to load leaves the material's colour alone, as before it came.
+    map = new THREE.TextureLoader().load(imageUrl(image.uri), () => { onTextureLoaded(); settle(); }, undefined, settle);
     map.colorSpace = THREE.SRGBColorSpace; // glTF base colour textures are sRGB
     map.flipY = false; // glTF's v runs down the image
     map.wrapS = map.wrapT = THREE.RepeatWrapping;
@@ -144,6 +147,13 @@ export function makeLights(gltf) {
 let onTextureLoaded = () => {};
 export function setTextureListener(listener) {
   onTextureLoaded = listener;
+}
+
+// Resolves when every texture asked for so far has arrived or failed: the page says it is
+// done only then, with them drawn.
+const pendingTextures = [];
+export function texturesSettled() {
+  return Promise.all(pendingTextures);
 }
 
 // The glTF camera (a PerspectiveCamera with its node's pose), or null.

@@ -10,7 +10,7 @@
 // tests and people where it stands.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener } from "./gltf_scene.js";
+import { makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
 import { addGridLighting, GridTextures } from "./grid_textures.js";
 import { IrradianceGrid } from "./irradiance_grid.js";
 import { GEOMETRY_PACKET, GRID_PACKET, readPacket } from "./packets.js";
@@ -21,7 +21,7 @@ const query = new URLSearchParams(location.search);
 const state = (window.bakegiState = {
   phase: "starting", packets: 0, packetCount: 0, bytes: 0, totalBytes: 0, gridFraction: 0,
   geometryFraction: 0, firstImageMs: null, doneMs: null, error: null, frames: 0,
-  pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, timeline: { script: performance.now() },
+  pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, renderMs: 0, timeline: { script: performance.now() },
 });
 
 // The stream's first requests were started by index.html before this script arrived
@@ -60,8 +60,26 @@ const view = (window.bakegiView = { scene: new THREE.Scene(), camera: null, cont
 
 function render() {
   if (!view.camera) return;
+  const start = performance.now();
   renderer.render(view.scene, view.camera);
+  state.renderMs += performance.now() - start;
   ++state.frames;
+  if (state.firstImageMs === null && state.geometryFraction > 0 && (!view.grid || state.gridFraction > 0)) {
+    state.firstImageMs = performance.now();
+  }
+}
+
+// A draw at the next animation frame, one for however many asks come before it: packets,
+// textures and camera moves can arrive faster than a frame is drawn (software WebGL draws
+// Sponza in about a second), and drawing each would hold the stream back.
+let drawPending = false;
+function requestRender() {
+  if (drawPending) return;
+  drawPending = true;
+  requestAnimationFrame(() => {
+    drawPending = false;
+    render();
+  });
 }
 
 function setMode(mode) {
@@ -97,7 +115,7 @@ function shadowed(mesh) {
 function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   view.grid = grid;
   view.textures = grid ? new GridTextures(grid) : null;
-  setTextureListener(() => render());
+  setTextureListener(requestRender);
   const materials = (gltf.materials ?? []).map((m) => {
     const material = makeMaterial(m, gltf, imageUrl);
     if (view.textures) addGridLighting(material, view.textures.uniforms);
@@ -140,7 +158,7 @@ function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   view.controls = new OrbitControls(view.camera, canvas);
   view.controls.target.copy(target);
   view.controls.update();
-  view.controls.addEventListener("change", render);
+  view.controls.addEventListener("change", requestRender);
   resize();
   document.getElementById("mode").value = query.get("mode") ?? "full";
   setMode(query.get("mode") ?? "full");
@@ -191,15 +209,14 @@ async function stream(manifest) {
     planned += manifest.packets[k].bytes;
     wanted.push(k);
   }
-  // Requests run ahead of the drawing: the first two while the scene is built, then the next
-  // while this one is decoded and drawn, so that the page never waits on a round trip.
+  // Requests run ahead: the first two while the scene is built, then the next while this one
+  // is decoded, so that the page never waits on a round trip.
   const requests = [];
   const request = (i) => {
     if (i >= wanted.length || requests[i]) return;
     requests[i] = fetchBytes(`stream/packet/${wanted[i]}${suffix}`);
-    requests[i].then(() => (arrived[i] = true), () => {}); // a failure is reported where awaited
+    requests[i].catch(() => {}); // a failure is reported where it is awaited
   };
-  const arrived = [];
   request(0);
   request(1);
   const g = manifest.grid;
@@ -227,17 +244,14 @@ async function stream(manifest) {
       for (const entry of packet.entries) view.geometries[entry.primitive].add(entry);
       refreshGeometry();
     }
-    // Drawn when no further packet is waiting: a packet already here is taken first (one
-    // draw for both), the image follows the stream as fast as the page can draw.
-    if (arrived[i + 1]) continue;
-    const renderStart = performance.now();
-    render();
-    state.timeline[`render${k}`] = performance.now() - renderStart;
-    if (state.firstImageMs === null && state.geometryFraction > 0 && (!view.grid || state.gridFraction > 0)) {
-      state.firstImageMs = performance.now();
-    }
+    // The first lit image is drawn at once, later ones at the next animation frame.
+    const firstLit = state.firstImageMs === null && state.geometryFraction > 0 && (!view.grid || state.gridFraction > 0);
+    if (firstLit) render();
+    else requestRender();
     showProgress();
   }
+  await texturesSettled();
+  render(); // the image of everything received, textures too, before the phase says so
   state.phase = state.bytes >= state.totalBytes ? "done" : "paused";
   state.doneMs = performance.now();
   showProgress();
@@ -258,17 +272,20 @@ async function openFolder(files) {
   });
   refreshGrid();
   refreshGeometry();
-  state.phase = "done";
-  state.firstImageMs = state.doneMs = performance.now();
   render();
+  state.firstImageMs ??= performance.now();
+  await texturesSettled();
+  render();
+  state.phase = "done";
+  state.doneMs = performance.now();
   showProgress();
 }
 
 if (query.get("panel") === "0") document.getElementById("panel").style.display = "none";
 if (query.get("pushpull") === "0") document.getElementById("push-pull").checked = false;
 document.getElementById("mode").addEventListener("change", (e) => setMode(e.target.value));
-document.getElementById("push-pull").addEventListener("change", () => { refreshGrid(); render(); });
-addEventListener("resize", () => { resize(); render(); });
+document.getElementById("push-pull").addEventListener("change", () => { refreshGrid(); requestRender(); });
+addEventListener("resize", () => { resize(); requestRender(); });
 
 async function main() {
   const manifest = await early.manifest;

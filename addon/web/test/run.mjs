@@ -16,7 +16,7 @@
 //  - with --shadow-folder G --shadow-points P.json (a box on a floor under a tilted sun),
 //    direct light alone: the floor in the box's shadow is dark beside a floor point in the
 //    open (three.js' shadow maps, and the sun shining the way the glTF says; without shadow
-//    maps both read the same);
+//    maps both read the same); and a tile textured red | blue shows both colours where they are;
 //  - --fig6 (--only-fig6: that alone): the grid's transfer time and bytes per request size, quantized against
 //    floats (the paper's Fig. 6), into DIR/transfer.json.
 // Writes DIR/results.json and the screenshots (PNG).
@@ -177,7 +177,7 @@ try {
 }
 
 // The page's pixel (8-bit sRGB, mean of R, G, B) where a world point projects, and the
-// spread (max - min) of the 7x7 pixels around it.
+// spread (max - min) of the 7x7 pixels around it; `rgb`: its three channels as well.
 async function pixelAt(page, point) {
   const [x, y] = await page.evaluate(([px, py, pz, w, h]) => {
     const camera = window.bakegiView.camera;
@@ -196,7 +196,8 @@ async function pixelAt(page, point) {
       hi = Math.max(hi, value(x + dx, y + dy));
     }
   }
-  return [value(x, y), hi - lo];
+  const i = 4 * (y * width + x);
+  return [value(x, y), hi - lo, [all[i], all[i + 1], all[i + 2]]];
 }
 
 if (args["shadow-folder"] && !args["only-fig6"]) {
@@ -213,6 +214,14 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
     check(spread <= 8, `the sunlit floor is even, no shadow acne: its pixels spread ${spread.toFixed(1)} of 255`);
     check(open > 40 && shadowed < 0.1 * open,
       `the sun's direct light is shadowed: the floor behind the box reads ${shadowed.toFixed(1)}, in the open ${open.toFixed(1)} (of 255)`);
+    if (points.red && points.blue) {
+      // The tile's texture: each half reads its own colour, twice the other's at least.
+      const [, , red] = await pixelAt(page, points.red);
+      const [, , blue] = await pixelAt(page, points.blue);
+      results.texture = { red, blue };
+      check(red[0] > 40 && red[0] > 2 * red[2] && blue[2] > 40 && blue[2] > 2 * blue[0],
+        `the tile's texture reaches the page: its red half reads RGB ${red}, its blue half ${blue}`);
+    }
     await page.close();
   } finally {
     shadowServer.kill();
