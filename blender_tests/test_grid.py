@@ -100,6 +100,51 @@ class GridCase(common.SmallCornellCase):
         facing_red = normals[:, 0] < -0.7
         self.assertGreater(rgb[facing_red, 0].mean(), rgb[facing_red, 1].mean())
 
+    def test_follow_moves_lights_a_moved_prop_again(self):
+        self.bake_grid(grid_object=None)
+        scene = bpy.context.scene
+        self.addCleanup(setattr, scene.bakegi, "grid_follow", False)
+        self.addCleanup(bakegi.grid_follow.forget)
+        options = dict(visibility=False, darken_buried=False, interpolation="TRICUBIC")
+        bakegi.apply_grid(["ShortBox"], **options)
+        before = common.read_color_attribute(["ShortBox"])
+        box = self.objects["ShortBox"]
+
+        # Off: a move queues nothing and update() finds nothing to do... once on, it does.
+        box.location.z += 0.6
+        bpy.context.view_layer.update()
+        state = bakegi.grid_follow._states[scene.name]
+        self.assertEqual(state.pending, set())
+        scene.bakegi.grid_follow = True
+        bpy.context.view_layer.update()
+        box.location.x -= 0.1
+        bpy.context.view_layer.update()  # the depsgraph handler sees the moved matrix
+        self.assertEqual(state.pending, {"ShortBox"})
+        report = bakegi.grid_follow.update()
+        self.assertEqual(report["points"], len(box.data.loops))
+        self.assertEqual(state.pending, set())
+        followed = common.read_color_attribute(["ShortBox"])
+        # 0.6 m higher the box reads other light from the grid.
+        self.assertGreater(numpy.abs(luminance(followed) - luminance(before)).mean(),
+                           0.01 * luminance(before).mean())
+        self.assertIn("1 update(s)", bakegi.grid_follow.status_text(scene))
+
+        # What it wrote is Apply Grid's own result where the box stands now, with the options
+        # of the last Apply Grid (tricubic, no visibility).
+        bakegi.apply_grid(["ShortBox"], **options)
+        numpy.testing.assert_array_equal(common.read_color_attribute(["ShortBox"]), followed)
+        # Its own write moved nothing: nothing left to do.
+        bpy.context.view_layer.update()
+        self.assertIsNone(bakegi.grid_follow.update())
+
+        # A grid that is gone stops following with the reason, and changes nothing.
+        box.location.x += 0.1
+        os.remove(scene[bakegi.write.grid_file.GRID_PATH_PROPERTY])
+        with self.assertRaises(bakegi.BakeGIError):
+            bakegi.grid_follow.update()
+        self.assertIn("Follow stopped", bakegi.grid_follow.status_text(scene))
+        numpy.testing.assert_array_equal(common.read_color_attribute(["ShortBox"]), followed)
+
     def test_a_level_of_detail_is_lit_like_the_full_mesh(self):
         self.bake_grid(grid_object=None)
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=4, radius=0.3, location=(0, 0, 1.2))

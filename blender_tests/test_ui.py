@@ -351,6 +351,45 @@ class UiTest:
             failures.append(f"with the grid the ceiling rose by {increase:.4f}, predicted "
                             f"{predicted:.4f}")
         self.record("test_ui.grid_shows_in_material_preview", started, failures)
+        yield from self.grid_follow(scene)
+
+    def grid_follow(self, scene):
+        """Follow Moves from the window: with the toggle on, a lit box moved as a user would
+        (a property change) is lit from the grid again by the timer once it rests, and the
+        panel says so."""
+        started = time.perf_counter()
+        failures = []
+        follow = sys.modules["bakegi.grid_follow"]
+        scene.bakegi.grid_follow = True
+        state = follow._states.get(scene.name)
+        if state is None:
+            failures.append("Apply Grid left nothing for Follow Moves to follow")
+            self.record("test_ui.grid_follows_a_moved_box", started, failures)
+            return
+        box = next(o for o in bpy.data.objects if o.name in state.matrices and "Box" in o.name)
+        before = common.read_color_attribute([box.name])
+        updates_before = state.updates
+        box.location.z += 0.5
+        moved_at = time.perf_counter()
+        while ((state.updates == updates_before or state.pending) and not state.message
+               and time.perf_counter() - moved_at < 60.0):
+            yield 0.02
+        update_seconds = time.perf_counter() - moved_at
+        after = common.read_color_attribute([box.name])
+        text = follow.status_text(scene)
+        if state.message:
+            failures.append("Follow Moves stopped: " + state.message)
+        elif state.updates == updates_before:
+            failures.append("no re-apply 60 s after the box moved")
+        elif numpy.array_equal(after, before):
+            failures.append("the box's attribute did not change after it moved")
+        if "update(s)" not in text:
+            failures.append(f"the panel's follow line reads {text!r}")
+        print(f"ui: Follow Moves re-applied the grid {update_seconds * 1000:.0f} ms after "
+              f"'{box.name}' moved (at rest for {follow.DEBOUNCE_SECONDS * 1000:.0f} ms); {text}")
+        box.location.z -= 0.5
+        scene.bakegi.grid_follow = False
+        self.record("test_ui.grid_follows_a_moved_box", started, failures)
 
     def live_indirect(self, scene, objects):
         """Live indirect from the window: a meshless bake with the toggle on, then a light

@@ -8,7 +8,8 @@ In Blender (the add-on enabled, e.g. `blender -b file.blend --addons bakegi`):
 
 Public API: bake, apply_grid, export_scene_file, remove_bake, live_update, live_stop,
 BakeGIError; operators bpy.ops.bakegi.bake_indirect, remove_bake, add_grid_box and
-apply_grid; settings scene.bakegi.
+apply_grid; settings scene.bakegi (scene.bakegi.grid_follow: objects lit by apply_grid are
+lit again when they move; bakegi.grid_follow.update() does it at once in scripts).
 
 Without Blender (plain Python) only the bpy-free modules are importable:
 bakegi.light_units and bakegi.native.
@@ -41,7 +42,8 @@ if bpy is not None:
     __all__ += ["apply_grid", "bake", "export_scene_file", "export_web", "live_stop",
                 "live_update", "remove_bake", "simplify_copy", "subdivide_copy"]
 
-_MODULES = ("ui.preferences", "ui.properties", "ui.operators", "ui.panels", "live", "preview")
+_MODULES = ("ui.preferences", "ui.properties", "ui.operators", "ui.panels", "live",
+            "grid_follow", "preview")
 
 
 def register():

@@ -18,7 +18,7 @@ import time
 
 import bpy
 
-from . import live, session
+from . import grid_follow, live, session
 from .export import scene as export_scene_module, targets as export_targets
 from .ui import operators, properties
 from .write import attributes, grid_file
@@ -154,6 +154,10 @@ def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
     points, buried_points, unsure_points, seconds (read, evaluate, write, total), the
     grid's info, warnings. Raises BakeGIError with nothing changed when the grid cannot be read."""
     context = _context(context)
+    # What Follow Moves re-applies with (grid_follow.py): None stays None, the newest grid.
+    follow_options = dict(path=path, interpolation=interpolation, target=target,
+                          hook_materials=hook_materials, visibility=visibility,
+                          darken_buried=darken_buried, directional=directional)
     if path is None:
         path = context.scene.get(grid_file.GRID_PATH_PROPERTY)
         if not path:
@@ -181,6 +185,7 @@ def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
         if exported is not None:
             exported.close()
     report["warnings"] = report["warnings"] + list(skipped)
+    grid_follow.remember(context.scene, targets, follow_options)
     return report
 
 

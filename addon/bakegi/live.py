@@ -25,6 +25,7 @@ import time
 
 import bpy
 
+from . import timer_writes
 from .export import scene as export_scene, targets as export_targets
 from .write import attributes
 from .native import BakeGIError
@@ -110,7 +111,7 @@ def adopt(scene_name, job, core_scene, targets, hooked_materials):
                           "live indirect needs a finished bake that can be relit (meshless)")
     global _state
     _state = LiveState(scene_name, job, core_scene, targets, hooked_materials)
-    _redraw()
+    timer_writes.redraw()
 
 
 def stop():
@@ -121,7 +122,7 @@ def stop():
             _state.running.cancel()
         _state.close()
         _state = None
-        _redraw()
+        timer_writes.redraw()
 
 
 def is_active_for(scene_name):
@@ -189,7 +190,7 @@ def on_depsgraph_update(scene, depsgraph):
     if verdict != "relight":
         live.paused = verdict
         live.pending = False
-        _redraw()
+        timer_writes.redraw()
         return
     live.pending = True
     _schedule(DEBOUNCE_SECONDS)
@@ -240,7 +241,7 @@ def _pause_on_error(error):
     if live is not None:
         live.paused = f"{error.message}"
         live.pending = False
-    _redraw()
+    timer_writes.redraw()
 
 
 def update(context=None):
@@ -292,8 +293,8 @@ def _tick():
             if not live.running.is_done:
                 return POLL_SECONDS
             _finish_relight(bpy.data)
-            _push_undo_step()
-            _redraw()
+            timer_writes.push_undo_step("BakeGI Live Indirect")
+            timer_writes.redraw()
         if live.pending:
             _start_relight(bpy.context)
             return POLL_SECONDS
@@ -303,35 +304,6 @@ def _tick():
         _pause_on_error(BakeGIError("BAKEGI_ERROR_INTERNAL", f"live indirect stopped: {error}"))
     _timer_registered = False
     return None
-
-
-def _push_undo_step():
-    """Makes the relight's write an undo step of its own ("BakeGI Live Indirect"), so that
-    Ctrl+Z steps back over it like over the light move that caused it, and the write is not
-    folded into whatever the user does next."""
-    wm = getattr(bpy.context, "window_manager", None)
-    if wm is None or not wm.windows:
-        return
-    window = wm.windows[0]
-    override = {"window": window, "screen": window.screen}
-    try:
-        if hasattr(bpy.context, "temp_override"):
-            with bpy.context.temp_override(**override):
-                bpy.ops.ed.undo_push(message="BakeGI Live Indirect")
-        else:
-            bpy.ops.ed.undo_push(override, message="BakeGI Live Indirect")
-    except RuntimeError:  # no undo here (background, or an operator running): no step
-        pass
-
-
-def _redraw():
-    wm = getattr(bpy.context, "window_manager", None)
-    if wm is None:
-        return
-    for window in wm.windows:
-        for area in window.screen.areas:
-            if area.type in {"PROPERTIES", "VIEW_3D"}:
-                area.tag_redraw()
 
 
 def register():

@@ -6,7 +6,7 @@ import textwrap
 
 import bpy
 
-from .. import cache_folder, error_check, live, native
+from .. import cache_folder, error_check, grid_follow, live, native
 from ..export import targets as export_targets
 from . import operators, report_text
 
@@ -76,6 +76,10 @@ class RENDER_PT_bakegi(bpy.types.Panel):
             sub.prop(settings, "grid_directional")
             sub.prop(settings, "grid_visibility")
             sub.prop(settings, "grid_darken_buried")
+            sub.prop(settings, "grid_follow")
+            follow = grid_follow.status_text(context.scene)
+            if follow:
+                sub.label(text=follow, icon="ERROR" if "stopped" in follow else "INFO")
         col.prop(settings, "objects")
         if settings.target not in ("LIGHTMAP", "GRID"):
             col.prop(settings, "linked_duplicates")

@@ -227,6 +227,11 @@ class BakeGISettings(bpy.types.PropertyGroup):
         description="Apply Grid: points inside or under other geometry (a floor under a box) "
         "get no light, as in a bake; the grid alone cannot know them. Costs an export of the "
         "scene and a few rays a point")
+    grid_follow: BoolProperty(
+        name="Follow Moves", default=False,
+        description="Apply Grid: the objects it lit are lit from the grid again when they "
+        "move (after 50 ms at rest), with the options of the last Apply Grid. Shape edits "
+        "are not followed")
     objects: EnumProperty(name="Objects", items=OBJECTS_ITEMS, default="SELECTED",
                           description="Which objects receive the bake (every visible object "
                           "always takes part in the light transport)")

@@ -1,0 +1,208 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Follow Moves: objects lit from a grid by Apply Grid are lit from it again when they move.
+
+    bakegi.apply_grid(["Chair"])        # remembered, with its options, for the scene
+    scene.bakegi.grid_follow = True     # the panel's Follow Moves (off by default)
+    ... move the chair ...              # the UI: re-applied after 50 ms without a move
+    bakegi.grid_follow.update()         # scripts and background mode: at once
+
+A depsgraph update handler compares each remembered object's world matrix with the one it was
+lit at, so a move by hand, by a parent, a constraint or an animation is caught alike, and the
+add-on's own writes (which change the mesh, not the matrix) are not. Shape edits are not
+followed: Apply Grid again after editing a mesh. A timer re-applies the grid to the moved
+objects with the options of the last Apply Grid; its writes are undo steps of their own.
+
+The state lives in this module (not in the .blend); loading a file forgets it.
+"""
+
+import bpy
+
+from . import timer_writes
+from .native import BakeGIError
+
+DEBOUNCE_SECONDS = 0.05
+
+
+class FollowState:
+    """What the last Apply Grid of a scene lit, and how."""
+
+    def __init__(self, options):
+        self.options = options  # apply_grid's keyword arguments (path, interpolation, ...)
+        self.matrices = {}  # object name -> its world matrix when it was lit
+        self.pending = set()  # names that moved since
+        self.message = ""  # why following stopped ("" = it follows)
+        self.updates = 0
+        self.last_ms = 0.0
+
+
+_states = {}  # scene name -> FollowState
+_timer_registered = False
+
+
+def _matrix(obj):
+    return tuple(round(x, 6) for row in obj.matrix_world for x in row)
+
+
+def remember(scene, objects, options):
+    """Called by apply_grid after it wrote: these objects are now lit from the grid where they
+    stand, with these options (they replace the scene's earlier ones)."""
+    state = _states.get(scene.name)
+    if state is None or state.options != options:
+        previous = state.matrices if state is not None else {}
+        state = _states[scene.name] = FollowState(options)
+        state.matrices.update(previous)
+    for obj in objects:
+        state.matrices[obj.name] = _matrix(obj)
+        state.pending.discard(obj.name)
+    state.message = ""
+
+
+def forget(scene_name=None):
+    """Forgets what a scene's objects were lit at (all scenes: None)."""
+    if scene_name is None:
+        _states.clear()
+    else:
+        _states.pop(scene_name, None)
+
+
+def status_text(scene):
+    """One line for the panel ("" when there is nothing to say)."""
+    state = _states.get(scene.name)
+    if state is None or not scene.bakegi.grid_follow:
+        return ""
+    if state.message:
+        return "Follow stopped: " + state.message
+    if state.pending:
+        return "Follow: updating…"
+    if state.updates:
+        return (f"Follow: {len(state.matrices)} object(s), last re-applied in "
+                f"{state.last_ms:.0f} ms, {state.updates} update(s)")
+    return f"Follow: {len(state.matrices)} object(s), waiting for a move"
+
+
+def moved_objects(scene):
+    """Names of the remembered objects whose world matrix changed (objects deleted since are
+    forgotten)."""
+    state = _states.get(scene.name)
+    if state is None:
+        return set()
+    moved = set()
+    for name in list(state.matrices):
+        obj = scene.objects.get(name)
+        if obj is None or obj.type != "MESH":
+            del state.matrices[name]
+            state.pending.discard(name)
+        elif _matrix(obj) != state.matrices[name]:
+            moved.add(name)
+    return moved
+
+
+@bpy.app.handlers.persistent
+def on_depsgraph_update(scene, _depsgraph):
+    settings = getattr(scene, "bakegi", None)
+    if settings is None or not settings.grid_follow:
+        return
+    state = _states.get(scene.name)
+    if state is None or state.message:
+        return
+    moved = moved_objects(scene) - state.pending
+    if moved:
+        state.pending |= moved
+        _schedule()
+
+
+@bpy.app.handlers.persistent
+def on_load_pre(*_args):
+    forget()
+
+
+def update(context=None):
+    """Re-applies the grid to the remembered objects that moved, now (scripts, background
+    mode, and the timer). Returns apply_grid's report, or None when nothing moved. Raises
+    BakeGIError (and stops following, with the reason in the panel) when the grid cannot be
+    applied."""
+    from . import api
+
+    context = context if context is not None else bpy.context
+    scene = context.scene
+    state = _states.get(scene.name)
+    if state is None:
+        return None
+    # Evaluating the depsgraph runs the handler on moves made since the last update.
+    context.evaluated_depsgraph_get()
+    state.pending |= moved_objects(scene)
+    names = sorted(state.pending)
+    if not names:
+        return None
+    try:
+        report = api.apply_grid(names, context=context, **state.options)
+    except BakeGIError as error:
+        state.message = error.message
+        state.pending.clear()
+        raise
+    state.updates += 1
+    state.last_ms = report["seconds"]["total"] * 1000.0
+    return report
+
+
+def _schedule():
+    global _timer_registered
+    if bpy.app.background or _timer_registered:
+        return
+    _timer_registered = True
+    bpy.app.timers.register(_tick, first_interval=DEBOUNCE_SECONDS)
+
+
+def _tick():
+    """The timer: waits until the objects stop moving for DEBOUNCE_SECONDS, then re-applies."""
+    global _timer_registered
+    context = bpy.context
+    scene = getattr(context, "scene", None)
+    state = _states.get(scene.name) if scene is not None else None
+    if state is None or state.message or not state.pending:
+        _timer_registered = False
+        return None
+    state.pending |= moved_objects(scene)
+    if _still_moving(scene, state):
+        return DEBOUNCE_SECONDS
+    try:
+        update(context)
+        timer_writes.push_undo_step("BakeGI Follow Moves")
+    except BakeGIError:
+        pass  # update() stopped following and kept the reason for the panel
+    except Exception as error:  # a timer must never raise into Blender's loop
+        state.message = f"stopped: {error}"
+        state.pending.clear()
+    _timer_registered = False
+    timer_writes.redraw()
+    return None
+
+
+_last_seen = {}
+
+
+def _still_moving(scene, state):
+    """Whether a pending object's matrix changed since the previous tick (a drag in
+    progress): the grid is applied once the object rests."""
+    seen = {name: _matrix(scene.objects[name]) for name in state.pending
+            if name in scene.objects}
+    moving = seen != _last_seen.get(scene.name)
+    _last_seen[scene.name] = seen
+    return moving
+
+
+def register():
+    if on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.append(on_depsgraph_update)
+    if on_load_pre not in bpy.app.handlers.load_pre:
+        bpy.app.handlers.load_pre.append(on_load_pre)
+
+
+def unregister():
+    forget()
+    if on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.remove(on_depsgraph_update)
+    if on_load_pre in bpy.app.handlers.load_pre:
+        bpy.app.handlers.load_pre.remove(on_load_pre)
+    if bpy.app.timers.is_registered(_tick):
+        bpy.app.timers.unregister(_tick)
