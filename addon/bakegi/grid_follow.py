@@ -17,7 +17,7 @@ The state lives in this module (not in the .blend); loading a file forgets it.
 
 import bpy
 
-from . import timer_writes
+from . import scene_following
 from .native import BakeGIError
 
 DEBOUNCE_SECONDS = 0.05
@@ -36,7 +36,7 @@ class FollowState:
 
 
 _states = {}  # scene name -> FollowState
-_timer_registered = False
+_last_seen = {}  # scene name -> the pending objects' matrices at the timer's previous tick
 
 
 def _matrix(obj):
@@ -146,39 +146,30 @@ def update(context=None):
 
 
 def _schedule():
-    global _timer_registered
-    if bpy.app.background or _timer_registered:
-        return
-    _timer_registered = True
-    bpy.app.timers.register(_tick, first_interval=DEBOUNCE_SECONDS)
+    if not bpy.app.background and not bpy.app.timers.is_registered(_tick):
+        bpy.app.timers.register(_tick, first_interval=DEBOUNCE_SECONDS)
 
 
 def _tick():
     """The timer: waits until the objects stop moving for DEBOUNCE_SECONDS, then re-applies."""
-    global _timer_registered
     context = bpy.context
     scene = getattr(context, "scene", None)
     state = _states.get(scene.name) if scene is not None else None
     if state is None or state.message or not state.pending:
-        _timer_registered = False
         return None
     state.pending |= moved_objects(scene)
     if _still_moving(scene, state):
         return DEBOUNCE_SECONDS
     try:
         update(context)
-        timer_writes.push_undo_step("BakeGI Follow Moves")
+        scene_following.push_undo_step("BakeGI Follow Moves")
     except BakeGIError:
         pass  # update() stopped following and kept the reason for the panel
     except Exception as error:  # a timer must never raise into Blender's loop
         state.message = f"stopped: {error}"
         state.pending.clear()
-    _timer_registered = False
-    timer_writes.redraw()
+    scene_following.redraw()
     return None
-
-
-_last_seen = {}
 
 
 def _still_moving(scene, state):
@@ -192,17 +183,9 @@ def _still_moving(scene, state):
 
 
 def register():
-    if on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.append(on_depsgraph_update)
-    if on_load_pre not in bpy.app.handlers.load_pre:
-        bpy.app.handlers.load_pre.append(on_load_pre)
+    scene_following.add_handlers(on_depsgraph_update, on_load_pre)
 
 
 def unregister():
     forget()
-    if on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(on_depsgraph_update)
-    if on_load_pre in bpy.app.handlers.load_pre:
-        bpy.app.handlers.load_pre.remove(on_load_pre)
-    if bpy.app.timers.is_registered(_tick):
-        bpy.app.timers.unregister(_tick)
+    scene_following.remove_handlers(on_depsgraph_update, on_load_pre, _tick)

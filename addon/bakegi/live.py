@@ -25,7 +25,7 @@ import time
 
 import bpy
 
-from . import timer_writes
+from . import scene_following
 from .export import scene as export_scene, targets as export_targets
 from .write import attributes
 from .native import BakeGIError
@@ -111,7 +111,7 @@ def adopt(scene_name, job, core_scene, targets, hooked_materials):
                           "live indirect needs a finished bake that can be relit (meshless)")
     global _state
     _state = LiveState(scene_name, job, core_scene, targets, hooked_materials)
-    timer_writes.redraw()
+    scene_following.redraw()
 
 
 def stop():
@@ -122,7 +122,7 @@ def stop():
             _state.running.cancel()
         _state.close()
         _state = None
-        timer_writes.redraw()
+        scene_following.redraw()
 
 
 def is_active_for(scene_name):
@@ -190,7 +190,7 @@ def on_depsgraph_update(scene, depsgraph):
     if verdict != "relight":
         live.paused = verdict
         live.pending = False
-        timer_writes.redraw()
+        scene_following.redraw()
         return
     live.pending = True
     _schedule(DEBOUNCE_SECONDS)
@@ -241,7 +241,7 @@ def _pause_on_error(error):
     if live is not None:
         live.paused = f"{error.message}"
         live.pending = False
-    timer_writes.redraw()
+    scene_following.redraw()
 
 
 def update(context=None):
@@ -293,8 +293,8 @@ def _tick():
             if not live.running.is_done:
                 return POLL_SECONDS
             _finish_relight(bpy.data)
-            timer_writes.push_undo_step("BakeGI Live Indirect")
-            timer_writes.redraw()
+            scene_following.push_undo_step("BakeGI Live Indirect")
+            scene_following.redraw()
         if live.pending:
             _start_relight(bpy.context)
             return POLL_SECONDS
@@ -307,17 +307,9 @@ def _tick():
 
 
 def register():
-    if on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.append(on_depsgraph_update)
-    if on_load_pre not in bpy.app.handlers.load_pre:
-        bpy.app.handlers.load_pre.append(on_load_pre)
+    scene_following.add_handlers(on_depsgraph_update, on_load_pre)
 
 
 def unregister():
     stop()
-    if on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(on_depsgraph_update)
-    if on_load_pre in bpy.app.handlers.load_pre:
-        bpy.app.handlers.load_pre.remove(on_load_pre)
-    if bpy.app.timers.is_registered(_tick):
-        bpy.app.timers.unregister(_tick)
+    scene_following.remove_handlers(on_depsgraph_update, on_load_pre, _tick)
