@@ -189,6 +189,15 @@ class GridCase(common.SmallCornellCase):
         folder = os.path.join(self.folder, "web")
         report = bakegi.export_web(folder)
         self.assertEqual(report["folder"], folder)
+        # Lit by its lamp alone: nothing the page leaves out. With a sky, it says so.
+        self.assertEqual(report["warnings"], [])
+        scene = bpy.context.scene
+        self.addCleanup(setattr, scene, "world", scene.world)
+        scene.world = bpy.data.worlds.new("Sky")  # a plain colour (or nodes' default grey)
+        scene.world.color = (0.1, 0.1, 0.1)
+        sky = bakegi.export_web(os.path.join(self.folder, "web_sky"))
+        self.assertEqual(len(sky["warnings"]), 1)
+        self.assertIn("the world (sky) lights this scene", sky["warnings"][0])
         for name in ("scene.gltf", "scene.bin", "grid.bgivg", "index.html", "viewer.js"):
             self.assertIn(name, report["files"])
             self.assertGreater(report["bytes"][name], 0)

@@ -69,6 +69,9 @@ import bpy, bakegi, json
 for thing in list(bpy.data.objects):
     bpy.data.objects.remove(thing)
 scene = bpy.context.scene
+# A dim sky: the page must say that it draws the world's light only through the grid.
+scene.world = bpy.data.worlds.new("Sky")  # a plain colour (or nodes' default grey)
+scene.world.color = (0.02, 0.02, 0.02)
 bpy.ops.mesh.primitive_plane_add(size=6.0)
 bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.0, 0.0, 0.4))
 # A textured tile in the sun: a 2 x 1 image, red on its left half, blue on its right (u from 0

@@ -418,6 +418,8 @@ class BAKEGI_OT_export_web(bpy.types.Operator):
         except BakeGIError as error:
             self.report({"ERROR"}, error.message)
             return {"CANCELLED"}
+        for warning in report["warnings"]:
+            self.report({"WARNING"}, "BakeGI: " + warning)
         total = sum(report["bytes"].values())
         self.report({"INFO"}, f"BakeGI: wrote {report['folder']} ({total / 1e6:.1f} MB); "
                     f"stream it with: {report['serve']}")

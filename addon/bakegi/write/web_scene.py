@@ -4,6 +4,7 @@ progressive meshes, its baked grid and the page (index.html + viewer.js, built f
 addon/web) in one folder, which `bakegi serve FOLDER` streams to a browser, or which the
 page opens from disk. The camera is the scene's, so the page starts on the render's view."""
 
+import json
 import math
 import os
 import shutil
@@ -49,7 +50,8 @@ def page_available():
 
 
 def export_web(context, folder, grid_path):
-    """Writes the folder; returns a report (folder, files, bytes, seconds, camera). Raises
+    """Writes the folder; returns a report (folder, files, bytes, seconds, camera, warnings:
+    the scene's light the page does not draw directly, lighting_notes). Raises
     BakeGIError naming what is missing; the Blender data is not changed."""
     if not page_available():
         raise native.BakeGIError(
@@ -68,7 +70,25 @@ def export_web(context, folder, grid_path):
     for name in PAGE_FILES:
         shutil.copyfile(os.path.join(WEB_PAGE, name), os.path.join(folder, name))
     files = sorted(os.listdir(folder))
+    with open(os.path.join(folder, "scene.gltf"), encoding="utf-8") as f:
+        warnings = lighting_notes(json.load(f))
     return {"folder": folder, "files": files,
             "bytes": {name: os.path.getsize(os.path.join(folder, name)) for name in files},
             "camera": camera is not None, "seconds": time.perf_counter() - start,
-            "serve": f"bakegi serve {folder}"}
+            "serve": f"bakegi serve {folder}", "warnings": warnings}
+
+
+def lighting_notes(gltf):
+    """What the page's direct light leaves out for this scene (the page says the same,
+    addon/web/src/gltf_scene.js): it draws the lamps directly; the world's light and emissive
+    surfaces' reach it only through the grid, once bounced."""
+    notes = []
+    world = gltf.get("extras", {}).get("bakegi", {}).get("world_radiance", [0, 0, 0])
+    if max(world) > 0:
+        notes.append("the world (sky) lights this scene: the web page shows its light once "
+                     "bounced (the grid), not its direct light")
+    if any(max(m.get("extras", {}).get("emission_radiance", [0, 0, 0])) > 0
+           for m in gltf.get("materials", [])):
+        notes.append("emissive surfaces glow on the web page but their direct light on others "
+                     "is not drawn there, only its bounce (the grid)")
+    return notes

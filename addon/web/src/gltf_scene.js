@@ -92,6 +92,22 @@ function castShadows(light, holder, bounds) {
   camera.updateProjectionMatrix();
 }
 
+// What the page's direct light leaves out for this scene, said rather than drawn wrong: it
+// draws the glTF's lamps (point, spot, sun, area) directly; light from the world (the sky
+// through a window) and from emissive surfaces reaches the page only through the grid, as
+// indirect light, so its direct part is missing there.
+export function lightingNotes(gltf) {
+  const notes = [];
+  const world = gltf.extras?.bakegi?.world_radiance ?? [0, 0, 0];
+  if (Math.max(...world) > 0) {
+    notes.push("the world (sky) lights this scene: the page shows its light once bounced (the grid), not its direct light");
+  }
+  if ((gltf.materials ?? []).some((m) => Math.max(...(m.extras?.emission_radiance ?? [0, 0, 0])) > 0)) {
+    notes.push("emissive surfaces glow but their direct light on others is not drawn here, only its bounce (the grid)");
+  }
+  return notes;
+}
+
 export function makeLights(gltf) {
   const lights = [];
   const bounds = sceneBounds(gltf);

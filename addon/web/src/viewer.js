@@ -10,7 +10,7 @@
 // tests and people where it stands.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
+import { lightingNotes, makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
 import { addGridLighting, GridTextures } from "./grid_textures.js";
 import { IrradianceGrid } from "./irradiance_grid.js";
 import { GEOMETRY_PACKET, GRID_PACKET, readPacket } from "./packets.js";
@@ -21,7 +21,7 @@ const query = new URLSearchParams(location.search);
 const state = (window.bakegiState = {
   phase: "starting", packets: 0, packetCount: 0, bytes: 0, totalBytes: 0, gridFraction: 0,
   geometryFraction: 0, firstImageMs: null, doneMs: null, error: null, frames: 0,
-  pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, renderMs: 0, timeline: { script: performance.now() },
+  notes: [], pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, renderMs: 0, timeline: { script: performance.now() },
 });
 
 // The stream's first requests were started by index.html before this script arrived
@@ -103,7 +103,8 @@ function showProgress() {
     `${state.phase}: ${mb(state.bytes)} of ${mb(state.totalBytes)} MB, grid ` +
     `${(100 * state.gridFraction).toFixed(0)}%, geometry ${(100 * state.geometryFraction).toFixed(0)}%` +
     (state.firstImageMs !== null ? `; first image ${state.firstImageMs.toFixed(0)} ms` : "") +
-    (state.doneMs !== null ? `, all ${state.doneMs.toFixed(0)} ms` : "");
+    (state.doneMs !== null ? `, all ${state.doneMs.toFixed(0)} ms` : "") +
+    state.notes.map((note) => `. Note: ${note}`).join("");
 }
 
 function shadowed(mesh) {
@@ -113,6 +114,7 @@ function shadowed(mesh) {
 
 // The scene's fixed parts from the glTF: materials, lights, camera, one mesh per primitive.
 function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
+  state.notes = lightingNotes(gltf);
   view.grid = grid;
   view.textures = grid ? new GridTextures(grid) : null;
   setTextureListener(requestRender);

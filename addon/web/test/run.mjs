@@ -116,6 +116,7 @@ try {
   page.on("pageerror", (error) => failures.push(`page error: ${error.message}`));
   const finalState = await load(page, url, "until=1");
   check(finalState.phase === "done" && !finalState.error, `the page streams the whole scene (${finalState.packets} packets, ${finalState.bytes} bytes)`);
+  check(finalState.notes.length === 0, `a scene lit by a lamp alone has no note on missing light: ${JSON.stringify(finalState.notes)}`);
   check(finalState.firstImageMs !== null && finalState.firstImageMs <= FIRST_IMAGE_LIMIT_MS,
     `first lit image ${finalState.firstImageMs?.toFixed(0)} ms after the page opened (target 300 ms)`);
   results.first_image_ms = finalState.firstImageMs;
@@ -206,7 +207,9 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
   try {
     const page = await browser.newPage({ viewport: { width: width + 20, height: height + 20 } });
     page.on("pageerror", (error) => failures.push(`page error (shadow scene): ${error.message}`));
-    await load(page, shadowUrl, "until=1&mode=direct");
+    const shadowState = await load(page, shadowUrl, "until=1&mode=direct");
+    check(shadowState.notes.length === 1 && shadowState.notes[0].includes("world"),
+      `the page says that it does not draw the sky's direct light: ${JSON.stringify(shadowState.notes)}`);
     await page.locator("#view").screenshot({ path: join(out, "shadow_direct.png") });
     const [shadowed] = await pixelAt(page, points.shadowed);
     const [open, spread] = await pixelAt(page, points.open);
