@@ -74,6 +74,14 @@ scene.world = bpy.data.worlds.new("Sky")  # a plain colour (or nodes' default gr
 scene.world.color = (0.02, 0.02, 0.02)
 bpy.ops.mesh.primitive_plane_add(size=6.0)
 bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.0, 0.0, 0.4))
+# A second box beside a small area light that shines down at it from the side (+x): the
+# floor behind the box (-x) is in its shadow, the floor on the light's side is not.
+bpy.ops.mesh.primitive_cube_add(size=0.4, location=(1.5, -1.5, 0.2))
+area = bpy.data.objects.new("Area", bpy.data.lights.new("Area", "AREA"))
+area.data.energy = 4.0
+area.data.size = 0.2
+area.location = (2.0, -1.5, 0.5)
+scene.collection.objects.link(area)
 # A textured tile in the sun: a 2 x 1 image, red on its left half, blue on its right (u from 0
 # to 1 along +x), so that the page must carry the texture through glTF to show both.
 bpy.ops.mesh.primitive_plane_add(size=0.8, location=(-1.5, 1.5, 0.01))
@@ -109,8 +117,12 @@ print("web", bakegi.export_web({site!r}), flush=True)
 # would light the first or shade the second).
 # The tile's red and blue halves at the middle of each texel. The points are in the page's
 # frame, glTF's: Blender's (x, y, z) is (x, z, -y) there.
+# The area light's shadowed and lit floor points, both in the sun (Blender (1.15, -1.5, 0) and
+# (2.5, -1.5, 0)); low and weak, it adds under a tenth of the sun's light at the first box's
+# shadow.
 json.dump({{"shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0],
-           "red": [-1.7, 0.01, -1.5], "blue": [-1.3, 0.01, -1.5]}}, open({points!r}, "w"))
+           "red": [-1.7, 0.01, -1.5], "blue": [-1.3, 0.01, -1.5],
+           "area_shadowed": [1.15, 0.0, 1.5], "area_lit": [2.5, 0.0, 1.5]}}, open({points!r}, "w"))
 """
 
 

@@ -143,6 +143,7 @@ export function makeLights(gltf) {
   }
   const areas = gltf.extras?.bakegi?.area_lights ?? [];
   if (areas.length) RectAreaLightUniformsLib.init();
+  const proxies = [];
   for (const a of areas) {
     const peak = Math.max(...a.radiance);
     if (!(peak > 0)) continue;
@@ -155,8 +156,45 @@ export function makeLights(gltf) {
     const y = new THREE.Vector3().crossVectors(z, x);
     light.quaternion.setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, z));
     lights.push(light);
+    // Its shadows: a point light of no intensity at its centre (a hair in front, off the
+    // ceiling it hangs from) casts the shadow map the area light's shading reads
+    // (areaLightShadows): hard shadows from the centre, where Blender's are soft.
+    const proxy = new THREE.PointLight(0xffffff, 0);
+    proxy.position.fromArray(a.position).addScaledVector(z, -1e-3 * Math.max(a.size_x, a.size_y, 1e-3));
+    castShadows(proxy, proxy, bounds);
+    proxies.push(proxy);
   }
-  return lights;
+  // First in the scene: three.js numbers shadowed point lights in scene order, and the area
+  // lights' shading reads point shadow i for area light i.
+  return [...proxies, ...lights];
+}
+
+// Area lights' direct light through their shadow proxies' maps (makeLights): three.js'
+// lights_fragment_begin with each RectAreaLight's term scaled by point shadow i.
+const AREA_LIGHT_TERM =
+  "RE_Direct_RectArea( rectAreaLight, geometryPosition, geometryNormal, geometryViewDir, geometryClearcoatNormal, material, reflectedLight );";
+const SHADOWED_AREA_LIGHT_TERM = `{
+    ReflectedLight bakegiArea = ReflectedLight( vec3( 0.0 ), vec3( 0.0 ), vec3( 0.0 ), vec3( 0.0 ) );
+    RE_Direct_RectArea( rectAreaLight, geometryPosition, geometryNormal, geometryViewDir, geometryClearcoatNormal, material, bakegiArea );
+    float bakegiShadow = 1.0;
+    #if defined( USE_SHADOWMAP ) && ( UNROLLED_LOOP_INDEX < NUM_POINT_LIGHT_SHADOWS )
+    bakegiShadow = receiveShadow ? getPointShadow( pointShadowMap[ i ], pointLightShadows[ i ].shadowMapSize, pointLightShadows[ i ].shadowIntensity, pointLightShadows[ i ].shadowBias, pointLightShadows[ i ].shadowRadius, vPointShadowCoord[ i ], pointLightShadows[ i ].shadowCameraNear, pointLightShadows[ i ].shadowCameraFar ) : 1.0;
+    #endif
+    reflectedLight.directDiffuse += bakegiShadow * bakegiArea.directDiffuse;
+    reflectedLight.directSpecular += bakegiShadow * bakegiArea.directSpecular;
+  }`;
+
+export function areaLightShadows(material) {
+  const chunk = THREE.ShaderChunk.lights_fragment_begin;
+  if (!chunk.includes(AREA_LIGHT_TERM)) return; // another three.js: unshadowed, as before
+  const shadowed = chunk.replace(AREA_LIGHT_TERM, SHADOWED_AREA_LIGHT_TERM);
+  const previous = material.onBeforeCompile;
+  const previousKey = material.customProgramCacheKey;
+  material.onBeforeCompile = (shader, renderer) => {
+    previous.call(material, shader, renderer);
+    shader.fragmentShader = shader.fragmentShader.replace("#include <lights_fragment_begin>", shadowed);
+  };
+  material.customProgramCacheKey = () => previousKey.call(material) + "+bakegi-area-shadows";
 }
 
 // Called when a texture has arrived (the page redraws).

@@ -10,7 +10,7 @@
 // tests and people where it stands.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { lightingNotes, makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
+import { areaLightShadows, lightingNotes, makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
 import { addGridLighting, GridTextures } from "./grid_textures.js";
 import { IrradianceGrid } from "./irradiance_grid.js";
 import { GEOMETRY_PACKET, GRID_PACKET, readPacket } from "./packets.js";
@@ -121,6 +121,7 @@ function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   const materials = (gltf.materials ?? []).map((m) => {
     const material = makeMaterial(m, gltf, imageUrl);
     if (view.textures) addGridLighting(material, view.textures.uniforms);
+    areaLightShadows(material);
     return material;
   });
   const keep = (material) => {

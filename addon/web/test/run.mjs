@@ -217,6 +217,15 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
     check(spread <= 8, `the sunlit floor is even, no shadow acne: its pixels spread ${spread.toFixed(1)} of 255`);
     check(open > 40 && shadowed < 0.1 * open,
       `the sun's direct light is shadowed: the floor behind the box reads ${shadowed.toFixed(1)}, in the open ${open.toFixed(1)} (of 255)`);
+    if (points.area_shadowed && points.area_lit) {
+      // Behind the second box the area light is shadowed: that floor reads what the sun alone
+      // gives (the open floor point above), the floor on the light's side more.
+      const [behind] = await pixelAt(page, points.area_shadowed);
+      const [beside] = await pixelAt(page, points.area_lit);
+      results.area_shadow = { behind, beside, sun_alone: open };
+      check(Math.abs(behind - open) <= 6 && beside > open + 15,
+        `the area light's direct light is shadowed: behind the box ${behind.toFixed(1)}, the sun alone ${open.toFixed(1)}, beside the box ${beside.toFixed(1)} (of 255)`);
+    }
     if (points.red && points.blue) {
       // The tile's texture: each half reads its own colour, twice the other's at least.
       const [, , red] = await pixelAt(page, points.red);
