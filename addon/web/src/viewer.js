@@ -118,12 +118,15 @@ function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   view.grid = grid;
   view.textures = grid ? new GridTextures(grid) : null;
   setTextureListener(requestRender);
-  const materials = (gltf.materials ?? []).map((m) => {
-    const material = makeMaterial(m, gltf, imageUrl);
+  // Every material, the default one of a primitive without any too, takes the grid's light
+  // and the area lights' shadows.
+  const lit = (description) => {
+    const material = makeMaterial(description, gltf, imageUrl);
     if (view.textures) addGridLighting(material, view.textures.uniforms);
     areaLightShadows(material);
     return material;
-  });
+  };
+  const materials = (gltf.materials ?? []).map(lit);
   const keep = (material) => {
     material.userData.emission = material.emissiveIntensity;
     view.materials.push(material);
@@ -132,7 +135,7 @@ function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   primitivesOf(gltf).forEach((p, i) => {
     const info = primitiveInfo[i];
     const geometry = new ProgressiveGeometry(info.vertex_count, info.face_count, info.has_normals, info.has_uvs);
-    const material = materials[p.description.material] ?? makeMaterial({});
+    const material = materials[p.description.material] ?? lit({});
     if (!info.has_normals) {
       // No NORMAL: flat shading, as glTF asks (a material per primitive so that smooth
       // primitives of the same material are not made flat).
