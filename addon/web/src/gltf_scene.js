@@ -159,6 +159,7 @@ export function makeLights(gltf) {
     // Its shadows: a point light of no intensity at its centre (a hair in front, off the
     // ceiling it hangs from) casts the shadow map the area light's shading reads
     // (areaLightShadows): hard shadows from the centre, where Blender's are soft.
+    if (!bounds || proxies.length >= shadowedAreaLightCount(gltf)) continue;
     const proxy = new THREE.PointLight(0xffffff, 0);
     proxy.position.fromArray(a.position).addScaledVector(z, -1e-3 * Math.max(a.size_x, a.size_y, 1e-3));
     castShadows(proxy, proxy, bounds);
@@ -169,32 +170,44 @@ export function makeLights(gltf) {
   return [...proxies, ...lights];
 }
 
+// How many of the scene's area lights cast shadows: the first few, since each costs a cube
+// shadow map (six passes a frame) and a texture unit in every material's shader (WebGL2
+// guarantees 16); the rest light the page unshadowed.
+const MAX_SHADOWED_AREA_LIGHTS = 4;
+export function shadowedAreaLightCount(gltf) {
+  const areas = gltf.extras?.bakegi?.area_lights ?? [];
+  const lit = areas.filter((a) => Math.max(...a.radiance) > 0).length;
+  return Math.min(lit, MAX_SHADOWED_AREA_LIGHTS);
+}
+
 // Area lights' direct light through their shadow proxies' maps (makeLights): three.js'
-// lights_fragment_begin with each RectAreaLight's term scaled by point shadow i.
+// lights_fragment_begin with the term of RectAreaLight i < count scaled by point shadow i
+// (the proxies come first among the shadowed point lights).
 const AREA_LIGHT_TERM =
   "RE_Direct_RectArea( rectAreaLight, geometryPosition, geometryNormal, geometryViewDir, geometryClearcoatNormal, material, reflectedLight );";
 const SHADOWED_AREA_LIGHT_TERM = `{
     ReflectedLight bakegiArea = ReflectedLight( vec3( 0.0 ), vec3( 0.0 ), vec3( 0.0 ), vec3( 0.0 ) );
     RE_Direct_RectArea( rectAreaLight, geometryPosition, geometryNormal, geometryViewDir, geometryClearcoatNormal, material, bakegiArea );
     float bakegiShadow = 1.0;
-    #if defined( USE_SHADOWMAP ) && ( UNROLLED_LOOP_INDEX < NUM_POINT_LIGHT_SHADOWS )
+    #if defined( USE_SHADOWMAP ) && ( UNROLLED_LOOP_INDEX < BAKEGI_SHADOWED_AREA_LIGHTS ) && ( UNROLLED_LOOP_INDEX < NUM_POINT_LIGHT_SHADOWS )
     bakegiShadow = receiveShadow ? getPointShadow( pointShadowMap[ i ], pointLightShadows[ i ].shadowMapSize, pointLightShadows[ i ].shadowIntensity, pointLightShadows[ i ].shadowBias, pointLightShadows[ i ].shadowRadius, vPointShadowCoord[ i ], pointLightShadows[ i ].shadowCameraNear, pointLightShadows[ i ].shadowCameraFar ) : 1.0;
     #endif
     reflectedLight.directDiffuse += bakegiShadow * bakegiArea.directDiffuse;
     reflectedLight.directSpecular += bakegiShadow * bakegiArea.directSpecular;
   }`;
 
-export function areaLightShadows(material) {
+export function areaLightShadows(material, count) {
   const chunk = THREE.ShaderChunk.lights_fragment_begin;
-  if (!chunk.includes(AREA_LIGHT_TERM)) return; // another three.js: unshadowed, as before
-  const shadowed = chunk.replace(AREA_LIGHT_TERM, SHADOWED_AREA_LIGHT_TERM);
+  if (!(count > 0) || !chunk.includes(AREA_LIGHT_TERM)) return; // unshadowed, as before
+  const shadowed = `#define BAKEGI_SHADOWED_AREA_LIGHTS ${count}\n` +
+    chunk.replace(AREA_LIGHT_TERM, SHADOWED_AREA_LIGHT_TERM);
   const previous = material.onBeforeCompile;
   const previousKey = material.customProgramCacheKey;
   material.onBeforeCompile = (shader, renderer) => {
     previous.call(material, shader, renderer);
     shader.fragmentShader = shader.fragmentShader.replace("#include <lights_fragment_begin>", shadowed);
   };
-  material.customProgramCacheKey = () => previousKey.call(material) + "+bakegi-area-shadows";
+  material.customProgramCacheKey = () => previousKey.call(material) + `+bakegi-area-shadows-${count}`;
 }
 
 // Called when a texture has arrived (the page redraws).

@@ -10,7 +10,7 @@
 // tests and people where it stands.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { areaLightShadows, lightingNotes, makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
+import { areaLightShadows, lightingNotes, shadowedAreaLightCount, makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
 import { addGridLighting, GridTextures } from "./grid_textures.js";
 import { IrradianceGrid } from "./irradiance_grid.js";
 import { GEOMETRY_PACKET, GRID_PACKET, readPacket } from "./packets.js";
@@ -123,7 +123,7 @@ function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   const lit = (description) => {
     const material = makeMaterial(description, gltf, imageUrl);
     if (view.textures) addGridLighting(material, view.textures.uniforms);
-    areaLightShadows(material);
+    areaLightShadows(material, shadowedAreaLightCount(gltf));
     return material;
   };
   const materials = (gltf.materials ?? []).map(lit);
