@@ -137,6 +137,17 @@ class GridCase(common.SmallCornellCase):
         bpy.context.view_layer.update()
         self.assertIsNone(bakegi.grid_follow.update())
 
+        # Undo and redo bring back a matrix with the attribute lit there: nothing to re-apply.
+        box.location.x += 0.1
+        bpy.context.view_layer.update()
+        self.assertEqual(state.pending, {"ShortBox"})
+        bakegi.grid_follow.on_undo_redo(scene)
+        self.assertEqual(state.pending, set())
+        self.assertIsNone(bakegi.grid_follow.update())
+        box.location.x -= 0.1
+        bpy.context.view_layer.update()
+        bakegi.grid_follow.update()
+
         # A grid that is gone stops following with the reason, and changes nothing.
         box.location.x += 0.1
         os.remove(scene[bakegi.write.grid_file.GRID_PATH_PROPERTY])

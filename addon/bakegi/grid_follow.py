@@ -10,7 +10,8 @@ A depsgraph update handler compares each remembered object's world matrix with t
 lit at, so a move by hand, by a parent, a constraint or an animation is caught alike, and the
 add-on's own writes (which change the mesh, not the matrix) are not. Shape edits are not
 followed: Apply Grid again after editing a mesh. A timer re-applies the grid to the moved
-objects with the options of the last Apply Grid; its writes are undo steps of their own.
+objects with the options of the last Apply Grid; its writes are undo steps of their own, and
+what undo or redo brings back is taken as lit (its attribute comes back with it).
 
 The state lives in this module (not in the .blend); loading a file forgets it.
 """
@@ -116,6 +117,22 @@ def on_load_pre(*_args):
     forget()
 
 
+@bpy.app.handlers.persistent
+def on_undo_redo(scene, *_args):
+    """Undo and redo bring back each object's matrix together with the attribute written for
+    it there: what they restore is already lit, so it is taken as lit rather than re-applied
+    (a re-apply would push an undo step and lose the redo history)."""
+    state = _states.get(scene.name) if scene is not None else None
+    if state is None:
+        return
+    for name in list(state.matrices):
+        obj = scene.objects.get(name)
+        if obj is not None:
+            state.matrices[name] = _matrix(obj)
+    state.pending.clear()
+    _last_seen.pop(scene.name, None)
+
+
 def update(context=None):
     """Re-applies the grid to the remembered objects that moved, now (scripts, background
     mode, and the timer). Returns apply_grid's report, or None when nothing moved. Raises
@@ -184,8 +201,14 @@ def _still_moving(scene, state):
 
 def register():
     scene_following.add_handlers(on_depsgraph_update, on_load_pre)
+    for handlers in (bpy.app.handlers.undo_post, bpy.app.handlers.redo_post):
+        if on_undo_redo not in handlers:
+            handlers.append(on_undo_redo)
 
 
 def unregister():
     forget()
     scene_following.remove_handlers(on_depsgraph_update, on_load_pre, _tick)
+    for handlers in (bpy.app.handlers.undo_post, bpy.app.handlers.redo_post):
+        if on_undo_redo in handlers:
+            handlers.remove(on_undo_redo)
