@@ -25,8 +25,14 @@ const state = (window.bakegiState = {
 });
 
 // The stream's first requests were started by index.html before this script arrived
-// (window.bakegiEarly).
-const early = window.bakegiEarly;
+// (window.bakegiEarly); without it (a page of its own), the manifest is asked for here.
+const early = window.bakegiEarly ?? {
+  suffix: "",
+  manifest: location.protocol.startsWith("http")
+    ? fetch("stream/manifest.json").then((r) => (r.ok ? r.json() : null)).catch(() => null)
+    : Promise.resolve(null),
+  gltf: null,
+};
 const suffix = early.suffix;
 
 const canvas = document.getElementById("view");
