@@ -174,6 +174,9 @@ def _tick():
     state = _states.get(scene.name) if scene is not None else None
     if state is None or state.message or not state.pending:
         return None
+    if not scene.bakegi.grid_follow:  # turned off while the objects were moving
+        state.pending.clear()
+        return None
     state.pending |= moved_objects(scene)
     if _still_moving(scene, state):
         return DEBOUNCE_SECONDS
