@@ -144,6 +144,7 @@ export function makeLights(gltf) {
   const areas = gltf.extras?.bakegi?.area_lights ?? [];
   if (areas.length) RectAreaLightUniformsLib.init();
   const proxies = [];
+  const shadowed = bounds ? shadowedAreaLightCount(gltf) : 0;
   for (const a of areas) {
     const peak = Math.max(...a.radiance);
     if (!(peak > 0)) continue;
@@ -159,7 +160,7 @@ export function makeLights(gltf) {
     // Its shadows: a point light of no intensity at its centre (a hair in front, off the
     // ceiling it hangs from) casts the shadow map the area light's shading reads
     // (areaLightShadows): hard shadows from the centre, where Blender's are soft.
-    if (!bounds || proxies.length >= shadowedAreaLightCount(gltf)) continue;
+    if (proxies.length >= shadowed) continue;
     const proxy = new THREE.PointLight(0xffffff, 0);
     proxy.position.fromArray(a.position).addScaledVector(z, -1e-3 * Math.max(a.size_x, a.size_y, 1e-3));
     castShadows(proxy, proxy, bounds);

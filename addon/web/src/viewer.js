@@ -126,10 +126,11 @@ function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   setTextureListener(requestRender);
   // Every material, the default one of a primitive without any too, takes the grid's light
   // and the area lights' shadows.
+  const areaShadows = shadowedAreaLightCount(gltf);
   const lit = (description) => {
     const material = makeMaterial(description, gltf, imageUrl);
     if (view.textures) addGridLighting(material, view.textures.uniforms);
-    areaLightShadows(material, shadowedAreaLightCount(gltf));
+    areaLightShadows(material, areaShadows);
     return material;
   };
   const materials = (gltf.materials ?? []).map(lit);

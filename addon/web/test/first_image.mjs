@@ -8,31 +8,13 @@
 // (--until: the part of the stream each load asks for; the first image needs only its start).
 // Prints, per situation, the median and range of the first image's time and where it went
 // (the page's own timeline: script start, WebGL context, manifest, scene built, first image).
-import { spawn } from "node:child_process";
 import { writeFileSync } from "node:fs";
 import { chromium } from "playwright-core";
+import { launchOptions, parseArgs, startServer } from "./harness.mjs";
 
-const args = Object.fromEntries(
-  process.argv.slice(2).reduce((pairs, word, i, all) => {
-    if (word.startsWith("--")) pairs.push([word.slice(2), all[i + 1]?.startsWith("--") || all[i + 1] === undefined ? true : all[i + 1]]);
-    return pairs;
-  }, []));
+const args = parseArgs(process.argv.slice(2));
 const loads = Number(args.loads ?? 5);
-const launchOptions = {
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  args: ["--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist", "--no-sandbox"],
-};
-
-const server = spawn(args.cli, ["serve", args.folder, "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
-const url = await new Promise((resolve, reject) => {
-  let text = "";
-  server.stdout.on("data", (chunk) => {
-    text += chunk;
-    const match = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (match) resolve(match[0]);
-  });
-  server.on("exit", (code) => reject(new Error(`bakegi serve exited (${code})`)));
-});
+const { server, url } = await startServer(args.cli, args.folder);
 
 async function timedLoad(browser) {
   const page = await browser.newPage({ viewport: { width: 660, height: 420 } });

@@ -20,17 +20,13 @@
 //  - --fig6 (--only-fig6: that alone): the grid's transfer time and bytes per request size, quantized against
 //    floats (the paper's Fig. 6), into DIR/transfer.json.
 // Writes DIR/results.json and the screenshots (PNG).
-import { spawn } from "node:child_process";
 import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { pathToFileURL } from "node:url";
 import { chromium } from "playwright-core";
+import { launchOptions, parseArgs, startServer as startServerOf } from "./harness.mjs";
 
-const args = Object.fromEntries(
-  process.argv.slice(2).reduce((pairs, word, i, all) => {
-    if (word.startsWith("--")) pairs.push([word.slice(2), all[i + 1]?.startsWith("--") || all[i + 1] === undefined ? true : all[i + 1]]);
-    return pairs;
-  }, []));
+const args = parseArgs(process.argv.slice(2));
 const out = args.out ?? "out/web_tests";
 mkdirSync(out, { recursive: true });
 const [width, height] = (args.size ?? "480x360").split("x").map(Number);
@@ -51,16 +47,7 @@ function check(condition, message) {
 }
 
 function startServer(extra = [], folder = args.folder) {
-  return new Promise((resolve, reject) => {
-    const server = spawn(args.cli, ["serve", folder, "--port", "0", ...extra], { stdio: ["ignore", "pipe", "inherit"] });
-    let text = "";
-    server.stdout.on("data", (chunk) => {
-      text += chunk;
-      const match = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
-      if (match) resolve({ server, url: match[0] });
-    });
-    server.on("exit", (code) => reject(new Error(`bakegi serve exited (${code}): ${text}`)));
-  });
+  return startServerOf(args.cli, folder, extra);
 }
 
 async function load(page, url, query) {
@@ -103,11 +90,7 @@ function meanAbsoluteDifference(a, b, mask = null) {
   return count ? total / count : 0;
 }
 
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  // Software WebGL2 (SwiftShader): what a machine without a GPU has.
-  args: ["--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist", "--no-sandbox"],
-});
+const browser = await chromium.launch(launchOptions);
 const results = { size: [width, height], stages: [] };
 const { server, url } = await startServer();
 try {
