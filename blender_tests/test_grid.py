@@ -206,9 +206,18 @@ class GridCase(common.SmallCornellCase):
         self.addCleanup(setattr, scene, "world", scene.world)
         scene.world = bpy.data.worlds.new("Sky")  # a plain colour (or nodes' default grey)
         scene.world.color = (0.1, 0.1, 0.1)
+        # The grid, baked before the sky, holds only its bounce; baked under it, its direct
+        # light too, which the page then draws from the grid.
         sky = bakegi.export_web(os.path.join(self.folder, "web_sky"))
         self.assertEqual(len(sky["warnings"]), 1)
         self.assertIn("the world (sky) lights this scene", sky["warnings"][0])
+        self.assertIn("not its direct light", sky["warnings"][0])
+        self.bake_grid(grid_object=None)
+        sky = bakegi.export_web(os.path.join(self.folder, "web_sky"))
+        self.assertEqual(len(sky["warnings"]), 1)
+        self.assertIn("its direct light comes from the grid", sky["warnings"][0])
+        with open(os.path.join(self.folder, "web_sky", "scene.gltf")) as f:
+            self.assertIs(json.load(f)["extras"]["bakegi"]["grid_has_emitted_light"], True)
         for name in ("scene.gltf", "scene.bin", "grid.bgivg", "index.html", "viewer.js"):
             self.assertIn(name, report["files"])
             self.assertGreater(report["bytes"][name], 0)
@@ -216,6 +225,7 @@ class GridCase(common.SmallCornellCase):
             gltf = json.load(f)
         self.assertEqual(gltf["asset"]["version"], "2.0")
         self.assertEqual(gltf["extras"]["bakegi"]["grid"], "grid.bgivg")
+        self.assertIs(gltf["extras"]["bakegi"]["grid_has_emitted_light"], False)
         primitives = [p for m in gltf["meshes"] for p in m["primitives"]]
         self.assertGreaterEqual(len(primitives), len(NAMES))
         self.assertTrue(all("bakegi_progressive" in p["extras"] for p in primitives))

@@ -134,6 +134,11 @@ def test_a_grid_bakes_evaluates_and_round_trips(native, tmp_path):
             assert read.info_json() == {"test": True}
         with pytest.raises(native.BakeGIError, match="interpolation must be one of"):
             grid.evaluate(floor, up, "NEAREST")
+        # Lamps alone: no emitted light to add; the page's grid reads as the grid.
+        page, had_emitted = grid.with_emitted_light()
+        with page:
+            assert not had_emitted
+            assert np.array_equal(page.evaluate(floor, up), values)
         grid.close()
         job.close()
 

@@ -177,6 +177,77 @@ def run_scene(work, name, cells_list, rays, method, threads):
     return rows
 
 
+def direct_without_lamps(folder, points, samples, seed):
+    """(n, 3): the direct light of the world and emitters at the points (the "direct" method
+    on the scene with its lamps removed)."""
+    scene, _ = native.Scene.read(os.path.join(folder, "scene.bgs"))
+    scene.clear_lights()
+    try:
+        with native.Settings(method="direct", samples=samples, seed=seed,
+                             error_probes=0) as settings:
+            job = native.Job(scene, points, settings)
+            job.wait()
+            values = job.result().astype(numpy.float64)
+            job.close()
+    except native.BakeGIError as error:
+        if "light" not in str(error):
+            raise
+        values = numpy.zeros((len(points), 3))  # lamps alone light the scene
+    scene.close()
+    return values
+
+
+def run_page_light(work, name, cells_list, rays, method, threads, samples):
+    """What the web page draws besides its lamps, against the truth: the reference's indirect
+    light plus the direct light of the world and emitters (the "direct" method without the
+    lamps, two seeds, their difference giving its noise), read as the page reads the grid (trilinear,
+    n^2 weights, no visibility): the bounced light alone (the page before the grid carried
+    the emitted light) and with the emitted light (now)."""
+    folder = os.path.join(work, name, "corner")
+    scene, _ = native.Scene.read(os.path.join(folder, "scene.bgs"))
+    _, subset = native.Scene.read(os.path.join(folder, "subset.bgs"))
+    reference, noise = reference_of(folder)
+    positions, normals, _ = subset.get()
+    start = time.perf_counter()
+    first, second = (direct_without_lamps(folder, subset, samples, seed) for seed in (1, 2))
+    direct_seconds = time.perf_counter() - start
+    direct = (first + second) / 2.0
+    truth = reference + direct
+    direct_mean = float(metrics.luminance(direct).mean())
+    # Noise of the sum: the indirect reference's and the direct estimate's, in quadrature,
+    # each relative to the sum's mean.
+    direct_noise = (metrics.nrmse(first, second) / 2.0 * direct_mean
+                    if direct_mean > 0.0 else 0.0)
+    truth_mean = float(metrics.luminance(truth).mean())
+    truth_noise = float(numpy.hypot(noise * metrics.luminance(reference).mean(),
+                                    direct_noise) / truth_mean)
+    rows = []
+    for cells in cells_list:
+        grid, seconds, _ = bake_grid(scene, tuple(scene.bounds()), cells, rays, method, threads)
+        page_grid, has_emitted = grid.with_emitted_light()
+        bounced = grid.evaluate(positions, normals).astype(numpy.float64)
+        page = page_grid.evaluate(positions, normals).astype(numpy.float64)
+        row = {"scene": name, "kind": "page_light", "method": method,
+               "cells_on_longest_axis": cells, "rays_per_hemisphere": rays, "seconds": seconds,
+               "grid": grid.info(), "has_emitted": has_emitted,
+               "direct_samples": samples, "direct_seconds": direct_seconds,
+               "direct_share": direct_mean / truth_mean if truth_mean > 0 else 0.0,
+               "reference_noise": truth_noise,
+               "bounced_only": figures(bounced, truth, truth_noise),
+               "with_emitted": figures(page, truth, truth_noise),
+               "emitted_against_direct": (figures(page - bounced, direct, direct_noise / direct_mean)
+                                          if direct_mean > 0 else None)}
+        grid.close()
+        page_grid.close()
+        print(json.dumps({k: row[k] for k in ("scene", "cells_on_longest_axis", "direct_share",
+                                                "reference_noise")}),
+              "bounced only", json.dumps(row["bounced_only"]),
+              "with emitted", json.dumps(row["with_emitted"]), flush=True)
+        rows.append(row)
+    scene.close()
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--work", default="/tmp/rs")
@@ -185,20 +256,27 @@ def main():
     parser.add_argument("--rays", type=int, default=64)
     parser.add_argument("--method", default="pathtrace")
     parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--page-light", action="store_true",
+                        help="measure what the web page draws besides its lamps instead")
+    parser.add_argument("--direct-samples", type=int, default=4096)
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
     rows = []
     for name in args.scenes.split(","):
-        rows += run_scene(args.work, name, [int(c) for c in args.cells.split(",")], args.rays,
-                          args.method, args.threads)
+        cells = [int(c) for c in args.cells.split(",")]
+        if args.page_light:
+            rows += run_page_light(args.work, name, cells, args.rays, args.method, args.threads,
+                                   args.direct_samples)
+        else:
+            rows += run_scene(args.work, name, cells, args.rays, args.method, args.threads)
     previous = []
     if os.path.exists(args.out):
         with open(args.out) as f:
             previous = json.load(f).get("runs", [])
-    keep = [r for r in previous if (r["scene"], r["method"], r["cells_on_longest_axis"],
-                                    r["rays_per_hemisphere"]) not in
-            {(r["scene"], r["method"], r["cells_on_longest_axis"], r["rays_per_hemisphere"])
-             for r in rows}]
+    def key(r):
+        return (r["scene"], r.get("kind", ""), r["method"], r["cells_on_longest_axis"],
+                r["rays_per_hemisphere"])
+    keep = [r for r in previous if key(r) not in {key(r) for r in rows}]
     with open(args.out, "w") as f:
         json.dump({"command": " ".join(sys.argv), "runs": keep + rows}, f, indent=1)
 

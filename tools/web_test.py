@@ -69,7 +69,7 @@ import bpy, bakegi, json
 for thing in list(bpy.data.objects):
     bpy.data.objects.remove(thing)
 scene = bpy.context.scene
-# A dim sky: the page must say that it draws the world's light only through the grid.
+# A dim sky: the page draws its direct light from the grid (which carries it) and says so.
 scene.world = bpy.data.worlds.new("Sky")  # a plain colour (or nodes' default grey)
 scene.world.color = (0.02, 0.02, 0.02)
 bpy.ops.mesh.primitive_plane_add(size=6.0)
@@ -120,7 +120,12 @@ print("web", bakegi.export_web({site!r}), flush=True)
 # The area light's shadowed and lit floor points, both in the sun (Blender (1.15, -1.5, 0) and
 # (2.5, -1.5, 0)); low and weak, it adds under a tenth of the sun's light at the first box's
 # shadow.
-json.dump({{"shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0],
+# A floor point far from the boxes and the lights (Blender (-2.25, 2.25, 0)), under the open
+# sky: the grid's light there (white albedo) is the sky's radiance (its bounce off the boxes,
+# seen at grazing angles, under a hundredth of it); a grid holding only bounced light gives
+# next to nothing.
+json.dump({{"sky": 0.02, "sky_floor": [-2.25, 0.0, -2.25],
+           "shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0],
            "red": [-1.7, 0.01, -1.5], "blue": [-1.3, 0.01, -1.5],
            "area_shadowed": [1.15, 0.0, 1.5], "area_lit": [2.5, 0.0, 1.5]}}, open({points!r}, "w"))
 """

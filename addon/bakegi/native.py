@@ -208,6 +208,7 @@ _SIGNATURES = {
     "bakegi_grid_write_file": (c_int, [_P, c_char_p, c_int, c_char_p]),
     "bakegi_grid_read_file": (c_int, [c_char_p, _PP]),
     "bakegi_grid_get_info_json": (c_int, [_P, POINTER(c_char), c_size_t, POINTER(c_size_t)]),
+    "bakegi_grid_with_emitted_light": (c_int, [_P, _PP, POINTER(ctypes.c_int)]),
 }
 
 GRID_INTERPOLATION = {"TRILINEAR": 0, "TRICUBIC": 1}
@@ -826,6 +827,15 @@ class Grid(_Handle):
         return {"bounds_min": list(info.bounds_min), "bounds_max": list(info.bounds_max),
                 "resolution": list(info.resolution), "vertex_count": int(info.vertex_count),
                 "invalid_vertices": int(info.invalid_vertices)}
+
+    def with_emitted_light(self):
+        """(Grid, had_emitted): the grid the web page streams, the bounced light plus the
+        world's and emitters' direct light this grid carries (a copy of it if none)."""
+        out = c_void_p()
+        has = ctypes.c_int(0)
+        _check(load_library().bakegi_grid_with_emitted_light(self.handle, byref(out), byref(has)),
+               "bakegi_grid_with_emitted_light")
+        return Grid(out.value), bool(has.value)
 
     def info_json(self):
         """The JSON stored with the grid (what made it), as a dict."""

@@ -2,6 +2,7 @@
 //   grid bake scene.bgs --out grid.bgivg [--cell S] [--max-vertices N] [--rays R]
 //             [--bounds x0,y0,z0,x1,y1,z1] [--quantized] [--report r.json] [settings]
 //   grid apply grid.bgivg scene.bgs --out values.npy [--tricubic] [--absolute] [--repeat R]
+//              [--with-emitted]
 //   grid info grid.bgivg
 #include <algorithm>
 #include <chrono>
@@ -97,12 +98,21 @@ int run_grid_bake(const std::vector<std::string>& words) {
 }
 
 int run_grid_apply(const std::vector<std::string>& words) {
-  const Arguments args(words, {{"out"}, {"tricubic", false}, {"absolute", false}, {"repeat"}});
+  const Arguments args(
+      words,
+      {{"out"}, {"tricubic", false}, {"absolute", false}, {"repeat"}, {"with-emitted", false}});
   if (args.positional().size() != 2) throw UsageError("grid apply expects a grid and a scene file");
   const std::string out_path = args.require("out");
   check_output_folder(out_path);
   const int64_t repeat = args.int_value("repeat", 1, 1, 1000);
-  const GridHandle grid = read_grid(args.positional()[0]);
+  GridHandle grid = read_grid(args.positional()[0]);
+  if (args.has("with-emitted")) {
+    // What the web page draws besides its lamps: the bounced light plus the world's and
+    // emitters' direct light the grid carries.
+    bakegi_grid* page = nullptr;
+    check(bakegi_grid_with_emitted_light(grid.get(), &page, nullptr), "adding the emitted light");
+    grid = GridHandle(page);
+  }
   const SceneFile file = load_scene_file_with_points(args.positional()[1]);
   const uint64_t count = bakegi_points_count(file.points.get());
   std::vector<float> positions(3 * count), normals(3 * count), values(3 * count);
@@ -141,6 +151,12 @@ int run_grid_info(const std::vector<std::string>& words) {
               info.resolution[2], static_cast<unsigned long long>(info.vertex_count));
   std::printf("inside:     %llu vertices inside geometry (filled from their neighbours)\n",
               static_cast<unsigned long long>(info.invalid_vertices));
+  bakegi_grid* page = nullptr;
+  int has_emitted = 0;
+  check(bakegi_grid_with_emitted_light(grid.get(), &page, &has_emitted), "the grid's components");
+  bakegi_grid_destroy(page);
+  std::printf("emitted:    %s\n", has_emitted ? "the world's and emitters' direct light, kept apart"
+                                              : "none (no world or emitters, or an older grid)");
   std::printf("made by:    %s\n", grid_info_json(grid.get()).c_str());
   return kExitOk;
 }

@@ -63,9 +63,11 @@ commands:
       R rays per vertex hemisphere (default 64); --quantized stores 24-bit directions and
       R9G9B9E5 colours (docs/ivg.md). Prints the report (JSON) on stdout.
   grid apply grid.bgivg scene.bgs --out values.npy [--tricubic] [--absolute] [--repeat R]
+            [--with-emitted]
       Lights the scene file's bake points from the grid (no bake) and prints the seconds
       (the fastest of R runs) and points as JSON. --absolute: |n| directional weights
-      instead of the paper's n^2 (docs/ivg.md).
+      instead of the paper's n^2 (docs/ivg.md). --with-emitted: adds the world's and
+      emitters' direct light the grid carries (what the web page draws from it).
   grid info grid.bgivg
       Bounds, resolution, vertices inside geometry and what made the grid.
   web export scene.bgs --out FOLDER [--grid grid.bgivg] [--camera x,y,z,qx,qy,qz,qw,yfov,aspect]

@@ -118,8 +118,73 @@ TEST(GridGather, FurnaceGivesTheClosedForm) {
     EXPECT_NEAR(diagonal[c], expected[c] / std::sqrt(2.0f), 0.03f * expected[c]) << c;
     EXPECT_NEAR(absolute[c], expected[c], 0.03f * expected[c]) << c;
   }
+  // The walls' own emission, seen straight: pi Le along each hemisphere's axis.
+  ASSERT_TRUE(g.grid.has_emitted());
+  for (size_t v = 0; v < g.grid.vertex_count(); ++v) {
+    for (int h = 0; h < kGridHemispheres; ++h) {
+      for (int c = 0; c < 3; ++c) {
+        // A constant integrand: QMC's only error is the sideways rest of the Sobol' points.
+        EXPECT_NEAR(glm::dot(g.grid.emitted_at(v, h)[c], hemisphere_axis(h)), kPi * emission[c],
+                    0.01f * kPi * emission[c]);
+      }
+    }
+  }
   std::printf("furnace grid: expected %.4f %.4f %.4f, on an axis %.4f %.4f %.4f\n", expected.x,
               expected.y, expected.z, axis_value.x, axis_value.y, axis_value.z);
+}
+
+// Emitted light in closed form: a black floor (z = 0, 2 km wide) that emits Le upwards only,
+// under a sky of radiance Lw. Above the floor every ray either escapes (Lw) or meets the
+// floor's emitting side (Le), so I_+z = pi Lw z, I_-z = -pi Le z, and a side hemisphere
+// (axis s x) splits into a sky quarter and a floor quarter, each with integral of w = pi / 2
+// along the axis and +-pi / 2 along z: I = s pi / 2 (Lw + Le) x + pi / 2 (Lw - Le) z. Nothing
+// is reflected (albedo 0), so the bounced vectors stay zero. Without world and emitters the
+// grid has no emitted component at all.
+TEST(GridGather, EmittedLightFromTheSkyAndAnEmitterIsTheClosedForm) {
+  const glm::vec3 sky(0.5f, 0.25f, 1.0f), floor_emission(1.0f, 2.0f, 3.0f);
+  SceneDescription d;
+  const uint32_t floor = test::add_material(d, glm::vec3(0.0f), floor_emission, false);
+  test::add_quad(d, glm::vec3(0.0f), {1, 0, 0}, {0, 1, 0}, 1000.0f, 1000.0f, floor);
+  d.world_radiance = sky;
+  const GridLayout layout = make_grid_layout({-1, -1, 0.1f}, {1, 1, 0.5f}, {2, 2, 2});
+  const GatheredGrid g = gather(d, layout, 1024);
+  ASSERT_TRUE(g.grid.has_emitted());
+  EXPECT_EQ(g.statistics.invalid_vertices, 0u);
+  const float half_pi = 0.5f * kPi;
+  float worst = 0.0f;
+  for (size_t v = 0; v < g.grid.vertex_count(); ++v) {
+    for (int h = 0; h < kGridHemispheres; ++h) {
+      const glm::vec3 axis = hemisphere_axis(h);
+      for (int c = 0; c < 3; ++c) {
+        glm::vec3 expected(0.0f);
+        if (h == 4) expected = kPi * sky[c] * axis;
+        if (h == 5) expected = kPi * floor_emission[c] * axis;
+        if (h < 4) {
+          expected = half_pi * (sky[c] + floor_emission[c]) * axis +
+                     half_pi * (sky[c] - floor_emission[c]) * glm::vec3(0, 0, 1);
+        }
+        // 1024 Owen-scrambled Sobol' rays over a piecewise-constant integrand (a jump at the
+        // horizon): 0.2% of the larger of sky and floor here; 0.5% (a sky 3% off fails).
+        const float tolerance = 0.005f * kPi * std::max(sky[c], floor_emission[c]);
+        const glm::vec3 got = g.grid.emitted_at(v, h)[c];
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_NEAR(got[a], expected[a], tolerance)
+              << "vertex " << v << " hemisphere " << h << " channel " << c << " axis " << a;
+          worst = std::max(
+              worst, std::abs(got[a] - expected[a]) / (kPi * std::max(sky[c], floor_emission[c])));
+        }
+        EXPECT_LT(glm::length(g.grid.at(v, h)[c]), 1e-6f);
+      }
+    }
+  }
+
+  std::printf("emitted grid: worst error %.5f of pi max(sky, floor)\n", worst);
+
+  SceneDescription dark;
+  test::add_quad(dark, glm::vec3(0.0f), {1, 0, 0}, {0, 1, 0}, 10.0f, 10.0f,
+                 test::add_material(dark, glm::vec3(0.5f)));
+  dark.lights.push_back(test::point_light({0, 0, 2}, glm::vec3(10.0f)));  // a lamp alone
+  EXPECT_FALSE(gather(dark, layout, 4).grid.has_emitted());
 }
 
 // A block inside the furnace (same material: the radiance stays uniform): the vertices in it
@@ -303,6 +368,30 @@ TEST(GridFile, RoundTripsAndRefusesDamage) {
       }
     }
   }
+
+  // Version 1 without emitted light (what readers of before and the web page read); version
+  // 2 carries it, in any encoding.
+  const auto version_of = [](const std::vector<uint8_t>& bytes) {
+    return uint32_t(bytes[8]) | uint32_t(bytes[9]) << 8;
+  };
+  EXPECT_EQ(version_of(float_bytes), 1u);
+  EXPECT_FALSE(read.grid.has_emitted());
+  IrradianceVectorGrid with_emitted = grid;
+  with_emitted.emitted = grid.vectors;
+  for (glm::mat3& m : with_emitted.emitted) m *= 0.5f;
+  const std::vector<uint8_t> emitted_bytes =
+      encode_grid_file(with_emitted, GridEncoding::kFloat, "{}");
+  EXPECT_EQ(version_of(emitted_bytes), 2u);
+  const GridFile emitted_read = decode_grid_file(emitted_bytes, "e.bgivg");
+  EXPECT_EQ(emitted_read.grid.vectors, grid.vectors);
+  EXPECT_EQ(emitted_read.grid.emitted, with_emitted.emitted);
+  const GridFile emitted_quantized =
+      decode_grid_file(encode_grid_file(with_emitted, GridEncoding::kQuantized, "{}"), "eq.bgivg");
+  IrradianceVectorGrid emitted_alone = grid;
+  emitted_alone.vectors = with_emitted.emitted;
+  EXPECT_EQ(emitted_quantized.grid.emitted, quantized_grid(emitted_alone).vectors);
+  EXPECT_THROW(decode_grid_file(std::span(emitted_bytes).first(emitted_bytes.size() - 9), "t"),
+               Error);
 
   std::vector<uint8_t> damaged = float_bytes;
   damaged[damaged.size() / 2] ^= 0x40;

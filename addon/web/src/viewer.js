@@ -113,6 +113,15 @@ function showProgress() {
     state.notes.map((note) => `. Note: ${note}`).join("");
 }
 
+// The grid carries the sky's and emitters' direct light too: its views are not "indirect".
+function nameModesForEmittedLight() {
+  const names = { indirect: "grid only (bounced light, sky, emitters)", direct: "lamps only",
+    light: "grid light (E/&pi;, bounced + sky + emitters)" };
+  for (const option of document.getElementById("mode").options) {
+    if (names[option.value]) option.innerHTML = names[option.value];
+  }
+}
+
 function shadowed(mesh) {
   mesh.castShadow = mesh.receiveShadow = true;
   return mesh;
@@ -121,6 +130,7 @@ function shadowed(mesh) {
 // The scene's fixed parts from the glTF: materials, lights, camera, one mesh per primitive.
 function buildScene(gltf, grid, primitiveInfo, imageUrl = (uri) => uri) {
   state.notes = lightingNotes(gltf);
+  if (grid && gltf.extras?.bakegi?.grid_has_emitted_light) nameModesForEmittedLight();
   view.grid = grid;
   view.textures = grid ? new GridTextures(grid) : null;
   setTextureListener(requestRender);

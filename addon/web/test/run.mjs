@@ -59,6 +59,11 @@ async function load(page, url, query) {
   return page.evaluate(() => window.bakegiState);
 }
 
+// An sRGB value in [0, 1] as linear light (the page's Standard view transform).
+function srgbToLinear(v) {
+  return v <= 0.04045 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4);
+}
+
 // The canvas' pixels (RGBA, 8-bit sRGB) as a plain array.
 function pixels(page, source = "#view") {
   return page.evaluate(async (selector) => {
@@ -191,8 +196,9 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
     const page = await browser.newPage({ viewport: { width: width + 20, height: height + 20 } });
     page.on("pageerror", (error) => failures.push(`page error (shadow scene): ${error.message}`));
     const shadowState = await load(page, shadowUrl, "until=1&mode=direct");
-    check(shadowState.notes.length === 1 && shadowState.notes[0].includes("world"),
-      `the page says that it does not draw the sky's direct light: ${JSON.stringify(shadowState.notes)}`);
+    check(shadowState.notes.length === 1 && shadowState.notes[0].includes("world") &&
+      shadowState.notes[0].includes("from the grid"),
+      `the page says that the sky's direct light comes from the grid: ${JSON.stringify(shadowState.notes)}`);
     await page.locator("#view").screenshot({ path: join(out, "shadow_direct.png") });
     const [shadowed] = await pixelAt(page, points.shadowed);
     const [open, spread] = await pixelAt(page, points.open);
@@ -216,6 +222,16 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
       results.texture = { red, blue };
       check(red[0] > 40 && red[0] > 2 * red[2] && blue[2] > 40 && blue[2] > 2 * blue[0],
         `the tile's texture reaches the page: its red half reads RGB ${red}, its blue half ${blue}`);
+    }
+    if (points.sky_floor) {
+      // The sky's direct light, from the grid: the grid's light (white albedo, E / pi) on the
+      // open floor is the sky's radiance; a bounce-only grid reads next to nothing.
+      await load(page, shadowUrl, "until=1&mode=light");
+      const [value] = await pixelAt(page, points.sky_floor);
+      const linear = srgbToLinear(value / 255);
+      results.sky_light = { linear, sky: points.sky };
+      check(linear > 0.85 * points.sky && linear < 1.25 * points.sky,
+        `the sky lights the open floor through the grid: E/pi ${linear.toFixed(4)} for a sky of ${points.sky}`);
     }
     await page.close();
   } finally {

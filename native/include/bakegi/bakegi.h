@@ -552,7 +552,7 @@ typedef struct bakegi_grid_info {
 /* A grid layout (not yet baked: all zero) over [bounds_min, bounds_max] (a flat axis is widened
  * to one cell) with cells of about cell_size metres (0 = 32 cells on the longest axis), made
  * coarser until it has at most max_vertices vertices (0 = 262144, i.e. 64^3; each vertex takes
- * 217 bytes while baking). At least 2 and at most 1024 vertices per axis. */
+ * 217 bytes while baking, 433 when the scene has a world or emissive surfaces). At least 2 and at most 1024 vertices per axis. */
 BAKEGI_API bakegi_status bakegi_grid_create(const float bounds_min[3], const float bounds_max[3],
                                             float cell_size, uint64_t max_vertices,
                                             bakegi_grid** out_grid);
@@ -634,6 +634,14 @@ BAKEGI_API bakegi_status bakegi_grid_read_file(const char* path, bakegi_grid** o
  * NULL). */
 BAKEGI_API bakegi_status bakegi_grid_get_info_json(const bakegi_grid* grid, char* buffer,
                                                    size_t capacity, size_t* out_length);
+/* The grid the web page streams, as a new grid: `grid`'s vectors plus its emitted light (the
+ * world's and emissive surfaces' direct light, gathered with the grid when the scene has
+ * either, and kept in its file), so that bakegi_grid_evaluate reads what the page draws
+ * besides its lamps. *out_has_emitted (may be NULL): 1 if `grid` holds emitted light, else 0
+ * (and the new grid equals it). */
+BAKEGI_API bakegi_status bakegi_grid_with_emitted_light(const bakegi_grid* grid,
+                                                        bakegi_grid** out_grid,
+                                                        int* out_has_emitted);
 
 /* ---- the web page (issue 16, section 4 of the grid's paper; native/src/web/) --------- */
 

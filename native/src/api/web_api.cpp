@@ -50,8 +50,10 @@ bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* gr
     }
     if (grid) {
       options.grid_file = "grid.bgivg";
-      const std::vector<uint8_t> bytes = bakegi::encode_grid_file(
-          grid_of(grid), bakegi::GridEncoding::kQuantized, grid->info_json);
+      const bakegi::IrradianceVectorGrid page_grid = bakegi::grid_with_emitted_light(grid_of(grid));
+      options.grid_has_emitted_light = grid_of(grid).has_emitted();
+      const std::vector<uint8_t> bytes =
+          bakegi::encode_grid_file(page_grid, bakegi::GridEncoding::kQuantized, grid->info_json);
       bakegi::write_file_atomically(root / options.grid_file, bytes);
     }
     const bakegi::WebGltf gltf = bakegi::encode_web_gltf(scene->description, options);

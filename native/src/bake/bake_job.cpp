@@ -311,7 +311,8 @@ class DenoiserOnDemand : public NoiseFilter {
 
 void BakeJob::gather_grid_from(const IndirectField& field, Report& report) {
   const GridLayout& layout = grid_request_->layout;
-  const size_t bytes = IrradianceVectorGrid::bytes_for(layout.vertex_count());
+  const size_t bytes =
+      IrradianceVectorGrid::bytes_for(layout.vertex_count(), grid_gathers_emitted(*scene_));
   const MemoryBudget budget = solver_memory();
   if (bytes > budget.remaining()) {
     throw Error(BAKEGI_ERROR_OUT_OF_MEMORY, "the grid of " + std::to_string(layout.vertex_count()) +

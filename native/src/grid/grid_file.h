@@ -9,7 +9,9 @@
 //                           direction[3] then f32 colour[3], 24 bytes
 //   u8  valid[vertex count]   1 = gathered, 0 = filled by push-pull (inside geometry)
 //   the hemispheres, vertex by vertex (x fastest, then y, then z), +x -x +y -y +z -z
+//   version 2 only: the emitted light's hemispheres (irradiance_vector_grid.h), the same way
 //   u32 length, UTF-8 JSON: what made the grid (method, rays, seconds), for people
+// A grid without emitted light is written as version 1.
 // The web client (addon/web) reads the same bytes.
 #pragma once
 

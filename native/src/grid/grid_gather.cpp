@@ -34,6 +34,21 @@ glm::vec3 uniform_hemisphere(float u1, float u2) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
+// I_delta of the light straight from the world (a ray that escapes) or from an emissive
+// surface (a ray that meets its emitting side), += L * weighted direction, per channel.
+void add_emitted(const Scene& scene, const glm::vec3& world, const Hit& hit,
+                 const glm::vec3& weighted_direction, glm::mat3& out) {
+  glm::vec3 radiance = world;
+  if (hit.hit) {
+    const Triangle& t = scene.triangles[hit.triangle];
+    const Material& m = scene.material_of(t);
+    if (!m.is_emissive()) return;
+    if (!m.emission_two_sided && glm::dot(t.face_normal, weighted_direction) >= 0.0f) return;
+    radiance = scene.emission_at(t, hit.b1, hit.b2);
+  }
+  for (int c = 0; c < 3; ++c) out[c] += radiance[c] * weighted_direction;
+}
+
 void check_options(const GridGatherOptions& options) {
   if (options.rays_per_hemisphere < 1 || options.rays_per_hemisphere > 65536) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
@@ -50,12 +65,20 @@ void check_options(const GridGatherOptions& options) {
 
 }  // namespace
 
+bool grid_gathers_emitted(const Scene& scene) {
+  return max_component(scene.description.world_radiance) > 0.0f ||
+         !scene.emissive_triangles.empty();
+}
+
 IrradianceVectorGrid gather_grid(const GridLayout& layout, const Scene& scene,
                                  const RayTracer& tracer, const HitRadiance& radiance,
                                  const GridGatherOptions& options, JobContext& context,
                                  GridGatherStatistics& statistics) {
   check_options(options);
   IrradianceVectorGrid grid(layout);
+  const glm::vec3 world = scene.description.world_radiance;
+  const bool gather_emitted = grid_gathers_emitted(scene);
+  if (gather_emitted) grid.emitted.assign(grid.vectors.size(), glm::mat3(0.0f));
   const uint32_t rays = options.rays_per_hemisphere;
   const size_t rays_per_vertex = size_t(kGridHemispheres) * rays;
   const size_t vertices = layout.vertex_count();
@@ -111,7 +134,11 @@ IrradianceVectorGrid gather_grid(const GridLayout& layout, const Scene& scene,
     hit_slot.clear();
     for (size_t slot = 0; slot < chunk_rays; ++slot) {
       const size_t v = chunk_begin + slot / rays_per_vertex;
-      if (!grid.valid[v] || !first_hits[slot].hit) continue;
+      if (!grid.valid[v]) continue;
+      if (gather_emitted)
+        add_emitted(scene, world, first_hits[slot], directions[slot] * weight,
+                    grid.emitted_at(v, int((slot % rays_per_vertex) / rays)));
+      if (!first_hits[slot].hit) continue;
       hits.push_back({directions[slot], first_hits[slot],
                       uint64_t(v) * rays_per_vertex + (slot % rays_per_vertex)});
       hit_slot.push_back(uint32_t(slot));

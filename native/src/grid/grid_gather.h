@@ -9,6 +9,11 @@
 // A vertex inside geometry (inside a closed object, behind a wall) sees back faces: when at
 // least backface_fraction of its rays hit one, it is marked invalid, like the lightmap
 // texels of lightmap/backface_rejection.h, and push-pull (grid_push_pull.h) fills it.
+//
+// The same rays give, for free, the light that arrives straight from the world (rays that
+// escape) and from emissive surfaces (rays that meet their emitting side): the grid's
+// `emitted` component, gathered when the scene has a world or an emitter. It is direct light
+// for a receiver, so bakes leave it out; the web page adds it to the grid it streams.
 #pragma once
 
 #include <cstdint>
@@ -35,6 +40,9 @@ struct GridGatherStatistics {
   uint64_t rays = 0;  // every ray traced: the grid's own and the hit radiance's
   uint64_t invalid_vertices = 0;
 };
+
+// Whether gather_grid gathers the emitted light: the scene has a world or an emitter.
+bool grid_gathers_emitted(const Scene& scene);
 
 // Reports progress over the current stage; throws Error(CANCELLED) when cancelled and
 // Error(INVALID_ARGUMENT) for options out of range.

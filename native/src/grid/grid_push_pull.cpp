@@ -107,8 +107,8 @@ void pull(Level& fine, const Level& coarse) {
   }
 }
 
-// The grid's vertices as the finest level: known where valid.
-Level finest_level(const IrradianceVectorGrid& grid) {
+// One component of the grid's vertices as the finest level: known where valid.
+Level finest_level(const IrradianceVectorGrid& grid, const std::vector<glm::mat3>& vectors) {
   const size_t count = grid.vertex_count();
   Level finest;
   finest.n = grid.layout.resolution;
@@ -117,7 +117,7 @@ Level finest_level(const IrradianceVectorGrid& grid) {
   for (size_t v = 0; v < count; ++v) {
     finest.weight[v] = grid.valid[v] ? 1.0f : 0.0f;
     for (int h = 0; h < kGridHemispheres; ++h) {
-      const glm::mat3& m = grid.at(v, h);
+      const glm::mat3& m = vectors[v * kGridHemispheres + h];
       for (int c = 0; c < 3; ++c) {
         for (int e = 0; e < 3; ++e) finest.values[v * kValues + h * 9 + c * 3 + e] = m[c][e];
       }
@@ -126,15 +126,10 @@ Level finest_level(const IrradianceVectorGrid& grid) {
   return finest;
 }
 
-}  // namespace
-
-size_t fill_invalid_vertices(IrradianceVectorGrid& grid) {
-  const size_t count = grid.vertex_count();
-  const size_t invalid = size_t(std::count(grid.valid.begin(), grid.valid.end(), uint8_t(0)));
-  if (invalid == 0 || invalid == count) return 0;
-
+// Fills the invalid vertices of one component (the vectors, or the emitted light).
+void fill_component(const IrradianceVectorGrid& grid, std::vector<glm::mat3>& vectors) {
   std::vector<Level> levels;
-  levels.push_back(finest_level(grid));
+  levels.push_back(finest_level(grid, vectors));
   while (levels.back().n[0] > 1 || levels.back().n[1] > 1 || levels.back().n[2] > 1) {
     levels.push_back(push(levels.back()));
   }
@@ -143,15 +138,25 @@ size_t fill_invalid_vertices(IrradianceVectorGrid& grid) {
   for (size_t l = levels.size() - 1; l-- > 0;) pull(levels[l], levels[l + 1]);
   const Level& finest = levels[0];
 
-  for (size_t v = 0; v < count; ++v) {
+  for (size_t v = 0; v < grid.vertex_count(); ++v) {
     if (grid.valid[v]) continue;
     for (int h = 0; h < kGridHemispheres; ++h) {
-      glm::mat3& m = grid.at(v, h);
+      glm::mat3& m = vectors[v * kGridHemispheres + h];
       for (int c = 0; c < 3; ++c) {
         for (int e = 0; e < 3; ++e) m[c][e] = finest.values[v * kValues + h * 9 + c * 3 + e];
       }
     }
   }
+}
+
+}  // namespace
+
+size_t fill_invalid_vertices(IrradianceVectorGrid& grid) {
+  const size_t count = grid.vertex_count();
+  const size_t invalid = size_t(std::count(grid.valid.begin(), grid.valid.end(), uint8_t(0)));
+  if (invalid == 0 || invalid == count) return 0;
+  fill_component(grid, grid.vectors);
+  if (grid.has_emitted()) fill_component(grid, grid.emitted);
   return invalid;
 }
 

@@ -12,8 +12,8 @@
 
 namespace bakegi {
 
-// Fills grid's invalid vertices in place; returns how many it filled. With no valid vertex
-// at all, the grid stays as it is (all zero) and 0 is returned.
+// Fills grid's invalid vertices in place (its vectors and its emitted light); returns how many it
+// filled. With no valid vertex at all, the grid stays as it is (all zero) and 0 is returned.
 size_t fill_invalid_vertices(IrradianceVectorGrid& grid);
 
 }  // namespace bakegi

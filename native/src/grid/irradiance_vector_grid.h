@@ -35,6 +35,10 @@ struct IrradianceVectorGrid {
   // 1 where the vertex was gathered (or received); 0 inside geometry (or not yet streamed):
   // push-pull (grid_push_pull.h) fills those from valid neighbours.
   std::vector<uint8_t> valid;
+  // The light that arrives straight from the world (sky) and from emissive surfaces, in the
+  // same layout as `vectors`; empty when the scene has neither. Bakes leave it out (it is
+  // direct light); the web page, which draws only lamps directly, adds it (web_api.cpp).
+  std::vector<glm::mat3> emitted;
 
   explicit IrradianceVectorGrid(const GridLayout& l = {})
       : layout(l),
@@ -45,11 +49,28 @@ struct IrradianceVectorGrid {
   const glm::mat3& at(size_t vertex, int h) const { return vectors[vertex * kGridHemispheres + h]; }
   glm::mat3& at(size_t vertex, int h) { return vectors[vertex * kGridHemispheres + h]; }
 
+  bool has_emitted() const { return !emitted.empty(); }
+  const glm::mat3& emitted_at(size_t vertex, int h) const {
+    return emitted[vertex * kGridHemispheres + h];
+  }
+  glm::mat3& emitted_at(size_t vertex, int h) { return emitted[vertex * kGridHemispheres + h]; }
+
   // Bytes a grid of `vertex_count` vertices holds in memory (for budget checks before
   // allocating).
-  static size_t bytes_for(size_t vertex_count) {
-    return vertex_count * (kGridHemispheres * sizeof(glm::mat3) + 1);
+  static size_t bytes_for(size_t vertex_count, bool with_emitted = false) {
+    return vertex_count * ((with_emitted ? 2 : 1) * kGridHemispheres * sizeof(glm::mat3) + 1);
   }
 };
+
+// The grid the web page streams: the vectors plus the emitted light, in one component (the
+// page draws lamps directly and nothing else, so the world's and emitters' direct light
+// comes from the grid, soft and without sharp shadows; docs/ivg.md).
+inline IrradianceVectorGrid grid_with_emitted_light(const IrradianceVectorGrid& grid) {
+  IrradianceVectorGrid sum = grid;
+  if (!sum.has_emitted()) return sum;
+  for (size_t i = 0; i < sum.vectors.size(); ++i) sum.vectors[i] += grid.emitted[i];
+  sum.emitted.clear();
+  return sum;
+}
 
 }  // namespace bakegi

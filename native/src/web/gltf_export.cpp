@@ -344,6 +344,7 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
   }
   json << ",\"extras\":{\"bakegi\":{\"grid\":"
        << (options.grid_file.empty() ? std::string("null") : json_quote(options.grid_file))
+       << ",\"grid_has_emitted_light\":" << (options.grid_has_emitted_light ? "true" : "false")
        << ",\"area_lights\":[" << join(area_lights)
        << "],\"world_radiance\":" << vec3(scene.world_radiance)
        << ",\"units\":\"radiance W/(m^2 sr); point and spot "

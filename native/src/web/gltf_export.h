@@ -37,6 +37,9 @@ struct WebExportOptions {
   bool has_camera = false;
   WebCamera camera;
   std::string grid_file;  // the grid's file name beside scene.gltf ("" = none)
+  // The grid holds the light straight from the world and emitters as well as the bounced
+  // light (IrradianceVectorGrid::emitted, added in): the page draws them from it.
+  bool grid_has_emitted_light = false;
 };
 
 struct WebGltf {
