@@ -148,6 +148,32 @@ class GridCase(common.SmallCornellCase):
         bpy.context.view_layer.update()
         bakegi.grid_follow.update()
 
+        # A shape change re-applies (the box flattened to half its height, its vertices moved;
+        # the matrix stays); an edit in Edit Mode waits until it leaves; the add-on's own write
+        # of the attribute is no change of shape.
+        mesh = box.data
+        for vertex in mesh.vertices:
+            vertex.co.z *= 0.5
+        mesh.update()
+        bpy.context.view_layer.update()
+        self.assertEqual(state.pending, {"ShortBox"})
+        report = bakegi.grid_follow.update()
+        self.assertEqual(report["points"], len(mesh.loops))
+        bakegi.apply_grid(["ShortBox"], **options)
+        bpy.context.view_layer.update()
+        self.assertIsNone(bakegi.grid_follow.update())
+        bpy.context.view_layer.objects.active = box
+        bpy.ops.object.mode_set(mode="EDIT")
+        bpy.ops.mesh.select_all(action="SELECT")
+        bpy.ops.transform.resize(value=(1.0, 1.0, 1.5))
+        bpy.context.view_layer.update()
+        self.assertEqual(state.pending, set())
+        bpy.ops.object.mode_set(mode="OBJECT")
+        bpy.context.view_layer.update()
+        self.assertEqual(state.pending, {"ShortBox"})
+        bakegi.grid_follow.update()
+        followed = common.read_color_attribute(["ShortBox"])
+
         # A grid that is gone stops following with the reason, and changes nothing.
         box.location.x += 0.1
         os.remove(scene[bakegi.write.grid_file.GRID_PATH_PROPERTY])

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Follow Moves: objects lit from a grid by Apply Grid are lit from it again when they move.
+"""Follow Moves: objects lit from a grid by Apply Grid are lit from it again when they move
+or change shape.
 
     bakegi.apply_grid(["Chair"])        # remembered, with its options, for the scene
     scene.bakegi.grid_follow = True     # the panel's Follow Moves (off by default)
@@ -7,16 +8,21 @@
     bakegi.grid_follow.update()         # scripts and background mode: at once
 
 A depsgraph update handler compares each remembered object's world matrix with the one it was
-lit at, so a move by hand, by a parent, a constraint or an animation is caught alike, and the
-add-on's own writes (which change the mesh, not the matrix) are not. Shape edits are not
-followed: Apply Grid again after editing a mesh. A timer re-applies the grid to the moved
-objects with the options of the last Apply Grid; its writes are undo steps of their own, and
-what undo or redo brings back is taken as lit (its attribute comes back with it).
+lit at, so a move by hand, by a parent, a constraint or an animation is caught alike. Where
+the depsgraph says an object's geometry changed, it also compares a fingerprint of its
+evaluated mesh (face count and vertex positions, modifiers applied) with the one it was lit
+at: an edit, a modifier or a shape key is caught, and the add-on's own writes (a colour
+attribute: neither matrix nor positions change) are not. An object in Edit Mode waits until
+it leaves it (the edit mesh, not the object's data, holds its shape until then). A timer
+re-applies the grid to the changed objects with the options of the last Apply Grid; its
+writes are undo steps of their own, and what undo or redo brings back is taken as lit (its
+attribute comes back with it).
 
 The state lives in this module (not in the .blend); loading a file forgets it.
 """
 
 import bpy
+import numpy
 
 from . import scene_following
 from .native import BakeGIError
@@ -30,6 +36,7 @@ class FollowState:
     def __init__(self, options):
         self.options = options  # apply_grid's keyword arguments (path, interpolation, ...)
         self.matrices = {}  # object name -> its world matrix when it was lit
+        self.shapes = {}  # object name -> its geometry's fingerprint when it was lit
         self.pending = set()  # names that moved since
         self.message = ""  # why following stopped ("" = it follows)
         self.updates = 0
@@ -44,6 +51,17 @@ def _matrix(obj):
     return tuple(round(x, 6) for row in obj.matrix_world for x in row)
 
 
+def _shape(obj, depsgraph):
+    """The evaluated mesh's face count and a hash of its vertex positions (a millisecond for
+    100k vertices), or None for an object in Edit Mode (its shape is not settled yet)."""
+    if obj.mode == "EDIT":
+        return None
+    mesh = obj.evaluated_get(depsgraph).data
+    positions = numpy.empty(3 * len(mesh.vertices), numpy.float32)
+    mesh.vertices.foreach_get("co", positions)
+    return len(mesh.polygons), hash(positions.tobytes())
+
+
 def remember(scene, objects, options):
     """Called by apply_grid after it wrote: these objects are now lit from the grid where they
     stand, with these options (they replace the scene's earlier ones)."""
@@ -52,8 +70,10 @@ def remember(scene, objects, options):
         previous = state.matrices if state is not None else {}
         state = _states[scene.name] = FollowState(options)
         state.matrices.update(previous)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
     for obj in objects:
         state.matrices[obj.name] = _matrix(obj)
+        state.shapes[obj.name] = _shape(obj, depsgraph)
         state.pending.discard(obj.name)
     state.message = ""
 
@@ -81,9 +101,10 @@ def status_text(scene):
     return f"Follow: {len(state.matrices)} object(s), waiting for a move"
 
 
-def moved_objects(scene):
-    """Names of the remembered objects whose world matrix changed (objects deleted since are
-    forgotten)."""
+def moved_objects(scene, depsgraph=None, reshaped=None):
+    """Names of the remembered objects whose world matrix changed, or (with the depsgraph)
+    whose shape changed, among `reshaped` (None: all of them). Objects deleted since are
+    forgotten."""
     state = _states.get(scene.name)
     if state is None:
         return set()
@@ -92,21 +113,36 @@ def moved_objects(scene):
         obj = scene.objects.get(name)
         if obj is None or obj.type != "MESH":
             del state.matrices[name]
+            state.shapes.pop(name, None)
             state.pending.discard(name)
         elif _matrix(obj) != state.matrices[name]:
             moved.add(name)
+        elif depsgraph is not None and (reshaped is None or name in reshaped):
+            shape = _shape(obj, depsgraph)
+            if shape is None:
+                continue  # in Edit Mode: judged when it leaves
+            if state.shapes.get(name) is None:
+                state.shapes[name] = shape  # after undo, or lit in Edit Mode: as it is now
+            elif shape != state.shapes[name]:
+                moved.add(name)
     return moved
 
 
+def _reshaped(depsgraph):
+    """Names of the objects whose geometry this depsgraph update changed."""
+    return {update.id.original.name for update in depsgraph.updates
+            if update.is_updated_geometry and isinstance(update.id, bpy.types.Object)}
+
+
 @bpy.app.handlers.persistent
-def on_depsgraph_update(scene, _depsgraph):
+def on_depsgraph_update(scene, depsgraph):
     settings = getattr(scene, "bakegi", None)
     if settings is None or not settings.grid_follow:
         return
     state = _states.get(scene.name)
     if state is None or state.message:
         return
-    moved = moved_objects(scene) - state.pending
+    moved = moved_objects(scene, depsgraph, _reshaped(depsgraph)) - state.pending
     if moved:
         state.pending |= moved
         _schedule()
@@ -129,6 +165,7 @@ def on_undo_redo(scene, *_args):
         obj = scene.objects.get(name)
         if obj is not None:
             state.matrices[name] = _matrix(obj)
+            state.shapes[name] = None  # taken as it is at the next look
     state.pending.clear()
     _last_seen.pop(scene.name, None)
 
@@ -146,8 +183,8 @@ def update(context=None):
     if state is None:
         return None
     # Evaluating the depsgraph runs the handler on moves made since the last update.
-    context.evaluated_depsgraph_get()
-    state.pending |= moved_objects(scene)
+    depsgraph = context.evaluated_depsgraph_get()
+    state.pending |= moved_objects(scene, depsgraph)
     names = sorted(state.pending)
     if not names:
         return None
@@ -177,7 +214,7 @@ def _tick():
     if not scene.bakegi.grid_follow:  # turned off while the objects were moving
         state.pending.clear()
         return None
-    state.pending |= moved_objects(scene)
+    state.pending |= moved_objects(scene)  # moves; shape changes come from the handler
     if _still_moving(scene, state):
         return DEBOUNCE_SECONDS
     try:

@@ -230,8 +230,8 @@ class BakeGISettings(bpy.types.PropertyGroup):
     grid_follow: BoolProperty(
         name="Follow Moves", default=False,
         description="Apply Grid: the objects it lit are lit from the grid again when they "
-        "move (after 50 ms at rest), with the options of the last Apply Grid. Shape edits "
-        "are not followed")
+        "move or change shape (after 50 ms at rest; edits once out of Edit Mode), with the "
+        "options of the last Apply Grid")
     objects: EnumProperty(name="Objects", items=OBJECTS_ITEMS, default="SELECTED",
                           description="Which objects receive the bake (every visible object "
                           "always takes part in the light transport)")
