@@ -82,9 +82,13 @@ def figures(values, reference, noise):
                           metrics.luminance(reference).mean() - 1.0)}
 
 
-def bake_grid(scene, bounds, cells, rays, method, threads):
-    longest = max(h - l for l, h in zip(*bounds))
-    with native.Grid.create(bounds[0], bounds[1], longest / cells, 1 << 26) as layout, \
+def bake_grid(scene, bounds, cells, rays, method, threads, pad=0.0):
+    """A grid of `cells` cells on the box's longest axis, the box widened by `pad` cells on
+    every side (0: the scene's bounds, as the default bake)."""
+    cell = max(h - l for l, h in zip(*bounds)) / cells
+    lo = [l - pad * cell for l in bounds[0]]
+    hi = [h + pad * cell for h in bounds[1]]
+    with native.Grid.create(lo, hi, cell, 1 << 26) as layout, \
             native.Settings(method=method, threads=threads) as settings:
         start = time.perf_counter()
         job = native.GridJob(scene, layout, settings, rays)
@@ -105,7 +109,7 @@ def apply_seconds(grid, positions, normals, repeat=5):
     return best
 
 
-def run_scene(work, name, cells_list, rays, method, threads):
+def run_scene(work, name, cells_list, rays, method, threads, pad=0.0):
     folder = os.path.join(work, name, "corner")
     scene, all_points = native.Scene.read(os.path.join(folder, "scene.bgs"))
     _, subset = native.Scene.read(os.path.join(folder, "subset.bgs"))
@@ -119,8 +123,8 @@ def run_scene(work, name, cells_list, rays, method, threads):
     random_normals = rng.normal(size=(100_000, 3)).astype(numpy.float32)
     rows = []
     for cells in cells_list:
-        grid, seconds, report = bake_grid(scene, bounds, cells, rays, method, threads)
-        row = {"scene": name, "method": method, "cells_on_longest_axis": cells,
+        grid, seconds, report = bake_grid(scene, bounds, cells, rays, method, threads, pad)
+        row = {"scene": name, "method": method, "cells_on_longest_axis": cells, "pad_cells": pad,
                "rays_per_hemisphere": rays, "seconds": seconds, "rays": report.get("rays"),
                "grid": grid.info(), "reference_noise": noise}
         for interpolation in ("TRILINEAR", "TRICUBIC"):
@@ -197,12 +201,12 @@ def direct_without_lamps(folder, points, samples, seed):
     return values
 
 
-def run_page_light(work, name, cells_list, rays, method, threads, samples):
+def run_page_light(work, name, cells_list, rays, method, threads, samples, pad=0.0):
     """What the web page draws besides its lamps, against the truth: the reference's indirect
     light plus the direct light of the world and emitters (the "direct" method without the
-    lamps, two seeds, their difference giving its noise), read as the page reads the grid (trilinear,
-    n^2 weights, no visibility): the bounced light alone (the page before the grid carried
-    the emitted light) and with the emitted light (now)."""
+    lamps, two seeds, their difference giving its noise), read as the page reads the grid
+    (trilinear, n^2 weights, no visibility): the bounced light alone (the page before the
+    grid carried the emitted light) and with the emitted light (now)."""
     folder = os.path.join(work, name, "corner")
     scene, _ = native.Scene.read(os.path.join(folder, "scene.bgs"))
     _, subset = native.Scene.read(os.path.join(folder, "subset.bgs"))
@@ -223,20 +227,22 @@ def run_page_light(work, name, cells_list, rays, method, threads, samples):
                                     direct_noise) / truth_mean)
     rows = []
     for cells in cells_list:
-        grid, seconds, _ = bake_grid(scene, tuple(scene.bounds()), cells, rays, method, threads)
+        grid, seconds, _ = bake_grid(scene, tuple(scene.bounds()), cells, rays, method, threads,
+                                     pad)
         page_grid, has_emitted = grid.with_emitted_light()
         bounced = grid.evaluate(positions, normals).astype(numpy.float64)
         page = page_grid.evaluate(positions, normals).astype(numpy.float64)
         row = {"scene": name, "kind": "page_light", "method": method,
                "cells_on_longest_axis": cells, "rays_per_hemisphere": rays, "seconds": seconds,
-               "grid": grid.info(), "has_emitted": has_emitted,
+               "pad_cells": pad, "grid": grid.info(), "has_emitted": has_emitted,
                "direct_samples": samples, "direct_seconds": direct_seconds,
                "direct_share": direct_mean / truth_mean if truth_mean > 0 else 0.0,
                "reference_noise": truth_noise,
                "bounced_only": figures(bounced, truth, truth_noise),
                "with_emitted": figures(page, truth, truth_noise),
-               "emitted_against_direct": (figures(page - bounced, direct, direct_noise / direct_mean)
-                                          if direct_mean > 0 else None)}
+               "emitted_against_direct": (
+                   figures(page - bounced, direct, direct_noise / direct_mean)
+                   if direct_mean > 0 else None)}
         grid.close()
         page_grid.close()
         print(json.dumps({k: row[k] for k in ("scene", "cells_on_longest_axis", "direct_share",
@@ -259,6 +265,8 @@ def main():
     parser.add_argument("--page-light", action="store_true",
                         help="measure what the web page draws besides its lamps instead")
     parser.add_argument("--direct-samples", type=int, default=4096)
+    parser.add_argument("--pad-cells", type=float, default=0.0,
+                        help="widen the grid's box by this many cells on every side")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
     rows = []
@@ -266,16 +274,17 @@ def main():
         cells = [int(c) for c in args.cells.split(",")]
         if args.page_light:
             rows += run_page_light(args.work, name, cells, args.rays, args.method, args.threads,
-                                   args.direct_samples)
+                                   args.direct_samples, args.pad_cells)
         else:
-            rows += run_scene(args.work, name, cells, args.rays, args.method, args.threads)
+            rows += run_scene(args.work, name, cells, args.rays, args.method, args.threads,
+                              args.pad_cells)
     previous = []
     if os.path.exists(args.out):
         with open(args.out) as f:
             previous = json.load(f).get("runs", [])
     def key(r):
         return (r["scene"], r.get("kind", ""), r["method"], r["cells_on_longest_axis"],
-                r["rays_per_hemisphere"])
+                r["rays_per_hemisphere"], r.get("pad_cells", 0.0))
     keep = [r for r in previous if key(r) not in {key(r) for r in rows}]
     with open(args.out, "w") as f:
         json.dump({"command": " ".join(sys.argv), "runs": keep + rows}, f, indent=1)
