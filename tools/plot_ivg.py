@@ -22,7 +22,9 @@ def main():
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
     with open(args.sweep) as f:
-        runs = [r for r in json.load(f)["runs"] if r["scene"] == args.scene]
+        # The scene's own box (rows of a widened box, --pad-cells, are apart).
+        runs = [r for r in json.load(f)["runs"]
+                if r["scene"] == args.scene and not r.get("pad_cells")]
     fig, (error_axes, time_axes) = plt.subplots(1, 2, figsize=(10, 4))
     for rays in sorted({r["rays_per_hemisphere"] for r in runs}):
         rows = sorted((r for r in runs if r["rays_per_hemisphere"] == rays),
