@@ -201,7 +201,8 @@ def direct_without_lamps(folder, points, samples, seed):
     return values
 
 
-def run_page_light(work, name, cells_list, rays, method, threads, samples, pad=0.0):
+def run_page_light(work, name, cells_list, rays, method, threads, samples, pad=0.0,
+                   normal_offsets=()):
     """What the web page draws besides its lamps, against the truth: the reference's indirect
     light plus the direct light of the world and emitters (the "direct" method without the
     lamps, two seeds, their difference giving its noise), read as the page reads the grid
@@ -243,6 +244,17 @@ def run_page_light(work, name, cells_list, rays, method, threads, samples, pad=0
                "emitted_against_direct": (
                    figures(page - bounced, direct, direct_noise / direct_mean)
                    if direct_mean > 0 else None)}
+        # The page's reading moved along the normal by a fraction of a cell (away from the
+        # vertices behind the surface): against the bounced reference and the page's truth.
+        cell = max(h - l for l, h in zip(*scene.bounds())) / cells
+        row["normal_offsets"] = {}
+        for offset in normal_offsets:
+            moved = positions + offset * cell * normals
+            row["normal_offsets"][str(offset)] = {
+                "bounced_only": figures(grid.evaluate(moved, normals).astype(numpy.float64),
+                                        reference, noise),
+                "with_emitted": figures(page_grid.evaluate(moved, normals).astype(numpy.float64),
+                                        truth, truth_noise)}
         grid.close()
         page_grid.close()
         print(json.dumps({k: row[k] for k in ("scene", "cells_on_longest_axis", "direct_share",
@@ -265,6 +277,9 @@ def main():
     parser.add_argument("--page-light", action="store_true",
                         help="measure what the web page draws besides its lamps instead")
     parser.add_argument("--direct-samples", type=int, default=4096)
+    parser.add_argument("--normal-offsets", default="",
+                        help="--page-light: also read the grid this many cells along the "
+                        "normal (comma-separated)")
     parser.add_argument("--pad-cells", type=float, default=0.0,
                         help="widen the grid's box by this many cells on every side")
     parser.add_argument("--out", required=True)
@@ -274,7 +289,8 @@ def main():
         cells = [int(c) for c in args.cells.split(",")]
         if args.page_light:
             rows += run_page_light(args.work, name, cells, args.rays, args.method, args.threads,
-                                   args.direct_samples, args.pad_cells)
+                                   args.direct_samples, args.pad_cells,
+                                   [float(o) for o in args.normal_offsets.split(",") if o])
         else:
             rows += run_scene(args.work, name, cells, args.rays, args.method, args.threads,
                               args.pad_cells)
