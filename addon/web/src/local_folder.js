@@ -28,6 +28,12 @@ export function readGridFile(buffer) {
   const view = new DataView(buffer);
   const magic = new TextDecoder().decode(new Uint8Array(buffer, 0, 6));
   if (magic !== "BAKEGI" || view.getUint8(7) !== "V".charCodeAt(0)) throw new Error("not a .bgivg grid file");
+  // Version 2 keeps the sky's and emitters' light apart (a bake's own file); Export for Web
+  // writes the page's grid, their sum, as version 1.
+  if (view.getUint32(8, true) !== 1) {
+    throw new Error("this grid file is a bake's own (version " + view.getUint32(8, true) +
+      "): write the folder with Export for Web, which adds its sky and emitters' light");
+  }
   let offset = 24;
   const f32 = () => { const v = view.getFloat32(offset, true); offset += 4; return v; };
   const u32 = () => { const v = view.getUint32(offset, true); offset += 4; return v; };
