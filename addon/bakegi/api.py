@@ -195,8 +195,8 @@ def export_web(folder=None, path=None, context=None):
     grid file (default: the scene's newest grid; None and no grid: the page shows direct
     light only). `bakegi serve FOLDER` streams it to a browser (docs/ivg.md). Returns a
     report: folder, files, bytes per file, camera (whether the scene's was written),
-    seconds, serve (the command), warnings (light the page does not draw directly: the
-    world's, emissive surfaces')."""
+    seconds, serve (the command), warnings (how the page draws the world's and emissive
+    surfaces' light: from the grid, soft, when the grid carries it; else only its bounce)."""
     from .write import web_scene
     context = _context(context)
     if path is None:

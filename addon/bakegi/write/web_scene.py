@@ -51,7 +51,7 @@ def page_available():
 
 def export_web(context, folder, grid_path):
     """Writes the folder; returns a report (folder, files, bytes, seconds, camera, warnings:
-    the scene's light the page does not draw directly, lighting_notes). Raises
+    how the page draws the scene's light other than its lamps, lighting_notes). Raises
     BakeGIError naming what is missing; the Blender data is not changed."""
     if not page_available():
         raise native.BakeGIError(
