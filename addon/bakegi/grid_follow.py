@@ -51,11 +51,14 @@ def _matrix(obj):
     return tuple(round(x, 6) for row in obj.matrix_world for x in row)
 
 
+IN_EDIT_MODE = "in Edit Mode"  # a shape not settled yet: whatever it becomes is a change
+
+
 def _shape(obj, depsgraph):
     """The evaluated mesh's face count and a hash of its vertex positions (a millisecond for
-    100k vertices), or None for an object in Edit Mode (its shape is not settled yet)."""
+    100k vertices), or IN_EDIT_MODE (the edit mesh, not the object's data, holds its shape)."""
     if obj.mode == "EDIT":
-        return None
+        return IN_EDIT_MODE
     mesh = obj.evaluated_get(depsgraph).data
     positions = numpy.empty(3 * len(mesh.vertices), numpy.float32)
     mesh.vertices.foreach_get("co", positions)
@@ -67,9 +70,11 @@ def remember(scene, objects, options):
     stand, with these options (they replace the scene's earlier ones)."""
     state = _states.get(scene.name)
     if state is None or state.options != options:
-        previous = state.matrices if state is not None else {}
+        previous = state
         state = _states[scene.name] = FollowState(options)
-        state.matrices.update(previous)
+        if previous is not None:  # the objects lit before stay followed, as they were lit
+            state.matrices.update(previous.matrices)
+            state.shapes.update(previous.shapes)
     depsgraph = bpy.context.evaluated_depsgraph_get()
     for obj in objects:
         state.matrices[obj.name] = _matrix(obj)
@@ -119,12 +124,10 @@ def moved_objects(scene, depsgraph=None, reshaped=None):
             moved.add(name)
         elif depsgraph is not None and (reshaped is None or name in reshaped):
             shape = _shape(obj, depsgraph)
-            if shape is None:
-                continue  # in Edit Mode: judged when it leaves
-            if state.shapes.get(name) is None:
-                state.shapes[name] = shape  # after undo, or lit in Edit Mode: as it is now
-            elif shape != state.shapes[name]:
-                moved.add(name)
+            if shape == IN_EDIT_MODE:
+                continue  # judged when it leaves Edit Mode
+            if shape != state.shapes.get(name):
+                moved.add(name)  # lit in Edit Mode counts as changed: re-applied once
     return moved
 
 
@@ -161,11 +164,12 @@ def on_undo_redo(scene, *_args):
     state = _states.get(scene.name) if scene is not None else None
     if state is None:
         return
+    depsgraph = bpy.context.evaluated_depsgraph_get()
     for name in list(state.matrices):
         obj = scene.objects.get(name)
         if obj is not None:
             state.matrices[name] = _matrix(obj)
-            state.shapes[name] = None  # taken as it is at the next look
+            state.shapes[name] = _shape(obj, depsgraph)
     state.pending.clear()
     _last_seen.pop(scene.name, None)
 
