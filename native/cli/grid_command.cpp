@@ -151,10 +151,8 @@ int run_grid_info(const std::vector<std::string>& words) {
               info.resolution[2], static_cast<unsigned long long>(info.vertex_count));
   std::printf("inside:     %llu vertices inside geometry (filled from their neighbours)\n",
               static_cast<unsigned long long>(info.invalid_vertices));
-  bakegi_grid* page = nullptr;
   int has_emitted = 0;
-  check(bakegi_grid_with_emitted_light(grid.get(), &page, &has_emitted), "the grid's components");
-  bakegi_grid_destroy(page);
+  check(bakegi_grid_with_emitted_light(grid.get(), nullptr, &has_emitted), "the grid's components");
   std::printf("emitted:    %s\n", has_emitted ? "the world's and emitters' direct light, kept apart"
                                               : "none (no world or emitters, or an older grid)");
   std::printf("made by:    %s\n", grid_info_json(grid.get()).c_str());

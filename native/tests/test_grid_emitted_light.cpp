@@ -76,6 +76,9 @@ TEST(GridEmittedLight, ThePagesGridAddsItToTheBouncedLight) {
   ASSERT_EQ(bakegi_grid_with_emitted_light(page.get(), &again_raw, &has_emitted), BAKEGI_OK);
   const GridHandle again(again_raw);
   EXPECT_EQ(has_emitted, 0);
+  // Asked alone (no copy): the baked grid holds emitted light.
+  EXPECT_EQ(bakegi_grid_with_emitted_light(baked.get(), nullptr, &has_emitted), BAKEGI_OK);
+  EXPECT_EQ(has_emitted, 1);
   EXPECT_EQ(bakegi_grid_with_emitted_light(nullptr, &page_raw, nullptr),
             BAKEGI_ERROR_INVALID_ARGUMENT);
 }

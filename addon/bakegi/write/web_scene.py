@@ -79,22 +79,6 @@ def export_web(context, folder, grid_path):
 
 
 def lighting_notes(gltf):
-    """How the page draws the scene's light other than its lamps (the page says the same,
-    addon/web/src/gltf_scene.js): the world's and emissive surfaces' direct light comes from
-    the grid when the grid carries it (grid_has_emitted_light: soft, no sharp shadows), else
-    only their bounce reaches the page."""
-    notes = []
-    bakegi = gltf.get("extras", {}).get("bakegi", {})
-    from_grid = bakegi.get("grid_has_emitted_light") is True
-    if max(bakegi.get("world_radiance", [0, 0, 0])) > 0:
-        notes.append("the world (sky) lights this scene: on the web page its direct light comes "
-                     "from the grid, soft and without sharp shadows" if from_grid else
-                     "the world (sky) lights this scene: the web page shows its light once "
-                     "bounced (the grid), not its direct light")
-    if any(max(m.get("extras", {}).get("emission_radiance", [0, 0, 0])) > 0
-           for m in gltf.get("materials", [])):
-        notes.append("emissive surfaces light this scene: on the web page their direct light "
-                     "comes from the grid, soft and without sharp shadows" if from_grid else
-                     "emissive surfaces glow on the web page but their direct light on others "
-                     "is not drawn there, only its bounce (the grid)")
-    return notes
+    """How the page draws the scene's light other than its lamps: the notes the exporter wrote
+    into the glTF (native/src/web/gltf_export.cpp), which the page shows too."""
+    return list(gltf.get("extras", {}).get("bakegi", {}).get("notes", []))

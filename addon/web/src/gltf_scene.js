@@ -92,28 +92,10 @@ function castShadows(light, holder, bounds) {
   camera.updateProjectionMatrix();
 }
 
-// How the page draws light the glTF's lamps do not carry, said rather than drawn wrong. It
-// draws the lamps (point, spot, sun, area) directly. Light straight from the world (the sky
-// through a window) and from emissive surfaces needs visibility the page does not have: when
-// the grid carries it (grid_has_emitted_light, IrradianceVectorGrid::emitted) the page draws
-// it from the grid, soft and without sharp shadows; an older grid holds only its bounce.
-// addon/bakegi/write/web_scene.py says the same to Blender.
+// How the page draws light the glTF's lamps do not carry (the sky's, emitters'): the notes the
+// exporter wrote (native/src/web/gltf_export.cpp), which Export for Web returns as warnings.
 export function lightingNotes(gltf) {
-  const notes = [];
-  const bakegi = gltf.extras?.bakegi ?? {};
-  const fromGrid = bakegi.grid_has_emitted_light === true;
-  const world = bakegi.world_radiance ?? [0, 0, 0];
-  if (Math.max(...world) > 0) {
-    notes.push(fromGrid
-      ? "the world (sky) lights this scene: its direct light comes from the grid, soft and without sharp shadows"
-      : "the world (sky) lights this scene: the page shows its light once bounced (the grid), not its direct light");
-  }
-  if ((gltf.materials ?? []).some((m) => Math.max(...(m.extras?.emission_radiance ?? [0, 0, 0])) > 0)) {
-    notes.push(fromGrid
-      ? "emissive surfaces light this scene: their direct light comes from the grid, soft and without sharp shadows"
-      : "emissive surfaces glow but their direct light on others is not drawn here, only its bounce (the grid)");
-  }
-  return notes;
+  return gltf.extras?.bakegi?.notes ?? [];
 }
 
 export function makeLights(gltf) {

@@ -638,7 +638,7 @@ BAKEGI_API bakegi_status bakegi_grid_get_info_json(const bakegi_grid* grid, char
  * world's and emissive surfaces' direct light, gathered with the grid when the scene has
  * either, and kept in its file), so that bakegi_grid_evaluate reads what the page draws
  * besides its lamps. *out_has_emitted (may be NULL): 1 if `grid` holds emitted light, else 0
- * (and the new grid equals it). */
+ * (and the new grid equals it). out_grid NULL: only the question is answered (no copy). */
 BAKEGI_API bakegi_status bakegi_grid_with_emitted_light(const bakegi_grid* grid,
                                                         bakegi_grid** out_grid,
                                                         int* out_has_emitted);

@@ -115,6 +115,28 @@ struct Primitive {
   std::vector<uint32_t> triangles;  // of the mesh
 };
 
+// How the page draws the light its lamps do not carry, said on the page (its status line) and
+// by Export for Web (its warnings): the world's and emitters' direct light needs visibility
+// the page lacks, so it comes from the grid when the grid carries it (soft), else only its
+// bounce reaches the page.
+std::vector<std::string> lighting_notes(const SceneDescription& scene, bool from_grid) {
+  std::vector<std::string> notes;
+  if (std::max({scene.world_radiance.x, scene.world_radiance.y, scene.world_radiance.z}) > 0.0f) {
+    notes.push_back(from_grid ? "the world (sky) lights this scene: on the web page its direct "
+                                "light comes from the grid, soft and without sharp shadows"
+                              : "the world (sky) lights this scene: the web page shows its light "
+                                "once bounced (the grid), not its direct light");
+  }
+  if (std::any_of(scene.materials.begin(), scene.materials.end(),
+                  [](const Material& m) { return m.is_emissive(); })) {
+    notes.push_back(from_grid ? "emissive surfaces light this scene: on the web page their direct "
+                                "light comes from the grid, soft and without sharp shadows"
+                              : "emissive surfaces glow on the web page but their direct light on "
+                                "others is not drawn there, only its bounce (the grid)");
+  }
+  return notes;
+}
+
 std::string join(const std::vector<std::string>& items) {
   std::string s;
   for (size_t i = 0; i < items.size(); ++i) {
@@ -342,10 +364,14 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
   if (!buffer.bin.empty()) {
     json << ",\"buffers\":[{\"uri\":\"scene.bin\",\"byteLength\":" << buffer.bin.size() << "}]";
   }
+  std::vector<std::string> quoted_notes;
+  for (const std::string& note : lighting_notes(scene, options.grid_has_emitted_light)) {
+    quoted_notes.push_back(json_quote(note));
+  }
   json << ",\"extras\":{\"bakegi\":{\"grid\":"
        << (options.grid_file.empty() ? std::string("null") : json_quote(options.grid_file))
        << ",\"grid_has_emitted_light\":" << (options.grid_has_emitted_light ? "true" : "false")
-       << ",\"area_lights\":[" << join(area_lights)
+       << ",\"notes\":[" << join(quoted_notes) << "],\"area_lights\":[" << join(area_lights)
        << "],\"world_radiance\":" << vec3(scene.world_radiance)
        << ",\"units\":\"radiance W/(m^2 sr); point and spot "
        << "intensity W/sr; sun irradiance W/m^2\"}}}";
