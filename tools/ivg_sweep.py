@@ -149,6 +149,13 @@ def run_scene(work, name, cells_list, rays, method, threads, pad=0.0):
             row[key] = figures(values.astype(numpy.float64), reference, noise)
             row[key]["unsure_points"] = int(numpy.count_nonzero(codes == 1))
             row[key]["seconds"] = time.perf_counter() - start
+        # As the web page reads it: the visibility volume of the web export instead of rays
+        # from each point (grid_visibility_volume.h), buried points not darkened.
+        start = time.perf_counter()
+        values, codes = grid.evaluate_in_scene(scene, positions, normals, page_visibility=True)
+        row["page_visibility"] = figures(values.astype(numpy.float64), reference, noise)
+        row["page_visibility"]["unsure_points"] = int(numpy.count_nonzero(codes == 1))
+        row["page_visibility"]["seconds"] = time.perf_counter() - start
         f_values = grid.evaluate(positions, normals).astype(numpy.float64)
         lit = metrics.luminance(reference) > 0.01 * numpy.mean(metrics.luminance(reference))
         row["file_bytes"] = {}
@@ -241,6 +248,11 @@ def run_page_light(work, name, cells_list, rays, method, threads, samples, pad=0
                "reference_noise": truth_noise,
                "bounced_only": figures(bounced, truth, truth_noise),
                "with_emitted": figures(page, truth, truth_noise),
+               # The page since it reads the visibility volume of the web export.
+               "with_emitted_visibility": figures(
+                   page_grid.evaluate_in_scene(scene, positions, normals,
+                                               page_visibility=True)[0].astype(numpy.float64),
+                   truth, truth_noise),
                "emitted_against_direct": (
                    figures(page - bounced, direct, direct_noise / direct_mean)
                    if direct_mean > 0 else None)}

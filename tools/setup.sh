@@ -11,7 +11,7 @@ build_dir=${BAKEGI_BUILD_DIR:-build}
 
 packages=(cmake ninja-build g++ pkg-config
           libembree-dev libglm-dev libtbb-dev libopenexr-dev libeigen3-dev libboost-dev
-          libmeshoptimizer-dev libcpp-httplib-dev libstb-dev
+          libmeshoptimizer-dev libcpp-httplib-dev libstb-dev zlib1g-dev
           googletest libgtest-dev libgmock-dev libbenchmark-dev
           clang  # libFuzzer (.ci/fuzz)
           blender python3 python3-numpy python3-matplotlib python3-venv python3-pytest xvfb xauth

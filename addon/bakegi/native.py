@@ -864,10 +864,13 @@ class Grid(_Handle):
         return out
 
     def evaluate_in_scene(self, scene, positions, normals, interpolation="TRILINEAR",
-                          directional="SQUARED", visibility=True, darken_buried=True):
+                          directional="SQUARED", visibility=True, darken_buried=True,
+                          page_visibility=False):
         """evaluate() where `scene` is known: each point reads only the grid vertices it sees
         (visibility) and points inside or under geometry read 0 (darken_buried). Returns
-        ((n, 3) float32, (n,) uint8 codes: 0 read, 1 unsure (saw no vertex), 2 buried)."""
+        ((n, 3) float32, (n,) uint8 codes: 0 read, 1 unsure (saw no vertex), 2 buried).
+        page_visibility: read as the web page does instead (the visibility volume the web
+        export writes, no rays from the points; trilinear, the other two flags off)."""
         self._check_lookup(interpolation, directional)
         p = _floats(positions, 3, "positions")
         n = _floats(normals, 3, "normals")
@@ -876,7 +879,7 @@ class Grid(_Handle):
                               f"{len(p)} positions but {len(n)} normals")
         out = np.empty((len(p), 3), np.float32)
         codes = np.zeros(len(p), np.uint8)
-        flags = (1 if visibility else 0) | (2 if darken_buried else 0)
+        flags = 4 if page_visibility else (1 if visibility else 0) | (2 if darken_buried else 0)
         _check(load_library().bakegi_grid_evaluate_in_scene(
             self.handle, scene.handle, _fptr(p), _fptr(n), len(p),
             GRID_INTERPOLATION[interpolation], GRID_DIRECTIONAL[directional], flags, _fptr(out),

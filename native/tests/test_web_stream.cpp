@@ -15,9 +15,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "api/handles.h"
 #include "capi_test_scene.h"
+#include "grid/grid_visibility_volume.h"
 #include "test_meshes.h"
 #include "util/error.h"
+#include "util/file_bytes.h"
 #include "web/grid_stream_order.h"
 #include "web/progressive_mesh.h"
 
@@ -162,6 +165,31 @@ TEST(WebExport, WritesAGltfWithItsBufferAndTheGrid) {
   bakegi_grid* read = nullptr;
   ASSERT_EQ(bakegi_grid_read_file((folder / "grid.bgivg").string().c_str(), &read), BAKEGI_OK);
   bakegi_grid_destroy(read);
+  // The page's visibility volume beside it, named in the glTF, for the grid's 4^3 vertices.
+  EXPECT_NE(json.find("\"grid_visibility\":\"grid_visibility.bin\""), std::string::npos);
+  const std::vector<uint8_t> visibility =
+      read_file_bytes(folder / "grid_visibility.bin", uint64_t(1) << 20);
+  EXPECT_EQ(decode_visibility_file(visibility, grid_of(grid.get()).layout).subvoxel_count(),
+            8u * 8u * 8u);
+  // Read through the C API as the page reads it; the flag stands alone.
+  const float position[3] = {0.5f, 0.5f, 0.0f}, normal[3] = {0, 0, 1};
+  float rgb[3];
+  uint8_t code = 9;
+  EXPECT_EQ(bakegi_grid_evaluate_in_scene(grid.get(), scene.get(), position, normal, 1,
+                                          BAKEGI_GRID_TRILINEAR, BAKEGI_GRID_SQUARED,
+                                          BAKEGI_GRID_PAGE_VISIBILITY, rgb, &code),
+            BAKEGI_OK)
+      << bakegi_last_error();
+  EXPECT_EQ(code, 1);  // the grid was never baked: every vertex invalid, none seen
+  EXPECT_EQ(bakegi_grid_evaluate_in_scene(grid.get(), scene.get(), position, normal, 1,
+                                          BAKEGI_GRID_TRILINEAR, BAKEGI_GRID_SQUARED,
+                                          BAKEGI_GRID_PAGE_VISIBILITY | BAKEGI_GRID_VISIBILITY, rgb,
+                                          &code),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bakegi_grid_evaluate_in_scene(grid.get(), scene.get(), position, normal, 1,
+                                          BAKEGI_GRID_TRICUBIC, BAKEGI_GRID_SQUARED,
+                                          BAKEGI_GRID_PAGE_VISIBILITY, rgb, &code),
+            BAKEGI_ERROR_INVALID_ARGUMENT);
 
   // The stream helpers: a permutation, and vertices encoded as the file holds them.
   std::vector<uint32_t> order(4 * 4 * 4);

@@ -609,10 +609,15 @@ typedef enum bakegi_grid_encoding {
  * bakegi_points_flag_inside finds them, 32 rays) read 0, as a bake sees them. out_codes (may
  * be NULL): per point 0 = read, 1 = unsure (it saw no grid vertex near it: 0 written; a face
  * outside the grid's rooms, or a grid too coarse for the place), 2 = buried. The scene is validated
- * and its BVH built (the cost of a bake's first step). */
+ * and its BVH built (the cost of a bake's first step).
+ * BAKEGI_GRID_PAGE_VISIBILITY (alone, trilinear) reads as the web page does, without rays
+ * from the points: from the visibility volume bakegi_web_export writes beside the grid
+ * (native/src/grid/grid_visibility_volume.h), built here over the scene; code 1 where it
+ * reads 0 for a point that sees no vertex. */
 typedef enum bakegi_grid_scene_flags {
   BAKEGI_GRID_VISIBILITY = 1,
-  BAKEGI_GRID_DARKEN_BURIED = 2
+  BAKEGI_GRID_DARKEN_BURIED = 2,
+  BAKEGI_GRID_PAGE_VISIBILITY = 4
 } bakegi_grid_scene_flags;
 BAKEGI_API bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid,
                                                        const bakegi_scene* scene,

@@ -10,6 +10,7 @@
 #include "grid/grid_file.h"
 #include "grid/grid_interpolation.h"
 #include "grid/grid_visibility.h"
+#include "grid/grid_visibility_volume.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "util/file_bytes.h"
@@ -157,8 +158,14 @@ bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid, const bakeg
     const bakegi::IrradianceVectorGrid& g = grid_of(grid);
     require(scene, "scene");
     check_lookup(interpolation, directional);
-    if (flags & ~uint32_t(BAKEGI_GRID_VISIBILITY | BAKEGI_GRID_DARKEN_BURIED)) {
+    if (flags & ~uint32_t(BAKEGI_GRID_VISIBILITY | BAKEGI_GRID_DARKEN_BURIED |
+                          BAKEGI_GRID_PAGE_VISIBILITY)) {
       throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "unknown flags " + std::to_string(flags));
+    }
+    if ((flags & BAKEGI_GRID_PAGE_VISIBILITY) &&
+        (flags != BAKEGI_GRID_PAGE_VISIBILITY || interpolation != BAKEGI_GRID_TRILINEAR)) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "the page's visibility is read alone (no other flag), trilinearly");
     }
     if (count == 0) return;
     require(positions, "positions");
@@ -167,6 +174,17 @@ bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid, const bakeg
     check_count(count);
     const bakegi::Scene built = bakegi::build_scene(scene->description);
     const bakegi::RayTracer tracer(built);
+    if (flags & BAKEGI_GRID_PAGE_VISIBILITY) {
+      const bakegi::GridVisibilityVolume volume = bakegi::build_grid_visibility_volume(
+          g, built, tracer, bakegi::kPageVisibilitySubdivision);
+      bakegi::evaluate_grid_with_volume(
+          g, volume, std::span<const glm::vec3>(as_vec3(positions), count),
+          std::span<const glm::vec3>(as_vec3(normals), count),
+          bakegi::GridDirectionalWeights(directional),
+          std::span<glm::vec3>(reinterpret_cast<glm::vec3*>(out_rgb), count),
+          out_codes ? std::span<uint8_t>(out_codes, count) : std::span<uint8_t>());
+      return;
+    }
     bakegi::GridSceneLookup lookup;
     lookup.interpolation = bakegi::GridInterpolation(interpolation);
     lookup.weights = bakegi::GridDirectionalWeights(directional);

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "api/api_guard.h"
 #include "api/handles.h"
 #include "grid/grid_file.h"
 #include "grid/grid_quantization.h"
+#include "grid/grid_visibility_volume.h"
+#include "scene/ray_tracer.h"
+#include "scene/scene_validation.h"
 #include "util/file_bytes.h"
 #include "web/gltf_export.h"
 #include "web/grid_stream_order.h"
@@ -15,6 +19,23 @@
 using bakegi::Error;
 using bakegi::guarded;
 using bakegi::require;
+
+namespace {
+
+// The scene flattened for rays only (its light is never read: a white world makes a scene
+// exported without its lamps buildable); none for one build_scene refuses (no triangles).
+std::optional<bakegi::Scene> scene_for_rays(const bakegi::SceneDescription& description) {
+  bakegi::SceneDescription lit = description;
+  lit.world_radiance = glm::vec3(1.0f);
+  try {
+    return bakegi::build_scene(lit);
+  } catch (const Error& e) {
+    if (e.status() == BAKEGI_ERROR_INVALID_SCENE) return std::nullopt;
+    throw;
+  }
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -55,6 +76,15 @@ bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* gr
       const std::vector<uint8_t> bytes =
           bakegi::encode_grid_file(page_grid, bakegi::GridEncoding::kQuantized, grid->info_json);
       bakegi::write_file_atomically(root / options.grid_file, bytes);
+      // What each place sees of the grid, so that the page does not read through walls.
+      if (const std::optional<bakegi::Scene> built = scene_for_rays(scene->description)) {
+        const bakegi::RayTracer tracer(*built);
+        const bakegi::GridVisibilityVolume volume = bakegi::build_grid_visibility_volume(
+            page_grid, *built, tracer, bakegi::kPageVisibilitySubdivision);
+        options.grid_visibility_file = "grid_visibility.bin";
+        bakegi::write_file_atomically(root / options.grid_visibility_file,
+                                      bakegi::encode_visibility_file(volume, page_grid.layout));
+      }
     }
     const bakegi::WebGltf gltf = bakegi::encode_web_gltf(scene->description, options);
     bakegi::write_file_atomically(root / "scene.bin", gltf.bin);

@@ -370,6 +370,9 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
   }
   json << ",\"extras\":{\"bakegi\":{\"grid\":"
        << (options.grid_file.empty() ? std::string("null") : json_quote(options.grid_file))
+       << ",\"grid_visibility\":"
+       << (options.grid_visibility_file.empty() ? std::string("null")
+                                                : json_quote(options.grid_visibility_file))
        << ",\"grid_has_emitted_light\":" << (options.grid_has_emitted_light ? "true" : "false")
        << ",\"notes\":[" << join(quoted_notes) << "],\"area_lights\":[" << join(area_lights)
        << "],\"world_radiance\":" << vec3(scene.world_radiance)

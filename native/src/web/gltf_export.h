@@ -37,6 +37,9 @@ struct WebExportOptions {
   bool has_camera = false;
   WebCamera camera;
   std::string grid_file;  // the grid's file name beside scene.gltf ("" = none)
+  // Which grid vertices each place sees (grid/grid_visibility_volume.h), beside scene.gltf
+  // ("" = none: the page reads the grid as the paper does, through thin walls).
+  std::string grid_visibility_file;
   // The grid holds the light straight from the world and emitters as well as the bounced
   // light (IrradianceVectorGrid::emitted, added in): the page draws them from it.
   bool grid_has_emitted_light = false;
