@@ -8,9 +8,9 @@ import json
 import os
 import struct
 import subprocess
-import time
 import urllib.error
 import urllib.request
+import zlib
 
 import numpy as np
 import pytest
@@ -115,6 +115,17 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
             grid_seen.extend(struct.unpack_from(f"<{entries}I", data, 12))
             assert len(data) == 12 + 4 * entries + 42 * entries
             continue
+        if kind == 3:
+            # The page's visibility volume: the export's file, whose codes inflate to two bytes
+            # per subvoxel of the grid's cells cut in 2 x 2 x 2.
+            visibility = (folder / gltf["extras"]["bakegi"]["grid_visibility"]).read_bytes()
+            assert data[8:8 + entries] == visibility and len(data) == (8 + entries + 3) // 4 * 4
+            assert visibility[:8] == b"BGIVIS1\0"
+            subdivision, sx, sy, sz = struct.unpack_from("<4I", visibility, 8)
+            resolution = manifest["grid"]["resolution"]
+            assert subdivision == 2 and [sx, sy, sz] == [2 * r for r in resolution]
+            assert len(zlib.decompress(visibility[44:])) == 2 * sx * sy * sz
+            continue
         offset = 8
         for _ in range(entries):
             index, first, n, has_normals, has_uvs, face_count, lookups = struct.unpack_from(
@@ -144,7 +155,10 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
                 assert len(corners) == 3, face  # valid when it arrives
             faces.extend(new_faces.tolist())
         assert offset == len(data)
-    assert kinds[:2] == [1, 2]  # grid corners first, then geometry, interleaved
+    # The grid's corners first, then geometry, interleaved, the visibility volume right after
+    # the corners.
+    assert kinds[:3] == [1, 2, 3] and kinds.count(3) == 1
+    assert manifest["grid"]["visibility"] is True
     # The geometry in the end: the glTF's vertices and faces, in its order.
     accessors, views = gltf["accessors"], gltf["bufferViews"]
     prim = gltf["meshes"][0]["primitives"][0]

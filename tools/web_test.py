@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The web page tested for real (issue 16, item 7): Blender builds the Cornell box, bakes a
 grid with bakegi, writes the web folder (Export for Web) and renders the reference: the same
-camera, BakeGI_Indirect from that grid read as the page reads it (the paper's reading: no
-visibility test, n^2 weights, trilinear), shown flat by Workbench with the Standard view
+camera, BakeGI_Indirect from that grid as Apply Grid reads it (each point reads the grid vertices
+its rays see, which the page approximates with the export's visibility volume; n^2 weights,
+trilinear), shown flat by Workbench with the Standard view
 transform. Then addon/web/test/run.mjs streams the folder with `bakegi serve` into Debian's
 Chromium (playwright-core) and checks the page against it. A second scene (a box on a floor
 under a sun 45 degrees from the zenith) checks the page's shadows and the sun's direction: a
@@ -42,7 +43,7 @@ report = bakegi.bake(target="GRID", method="pathtrace", grid_cell_size=2.0 / {ce
 print("grid", report["grid"]["path"], report["grid"]["resolution"], flush=True)
 print("web", bakegi.export_web({site!r}), flush=True)
 bakegi.apply_grid("VISIBLE", interpolation="TRILINEAR", directional="SQUARED",
-                  visibility=False, darken_buried=False, hook_materials=False)
+                  visibility=True, darken_buried=True, hook_materials=False)
 for obj in scene.objects:
     if obj.type == "MESH":
         attributes = obj.data.color_attributes
@@ -84,6 +85,10 @@ area.location = (2.0, -1.5, 0.5)
 scene.collection.objects.link(area)
 # A textured tile in the sun: a 2 x 1 image, red on its left half, blue on its right (u from 0
 # to 1 along +x), so that the page must carry the texture through glTF to show both.
+# A wall 6 cm thin, 0.6 m high, across the sun (its -x face sunlit, its +x face towards the
+# camera), far thinner than the grid's 0.5 m cells: it stands 5 cm inside the cell whose
+# vertices lie at x = -1.75 (its sunlit side) and -1.25 (its shaded side).
+bpy.ops.mesh.primitive_cube_add(size=1.0, location=(-1.7, -1.5, 0.3), scale=(0.06, 2.0, 0.6))
 bpy.ops.mesh.primitive_plane_add(size=0.8, location=(-1.5, 1.5, 0.01))
 image = bpy.data.images.new("Tile", 2, 1)
 image.pixels = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0]
@@ -127,7 +132,8 @@ print("web", bakegi.export_web({site!r}), flush=True)
 json.dump({{"sky": 0.02, "sky_floor": [-2.25, 0.0, -2.25],
            "shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0],
            "red": [-1.7, 0.01, -1.5], "blue": [-1.3, 0.01, -1.5],
-           "area_shadowed": [1.15, 0.0, 1.5], "area_lit": [2.5, 0.0, 1.5]}}, open({points!r}, "w"))
+           "area_shadowed": [1.15, 0.0, 1.5], "area_lit": [2.5, 0.0, 1.5],
+           "wall_lit": [-2.0, 0.0, 1.5], "wall_shadowed": [-1.45, 0.0, 1.5]}}, open({points!r}, "w"))
 """
 
 

@@ -14,7 +14,7 @@ namespace bakegi::cli {
 
 namespace {
 
-constexpr uint32_t kGridPacket = 1, kGeometryPacket = 2;
+constexpr uint32_t kGridPacket = 1, kGeometryPacket = 2, kVisibilityPacket = 3;
 
 std::vector<uint8_t> read_bytes(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
@@ -239,6 +239,7 @@ SceneStream::SceneStream(const std::filesystem::path& folder, const StreamSettin
   std::vector<std::vector<uint8_t>> grid_packets;
   std::vector<std::string> grid_rows;
   std::string grid_json = "null";
+  bool has_visibility = false;
   const JsonValue* grid_name = gltf.find_path({"extras", "bakegi", "grid"});
   if (grid_name && grid_name->string()) {
     const std::filesystem::path grid_path = folder / *grid_name->string();
@@ -269,6 +270,21 @@ SceneStream::SceneStream(const std::filesystem::path& folder, const StreamSettin
       grid_packets.push_back(out.take());
       first += count;
     }
+    // The page's visibility volume right after the corners: the page reads the grid through
+    // walls until it has it.
+    const JsonValue* visibility_name = gltf.find_path({"extras", "bakegi", "grid_visibility"});
+    if (visibility_name && visibility_name->string()) {
+      const std::vector<uint8_t> file = read_bytes(folder / *visibility_name->string());
+      PacketWriter out;
+      out.word(kVisibilityPacket);
+      out.word(uint32_t(file.size()));
+      out.append(file.data(), file.size());
+      while (out.size() % 4) out.append("", 1);
+      grid_rows.insert(grid_rows.begin() + 1,
+                       "{\"kind\":\"visibility\",\"bytes\":" + std::to_string(out.size()) + "}");
+      grid_packets.insert(grid_packets.begin() + 1, out.take());
+      has_visibility = true;
+    }
     grid_json = "{\"file\":" + json_quote(*grid_name->string()) + ",\"resolution\":[" +
                 std::to_string(info.resolution[0]) + "," + std::to_string(info.resolution[1]) +
                 "," + std::to_string(info.resolution[2]) + "],\"bounds_min\":[" +
@@ -278,7 +294,8 @@ SceneStream::SceneStream(const std::filesystem::path& folder, const StreamSettin
                 json_number(info.bounds_max[2]) +
                 "],\"vertex_count\":" + std::to_string(info.vertex_count) + ",\"encoding\":\"" +
                 (settings.quantized ? "quantized" : "factored") +
-                "\",\"bytes_per_vector\":" + std::to_string(record) + "}";
+                "\",\"bytes_per_vector\":" + std::to_string(record) +
+                ",\"visibility\":" + (has_visibility ? "true" : "false") + "}";
   }
 
   // Interleaved: grid, geometry, grid, geometry, ... (§4: the smoothest progression).

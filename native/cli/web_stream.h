@@ -16,6 +16,9 @@
 //             vertex_count]; f32 normal[3 * vertex_count] if has_normals; f32 uv[2 *
 //             vertex_count] if has_uvs; u32 face[3 * face_count] (streamed vertex indices);
 //             u32 (vertex, parent)[lookup_count]
+//   visibility: u32 kind = 3, u32 bytes, then the folder's grid_visibility.bin (the grid's
+//             visibility volume, grid/grid_visibility_volume.h), zero-padded to 4 bytes; sent
+//             once, right after the grid's corners
 // The manifest (JSON) lists the primitives, the grid and every packet's kind and bytes.
 #pragma once
 

@@ -53,7 +53,7 @@ TEST(GridVisibilityVolume, TheDarkSideOfAThinWallReadsNoLightThroughIt) {
   const WallScene s;
   const RayTracer tracer(s.scene);
   const GridVisibilityVolume volume =
-      build_grid_visibility_volume(s.grid, s.scene, tracer, kPageVisibilitySubdivision);
+      build_grid_visibility_volume(s.grid, s.scene, tracer, kPageVisibilitySubdivision, false);
   EXPECT_EQ(volume.size, (std::array<uint32_t, 3>{16, 8, 8}));
   const glm::vec3 up(0.0f, 0.0f, 1.0f);
   // The floor 3 cm right of the wall: its reading's cell spans the wall.
@@ -94,7 +94,8 @@ TEST(GridVisibilityVolume, InvalidVerticesAreNotRead) {
   WallScene s;
   const RayTracer tracer(s.scene);
   for (size_t v = 0; v < s.grid.vertex_count(); ++v) s.grid.valid[v] = 0;
-  const GridVisibilityVolume volume = build_grid_visibility_volume(s.grid, s.scene, tracer, 2);
+  const GridVisibilityVolume volume =
+      build_grid_visibility_volume(s.grid, s.scene, tracer, 2, false);
   for (size_t i = 0; i < volume.subvoxel_count(); ++i) {
     ASSERT_EQ(volume.codes[2 * i], 0) << i;
     ASSERT_EQ(volume.codes[2 * i + 1], kNoFallback) << i;
@@ -107,11 +108,40 @@ TEST(GridVisibilityVolume, InvalidVerticesAreNotRead) {
   EXPECT_TRUE(unsure);
 }
 
+// A surface facing out of the grid's box (a block's top above it): its points read from one
+// subvoxel out, clamped back into the block, where no point is open to judge from. Out there
+// is only the world: under a sky the surface reads the paper's reading, under a black world
+// nothing (and is unsure).
+TEST(GridVisibilityVolume, ASurfaceFacingOutOfTheGridReadsWhatTheWorldGives) {
+  WallScene s;
+  SceneDescription d;
+  d.world_radiance = glm::vec3(0.1f);
+  const uint32_t grey = test::add_material(d, glm::vec3(0.5f));
+  d.meshes.push_back(test::make_cube(glm::vec3(-0.1f, -0.1f, 0.5f), glm::vec3(2.1f, 1.1f, 1.2f),
+                                     test::Facing::kOutward, grey));
+  const Scene block = build_scene(d);
+  for (size_t v = 0; v < s.grid.vertex_count(); ++v) {
+    s.grid.valid[v] = s.grid.layout.vertex_position(v).z < 0.5f;  // as the gather finds them
+  }
+  const RayTracer tracer(block);
+  const glm::vec3 top(0.5f, 0.5f, 1.2f), up(0.0f, 0.0f, 1.0f);
+  const GridVisibilityVolume sky = build_grid_visibility_volume(s.grid, block, tracer, 2, true);
+  EXPECT_NEAR(evaluate_grid_with_volume(s.grid, sky, top, up, GridDirectionalWeights::kSquared).x,
+              kLit, 1e-5f);
+  const GridVisibilityVolume black = build_grid_visibility_volume(s.grid, block, tracer, 2, false);
+  bool unsure = false;
+  EXPECT_EQ(
+      evaluate_grid_with_volume(s.grid, black, top, up, GridDirectionalWeights::kSquared, &unsure),
+      glm::vec3(0.0f));
+  EXPECT_TRUE(unsure);
+}
+
 TEST(GridVisibilityVolume, FileRoundTripsAndRefusesDamage) {
   const WallScene s;
   const RayTracer tracer(s.scene);
-  EXPECT_THROW(build_grid_visibility_volume(s.grid, s.scene, tracer, 3), Error);
-  const GridVisibilityVolume volume = build_grid_visibility_volume(s.grid, s.scene, tracer, 4);
+  EXPECT_THROW(build_grid_visibility_volume(s.grid, s.scene, tracer, 3, false), Error);
+  const GridVisibilityVolume volume =
+      build_grid_visibility_volume(s.grid, s.scene, tracer, 4, false);
   const std::vector<uint8_t> bytes = encode_visibility_file(volume, s.grid.layout);
   EXPECT_LT(bytes.size(), volume.codes.size() / 4);  // mostly "all seen": it deflates well
   const GridVisibilityVolume read = decode_visibility_file(bytes, s.grid.layout);

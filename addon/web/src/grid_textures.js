@@ -2,6 +2,7 @@
 // filters linearly everywhere), each hemisphere a block of the grid's size along x.
 import * as THREE from "three";
 import { HEMISPHERES } from "./irradiance_grid.js";
+import { SEES_ALL } from "./visibility_volume.js";
 
 export class GridTextures {
   constructor(grid) {
@@ -28,7 +29,31 @@ export class GridTextures {
       bakegiResolution: { value: new THREE.Vector3(nx, ny, nz) },
       bakegiIndirectScale: { value: 1 },
       bakegiWhiteAlbedo: { value: 0 },
+      bakegiVisibility: { value: null },
+      bakegiVisibilitySize: { value: new THREE.Vector3(1, 1, 1) },
+      bakegiSubdivision: { value: 1 },
+      bakegiReadOffset: { value: 0 },
     };
+    this.setVisibility(SEES_ALL);
+  }
+
+  // The grid's visibility volume (visibility_volume.js); until it arrives every vertex is
+  // read (SEES_ALL), at the fragment itself.
+  setVisibility(volume) {
+    const [sx, sy, sz] = volume.size;
+    const texture = new THREE.Data3DTexture(volume.codes, sx, sy, sz);
+    texture.format = THREE.RGFormat;
+    texture.type = THREE.UnsignedByteType;
+    texture.minFilter = texture.magFilter = THREE.NearestFilter;
+    texture.unpackAlignment = 1;
+    texture.needsUpdate = true;
+    this.uniforms.bakegiVisibility.value?.dispose();
+    this.uniforms.bakegiVisibility.value = texture;
+    this.uniforms.bakegiVisibilitySize.value.set(sx, sy, sz);
+    this.uniforms.bakegiSubdivision.value = volume.subdivision;
+    // One subvoxel along the normal (visibility_read_offset in the core).
+    const cell = this.grid.cellSize();
+    this.uniforms.bakegiReadOffset.value = volume === SEES_ALL ? 0 : Math.max(...cell) / volume.subdivision;
   }
 
   // Uploads every vertex's values (IrradianceGrid.filled()).
@@ -61,29 +86,71 @@ export class GridTextures {
 
 // The paper's shader (§3.2, §3.3) added to a three.js material: indirect diffuse light =
 // albedo * E / pi, E from the grid at the fragment: each axis' hemisphere on the normal's
-// side, trilinearly interpolated (the texture unit), weighted by n_a^2, read as c (d . n).
-// Positions and normals are turned from glTF's Y-up axes to the grid's Z-up ones.
+// side, trilinearly interpolated, weighted by n_a^2, read as c (d . n). Where the visibility
+// volume says the fragment's place sees all 8 vertices of its cell, the texture unit
+// interpolates; where it sees some, they are fetched and their weights renormalised; where
+// none, the nearest vertex it sees, or nothing (evaluate_grid_with_volume in the core). The
+// grid is read one subvoxel along the normal. Positions and normals are turned from glTF's
+// Y-up axes to the grid's Z-up ones.
 const DECLARATIONS = /* glsl */ `
 uniform highp sampler3D bakegiDirections;
 uniform highp sampler3D bakegiColors;
+uniform highp sampler3D bakegiVisibility;
 uniform vec3 bakegiBoundsMin;
 uniform vec3 bakegiCellSize;
 uniform vec3 bakegiResolution;
+uniform vec3 bakegiVisibilitySize;
+uniform float bakegiSubdivision;
+uniform float bakegiReadOffset;
 uniform float bakegiIndirectScale;
 uniform float bakegiWhiteAlbedo;
 varying vec3 vBakegiWorldPosition;
 vec3 bakegiGridIrradiance(vec3 p, vec3 n) {
-  vec3 g = clamp((p - bakegiBoundsMin) / bakegiCellSize - 0.5, vec3(0.0), bakegiResolution - 1.0);
+  vec3 g = (p + bakegiReadOffset * n - bakegiBoundsMin) / bakegiCellSize - 0.5;
+  ivec3 subvoxel = ivec3(clamp(floor((g + 0.5) * bakegiSubdivision), vec3(0.0), bakegiVisibilitySize - 1.0));
+  ivec2 code = ivec2(texelFetch(bakegiVisibility, subvoxel, 0).rg * 255.0 + 0.5);
+  g = clamp(g, vec3(0.0), bakegiResolution - 1.0);
   vec3 sum = vec3(0.0);
+  if (code.x == 255) {
+    for (int a = 0; a < 3; ++a) {
+      float w = n[a] * n[a];
+      if (w == 0.0) continue;
+      float h = float(2 * a + (n[a] >= 0.0 ? 0 : 1));
+      vec3 uvw = vec3((h * bakegiResolution.x + g.x + 0.5) / (6.0 * bakegiResolution.x),
+                      (g.y + 0.5) / bakegiResolution.y, (g.z + 0.5) / bakegiResolution.z);
+      vec3 d = texture(bakegiDirections, uvw).xyz;
+      vec3 c = texture(bakegiColors, uvw).rgb;
+      sum += w * c * dot(d, n);
+    }
+    return max(sum, vec3(0.0)) * RECIPROCAL_PI;
+  }
+  ivec3 lo = ivec3(min(floor(g), bakegiResolution - 2.0));
+  vec3 t = g - vec3(lo);
+  int mask = code.x;
+  if (mask == 0) {
+    if (code.y == 255) return vec3(0.0);  // sees no vertex near it: unsure, dark
+    lo += ivec3(code.y & 3, (code.y >> 2) & 3, (code.y >> 4) & 3) - 1;
+    mask = 1;
+    t = vec3(0.0);
+  }
+  int width = int(bakegiResolution.x);
   for (int a = 0; a < 3; ++a) {
     float w = n[a] * n[a];
     if (w == 0.0) continue;
-    float h = float(2 * a + (n[a] >= 0.0 ? 0 : 1));
-    vec3 uvw = vec3((h * bakegiResolution.x + g.x + 0.5) / (6.0 * bakegiResolution.x),
-                    (g.y + 0.5) / bakegiResolution.y, (g.z + 0.5) / bakegiResolution.z);
-    vec3 d = texture(bakegiDirections, uvw).xyz;
-    vec3 c = texture(bakegiColors, uvw).rgb;
-    sum += w * c * dot(d, n);
+    int h = 2 * a + (n[a] >= 0.0 ? 0 : 1);
+    vec3 d = vec3(0.0), c = vec3(0.0);
+    float total = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      if ((mask & (1 << k)) == 0) continue;
+      ivec3 o = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+      vec3 w3 = mix(1.0 - t, t, vec3(o));
+      float s = max(w3.x * w3.y * w3.z, 1e-6);
+      ivec3 texel = lo + o + ivec3(h * width, 0, 0);
+      d += s * texelFetch(bakegiDirections, texel, 0).xyz;
+      c += s * texelFetch(bakegiColors, texel, 0).rgb;
+      total += s;
+    }
+    sum += w * (c / total) * dot(d / total, n);
   }
   return max(sum, vec3(0.0)) * RECIPROCAL_PI;
 }

@@ -1,6 +1,8 @@
-// Opening a folder written by bakegi web export without a server: scene.gltf, scene.bin and
-// grid.bgivg read from the files the user picked, the whole scene at once.
+// Opening a folder written by bakegi web export without a server: scene.gltf, scene.bin,
+// grid.bgivg and grid_visibility.bin read from the files the user picked, the whole scene at
+// once.
 import { IrradianceGrid } from "./irradiance_grid.js";
+import { readVisibilityVolume } from "./visibility_volume.js";
 
 function accessor(gltf, bin, index, Type) {
   const a = gltf.accessors[index];
@@ -58,7 +60,11 @@ export async function readFolder(files) {
   const bin = await need("scene.bin").arrayBuffer();
   const gridName = gltf.extras?.bakegi?.grid;
   const grid = gridName ? readGridFile(await need(gridName).arrayBuffer()) : null;
+  const visibilityName = gltf.extras?.bakegi?.grid_visibility;
+  const visibility = grid && visibilityName
+    ? await readVisibilityVolume(await need(visibilityName).arrayBuffer(), grid.resolution)
+    : null;
   // The images by their names, as object URLs the texture loader can read.
   const imageUrl = (name) => URL.createObjectURL(need(name));
-  return { gltf, bin, grid, imageUrl };
+  return { gltf, bin, grid, visibility, imageUrl };
 }

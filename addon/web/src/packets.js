@@ -2,6 +2,7 @@
 // objects the grid and the geometry apply.
 export const GRID_PACKET = 1;
 export const GEOMETRY_PACKET = 2;
+export const VISIBILITY_PACKET = 3;
 
 export function readPacket(buffer) {
   const view = new DataView(buffer);
@@ -12,6 +13,7 @@ export function readPacket(buffer) {
     const vertices = new Uint32Array(buffer.slice(12, 12 + 4 * count));
     return { kind, encoding, vertices, view, recordsOffset: 12 + 4 * count };
   }
+  if (kind === VISIBILITY_PACKET) return { kind, bytes: buffer.slice(8, 8 + count) };
   if (kind !== GEOMETRY_PACKET) throw new Error(`unknown packet kind ${kind}`);
   const entries = [];
   let offset = 8;

@@ -13,7 +13,8 @@ import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { areaLightShadows, lightingNotes, shadowedAreaLightCount, makeCamera, makeLights, makeMaterial, primitivesOf, setTextureListener, texturesSettled } from "./gltf_scene.js";
 import { addGridLighting, GridTextures } from "./grid_textures.js";
 import { IrradianceGrid } from "./irradiance_grid.js";
-import { GEOMETRY_PACKET, GRID_PACKET, readPacket } from "./packets.js";
+import { GEOMETRY_PACKET, GRID_PACKET, readPacket, VISIBILITY_PACKET } from "./packets.js";
+import { readVisibilityVolume } from "./visibility_volume.js";
 import { primitiveArrays, readFolder } from "./local_folder.js";
 import { ProgressiveGeometry } from "./progressive_geometry.js";
 
@@ -21,7 +22,7 @@ const query = new URLSearchParams(location.search);
 const state = (window.bakegiState = {
   phase: "starting", packets: 0, packetCount: 0, bytes: 0, totalBytes: 0, gridFraction: 0,
   geometryFraction: 0, firstImageMs: null, doneMs: null, error: null, frames: 0,
-  notes: [], pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, renderMs: 0, timeline: { script: performance.now() },
+  notes: [], hasVisibility: false, pushPullMs: 0, fetchMs: 0, decodeMs: 0, uploadMs: 0, renderMs: 0, timeline: { script: performance.now() },
 });
 
 // The stream's first requests were started by index.html before this script arrived
@@ -34,6 +35,8 @@ const early = window.bakegiEarly ?? {
   gltf: null,
 };
 const suffix = early.suffix;
+// ?visibility=0: the paper's reading, through walls (to compare; the test does).
+const useVisibility = query.get("visibility") !== "0";
 
 const canvas = document.getElementById("view");
 const status = document.getElementById("status");
@@ -263,6 +266,11 @@ async function stream(manifest) {
       packet.vertices.forEach((v, j) => view.grid.receive(v, packet.view, packet.recordsOffset + j * record, packet.encoding));
       state.decodeMs += performance.now() - decodeStart;
       refreshGrid();
+    } else if (packet.kind === VISIBILITY_PACKET) {
+      if (useVisibility) {
+        view.textures.setVisibility(await readVisibilityVolume(packet.bytes, view.grid.resolution));
+        state.hasVisibility = true;
+      }
     } else if (packet.kind === GEOMETRY_PACKET) {
       for (const entry of packet.entries) view.geometries[entry.primitive].add(entry);
       refreshGeometry();
@@ -281,7 +289,7 @@ async function stream(manifest) {
 }
 
 async function openFolder(files) {
-  const { gltf, bin, grid, imageUrl } = await readFolder(files);
+  const { gltf, bin, grid, visibility, imageUrl } = await readFolder(files);
   const prims = primitivesOf(gltf);
   const info = prims.map((p) => {
     const arrays = primitiveArrays(gltf, bin, p.description);
@@ -289,6 +297,10 @@ async function openFolder(files) {
       has_normals: !!arrays.normals, has_uvs: !!arrays.uvs };
   });
   buildScene(gltf, grid, info, imageUrl);
+  if (visibility && useVisibility) {
+    view.textures.setVisibility(visibility);
+    state.hasVisibility = true;
+  }
   view.geometries.forEach((g, i) => {
     const a = info[i].arrays;
     g.setAll(a.positions, a.normals, a.uvs, a.faces, a.parent);

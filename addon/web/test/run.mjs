@@ -105,6 +105,7 @@ try {
   const finalState = await load(page, url, "until=1");
   check(finalState.phase === "done" && !finalState.error, `the page streams the whole scene (${finalState.packets} packets, ${finalState.bytes} bytes)`);
   check(finalState.notes.length === 0, `a scene lit by a lamp alone has no note on missing light: ${JSON.stringify(finalState.notes)}`);
+  check(finalState.hasVisibility, "the page reads the grid's visibility volume (streamed after the corners)");
   check(finalState.firstImageMs !== null && finalState.firstImageMs <= FIRST_IMAGE_LIMIT_MS,
     `first lit image ${finalState.firstImageMs?.toFixed(0)} ms after the page opened (target 300 ms)`);
   results.first_image_ms = finalState.firstImageMs;
@@ -232,6 +233,25 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
       results.sky_light = { linear, sky: points.sky };
       check(linear > 0.85 * points.sky && linear < 1.25 * points.sky,
         `the sky lights the open floor through the grid: E/pi ${linear.toFixed(4)} for a sky of ${points.sky}`);
+      if (points.wall_lit && points.wall_shadowed) {
+        // A wall far thinner than a cell: the floor on its sunlit side gets the sun's bounce
+        // off it, the floor 22 cm from its shaded face little (the sky half hidden, the wall's
+        // face dark). That point's cell has its other vertices across the wall, on the sunlit
+        // side: the paper's reading, blind to the wall, blends them in (a leak); the page's
+        // visibility volume reads only the shaded side's.
+        const gridLight = async (point) => srgbToLinear((await pixelAt(page, point))[0] / 255);
+        const lit = await gridLight(points.wall_lit);
+        const shaded = await gridLight(points.wall_shadowed);
+        await page.locator("#view").screenshot({ path: join(out, "grid_light_visibility.png") });
+        await load(page, shadowUrl, "until=1&mode=light&visibility=0");
+        await page.locator("#view").screenshot({ path: join(out, "grid_light_no_visibility.png") });
+        const blindLit = await gridLight(points.wall_lit);
+        const blindShaded = await gridLight(points.wall_shadowed);
+        results.thin_wall = { lit, shaded, without_visibility: { lit: blindLit, shaded: blindShaded } };
+        check(shaded < 0.6 * blindShaded && shaded < 0.5 * lit,
+          `the grid's light does not pass a thin wall: its shaded side reads E/pi ${shaded.toFixed(4)}, ` +
+          `its sunlit side ${lit.toFixed(4)} (without the visibility volume ${blindShaded.toFixed(4)} and ${blindLit.toFixed(4)})`);
+      }
     }
     await page.close();
   } finally {

@@ -14,6 +14,7 @@
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "util/file_bytes.h"
+#include "util/sampling.h"
 
 using bakegi::Error;
 using bakegi::guarded;
@@ -176,7 +177,8 @@ bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid, const bakeg
     const bakegi::RayTracer tracer(built);
     if (flags & BAKEGI_GRID_PAGE_VISIBILITY) {
       const bakegi::GridVisibilityVolume volume = bakegi::build_grid_visibility_volume(
-          g, built, tracer, bakegi::kPageVisibilitySubdivision);
+          g, built, tracer, bakegi::kPageVisibilitySubdivision,
+          bakegi::max_component(built.description.world_radiance) > 0.0f);
       bakegi::evaluate_grid_with_volume(
           g, volume, std::span<const glm::vec3>(as_vec3(positions), count),
           std::span<const glm::vec3>(as_vec3(normals), count),

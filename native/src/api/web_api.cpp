@@ -13,6 +13,7 @@
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
 #include "util/file_bytes.h"
+#include "util/sampling.h"
 #include "web/gltf_export.h"
 #include "web/grid_stream_order.h"
 
@@ -80,7 +81,8 @@ bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* gr
       if (const std::optional<bakegi::Scene> built = scene_for_rays(scene->description)) {
         const bakegi::RayTracer tracer(*built);
         const bakegi::GridVisibilityVolume volume = bakegi::build_grid_visibility_volume(
-            page_grid, *built, tracer, bakegi::kPageVisibilitySubdivision);
+            page_grid, *built, tracer, bakegi::kPageVisibilitySubdivision,
+            bakegi::max_component(scene->description.world_radiance) > 0.0f);
         options.grid_visibility_file = "grid_visibility.bin";
         bakegi::write_file_atomically(root / options.grid_visibility_file,
                                       bakegi::encode_visibility_file(volume, page_grid.layout));

@@ -78,7 +78,13 @@ SubvoxelVisibility subvoxel_visibility(const IrradianceVectorGrid& grid, const S
           continue;
         }
       }
-      if (grid.valid[layout.vertex_index(i, j, k)]) seen |= uint8_t(1u << c);
+      // Nothing between the point and a vertex inside geometry (the grid's gather found it
+      // there): the point is inside the same solid.
+      if (!grid.valid[layout.vertex_index(i, j, k)]) {
+        inside = true;
+        continue;
+      }
+      seen |= uint8_t(1u << c);
     }
     if (inside) continue;
     result.mask |= seen;
@@ -136,7 +142,7 @@ float visibility_read_offset(const GridLayout& layout, uint32_t subdivision) {
 
 GridVisibilityVolume build_grid_visibility_volume(const IrradianceVectorGrid& grid,
                                                   const Scene& scene, const RayTracer& tracer,
-                                                  uint32_t subdivision,
+                                                  uint32_t subdivision, bool world_lit,
                                                   const std::function<bool()>& cancelled) {
   if (subdivision < 2 || subdivision > 8 || subdivision % 2 != 0) {
     throw Error(
@@ -194,6 +200,7 @@ GridVisibilityVolume build_grid_visibility_volume(const IrradianceVectorGrid& gr
         if (has_open_point[id]) continue;
         const std::array<uint32_t, 3> lo = cell_of(centre_of(x, y, z), layout.resolution);
         uint8_t mask = 0, fallback = kNoFallback;
+        bool any_open_neighbour = false;
         const int64_t offsets[6][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                        {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
         for (const auto& d : offsets) {
@@ -208,6 +215,16 @@ GridVisibilityVolume build_grid_visibility_volume(const IrradianceVectorGrid& gr
           }
           mask |= first[2 * other];
           if (fallback == kNoFallback) fallback = first[2 * other + 1];
+          any_open_neighbour = true;
+        }
+        if (!any_open_neighbour) {
+          // No open point to judge from: deep inside a solid, or where the grid's box ends on
+          // a surface facing out (a room's outer wall, the top of the tallest object), whose
+          // points read one subvoxel out, clamped into the box. Out there is only the world:
+          // under a sky such a surface is lit, so the paper's reading (all 8 vertices);
+          // under a black world it is dark, so nothing (unsure).
+          mask = world_lit ? 0xff : 0;
+          fallback = kNoFallback;
         }
         volume.codes[2 * id] = mask;
         volume.codes[2 * id + 1] = mask == 0 ? fallback : kNoFallback;
@@ -259,16 +276,14 @@ glm::vec3 evaluate_grid_with_volume(const IrradianceVectorGrid& grid,
       const float t = std::clamp(g[a], 0.0f, float(layout.resolution[a] - 1)) - float(lo[a]);
       w *= offset[a] ? t : 1.0f - t;
     }
+    // Never 0, so that a point on the seen vertices' zero-weight side still reads them
+    // (equally); the page's shader does the same.
+    w = std::max(w, 1e-6f);
     vertices[count] = layout.vertex_index(lo[0] + offset[0], lo[1] + offset[1], lo[2] + offset[2]);
     spatial[count++] = w;
     total += w;
   }
-  if (total > 1e-6f) {
-    for (int i = 0; i < count; ++i) spatial[i] /= total;
-  } else {
-    // The point sits on the seen vertices' zero-weight side: read them equally.
-    for (int i = 0; i < count; ++i) spatial[i] = 1.0f / float(count);
-  }
+  for (int i = 0; i < count; ++i) spatial[i] /= total;
   return blend_vertices(grid, n, std::span<const size_t>(vertices, count),
                         std::span<const float>(spatial, count), weights);
 }

@@ -10,10 +10,14 @@
 //   mask      bit c set: vertex c of the subvoxel's trilinear cell (c = i + 2j + 4k offsets
 //             from its lowest vertex) is valid and seen from some point of the subvoxel that
 //             lies in open space (its centre and 8 points a quarter of the way to its
-//             corners; a point whose rays meet a back face first is inside a solid and does
-//             not count). Subvoxels with no such point take the union of the masks of their
-//             face neighbours in the same cell (a wall's face at a subvoxel's edge leaves
-//             the subvoxel's points all inside the wall).
+//             corners; a point whose rays meet a back face first, or reach an invalid vertex
+//             unobstructed, is inside a solid and does not count). Subvoxels with no such point
+//             take the union of the masks of their face neighbours in the same cell (a wall's face
+//             at a subvoxel's edge leaves the subvoxel's points all inside the wall); with no such
+//             neighbour either (deep in a solid, or where the grid's box ends on a surface facing
+//             out: a room's outer wall, the top of the tallest object) the mask is full where the
+//             world lights the scene (out there a sky: the paper's reading) and 0 where it is
+//             black.
 //   fallback  where the mask is 0, the nearest vertex of the 4^3 around the cell that a point
 //             of the subvoxel (or of such a neighbour) sees, coded (di+1) | (dj+1) << 2 |
 //             (dk+1) << 4 with d in -1..2 from the cell's lowest vertex; kNoFallback if none.
@@ -54,11 +58,11 @@ struct GridVisibilityVolume {
 
 // Builds the volume over `grid`'s layout (the scene's BVH in `tracer`); subdivision 2, 4, 6
 // or 8 (even, so that subvoxels do not straddle a trilinear cell's boundary). 16 bytes a
-// grid vertex at 2 (the grid itself: 217).
+// grid vertex at 2 (the grid itself: 217). world_lit: the scene's world is not black.
 // cancelled (may be empty) is polled; when it returns true the build throws Error(CANCELLED).
 GridVisibilityVolume build_grid_visibility_volume(const IrradianceVectorGrid& grid,
                                                   const Scene& scene, const RayTracer& tracer,
-                                                  uint32_t subdivision,
+                                                  uint32_t subdivision, bool world_lit,
                                                   const std::function<bool()>& cancelled = {});
 
 // How far along the normal the page reads the grid: one subvoxel (the largest cell side /
