@@ -252,13 +252,15 @@ class GridCase(common.SmallCornellCase):
         self.assertIn("its direct light comes from the grid", sky["warnings"][0])
         with open(os.path.join(self.folder, "web_sky", "scene.gltf")) as f:
             self.assertIs(json.load(f)["extras"]["bakegi"]["grid_has_emitted_light"], True)
-        for name in ("scene.gltf", "scene.bin", "grid.bgivg", "index.html", "viewer.js"):
+        for name in ("scene.gltf", "scene.bin", "grid.bgivg", "grid_visibility.bin",
+                     "index.html", "viewer.js"):
             self.assertIn(name, report["files"])
             self.assertGreater(report["bytes"][name], 0)
         with open(os.path.join(folder, "scene.gltf")) as f:
             gltf = json.load(f)
         self.assertEqual(gltf["asset"]["version"], "2.0")
         self.assertEqual(gltf["extras"]["bakegi"]["grid"], "grid.bgivg")
+        self.assertEqual(gltf["extras"]["bakegi"]["grid_visibility"], "grid_visibility.bin")
         self.assertIs(gltf["extras"]["bakegi"]["grid_has_emitted_light"], False)
         primitives = [p for m in gltf["meshes"] for p in m["primitives"]]
         self.assertGreaterEqual(len(primitives), len(NAMES))

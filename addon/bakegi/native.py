@@ -398,7 +398,8 @@ def simplify_mesh(positions, indices, ratio, max_error=1.0):
 
 def web_export(scene, folder, grid=None, camera=None):
     """Writes the scene for the web page into `folder` (bakegi_web_export): scene.gltf +
-    scene.bin (progressive meshes) and, with a Grid, grid.bgivg. camera: None or nine
+    scene.bin (progressive meshes) and, with a Grid, grid.bgivg and its visibility volume
+    grid_visibility.bin (which grid vertices each place sees). camera: None or nine
     numbers (position xyz, rotation quaternion xyzw looking down -Z, vertical field of view
     in radians, aspect ratio)."""
     values = None

@@ -73,7 +73,8 @@ commands:
   web export scene.bgs --out FOLDER [--grid grid.bgivg] [--camera x,y,z,qx,qy,qz,qw,yfov,aspect]
              [--client DIR]
       Writes the scene for the web page: scene.gltf + scene.bin (glTF 2.0, progressive
-      meshes), grid.bgivg, and the page's files from DIR (the add-on's web/ folder).
+      meshes), grid.bgivg with its visibility volume grid_visibility.bin, and the page's
+      files from DIR (the add-on's web/ folder).
   serve FOLDER [--port P] [--vectors V] [--vertices N] [--float]
       Serves a web export on 127.0.0.1:P (default 8080; 0 picks a free port): its files,
       and its grid and geometry as interleaved packets of V grid vectors (default 512,

@@ -1,6 +1,7 @@
 // `bakegi web export`: a scene folder for the web page (issue 16, §4): scene.gltf +
-// scene.bin (progressive meshes), grid.bgivg, and the page itself (index.html, viewer.js)
-// from the client folder, so that `bakegi serve` or a browser opening the folder shows it.
+// scene.bin (progressive meshes), grid.bgivg + grid_visibility.bin, and the page itself
+// (index.html, viewer.js) from the client folder, so that `bakegi serve` or a browser opening
+// the folder shows it.
 #include <cstdio>
 #include <filesystem>
 
@@ -58,7 +59,7 @@ int run_web_command(const std::vector<std::string>& words) {
   size_t page_files = 0;
   if (const auto client = args.value("client")) page_files = copy_client(*client, out);
   std::fprintf(
-      stderr, "wrote %s/scene.gltf, scene.bin%s%s\n", out.c_str(), grid ? ", grid.bgivg" : "",
+      stderr, "wrote %s/scene.gltf, scene.bin%s%s\n", out.c_str(), grid ? ", grid.bgivg, grid_visibility.bin" : "",
       page_files ? (" and the page (" + std::to_string(page_files) + " files)").c_str() : "");
   return kExitOk;
 }

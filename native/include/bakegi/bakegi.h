@@ -652,9 +652,11 @@ BAKEGI_API bakegi_status bakegi_grid_with_emitted_light(const bakegi_grid* grid,
 
 /* Writes a scene for the web page into `folder` (made if missing): scene.gltf + scene.bin
  * (glTF 2.0; every mesh a progressive mesh: see native/src/web/gltf_export.h) and, when
- * `grid` is given, grid.bgivg (quantized). camera (may be NULL): 9 floats, position xyz, the
- * rotation quaternion xyzw (looking down -Z), vertical field of view (radians), aspect
- * ratio. Files are written atomically; BAKEGI_ERROR_IO names what could not be written. */
+ * `grid` is given, grid.bgivg (quantized) and grid_visibility.bin (which grid vertices each
+ * place sees, so that the page does not read light through thin walls: built with rays over
+ * the scene, native/src/grid/grid_visibility_volume.h). camera (may be NULL): 9 floats,
+ * position xyz, the rotation quaternion xyzw (looking down -Z), vertical field of view
+ * (radians), aspect ratio. Files are written atomically; BAKEGI_ERROR_IO names what could not be written. */
 BAKEGI_API bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* grid,
                                            const char* folder, const float* camera);
 /* The order a server streams the grid's vertices in: the eight corners, then coarse to fine,
