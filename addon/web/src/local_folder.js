@@ -61,9 +61,12 @@ export async function readFolder(files) {
   const gridName = gltf.extras?.bakegi?.grid;
   const grid = gridName ? readGridFile(await need(gridName).arrayBuffer()) : null;
   const visibilityName = gltf.extras?.bakegi?.grid_visibility;
+  // A promise: the viewer reads it and notes a failure instead of refusing the folder.
   const visibility = grid && visibilityName
-    ? await readVisibilityVolume(await need(visibilityName).arrayBuffer(), grid.resolution)
+    ? Promise.resolve(visibilityName).then((name) => need(name).arrayBuffer())
+      .then((bytes) => readVisibilityVolume(bytes, grid.resolution))
     : null;
+  visibility?.catch(() => {}); // handled where it is awaited
   // The images by their names, as object URLs the texture loader can read.
   const imageUrl = (name) => URL.createObjectURL(need(name));
   return { gltf, bin, grid, visibility, imageUrl };

@@ -212,6 +212,18 @@ function refreshGeometry() {
   state.geometryFraction = total ? received / total : 1;
 }
 
+// The grid's visibility volume (a promise of it, or a function giving one); one that cannot
+// be read leaves the page reading the grid the paper's way, and says so.
+async function applyVisibility(volume) {
+  try {
+    view.textures.setVisibility(await (typeof volume === "function" ? volume() : volume));
+    state.hasVisibility = true;
+  } catch (error) {
+    state.notes.push(`the grid's visibility volume could not be read (${error.message}): ` +
+      "its light may pass through thin walls");
+  }
+}
+
 async function fetchBytes(url) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`${url}: ${response.status} ${await response.text()}`);
@@ -267,10 +279,7 @@ async function stream(manifest) {
       state.decodeMs += performance.now() - decodeStart;
       refreshGrid();
     } else if (packet.kind === VISIBILITY_PACKET) {
-      if (useVisibility) {
-        view.textures.setVisibility(await readVisibilityVolume(packet.bytes, view.grid.resolution));
-        state.hasVisibility = true;
-      }
+      if (useVisibility) await applyVisibility(() => readVisibilityVolume(packet.bytes, view.grid.resolution));
     } else if (packet.kind === GEOMETRY_PACKET) {
       for (const entry of packet.entries) view.geometries[entry.primitive].add(entry);
       refreshGeometry();
@@ -297,10 +306,7 @@ async function openFolder(files) {
       has_normals: !!arrays.normals, has_uvs: !!arrays.uvs };
   });
   buildScene(gltf, grid, info, imageUrl);
-  if (visibility && useVisibility) {
-    view.textures.setVisibility(visibility);
-    state.hasVisibility = true;
-  }
+  if (visibility && useVisibility) await applyVisibility(visibility);
   view.geometries.forEach((g, i) => {
     const a = info[i].arrays;
     g.setAll(a.positions, a.normals, a.uvs, a.faces, a.parent);

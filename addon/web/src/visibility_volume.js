@@ -11,18 +11,23 @@ export const SEES_ALL = { subdivision: 1, size: [1, 1, 1], codes: new Uint8Array
 export async function readVisibilityVolume(buffer, resolution) {
   const view = new DataView(buffer);
   const magic = String.fromCharCode(...new Uint8Array(buffer, 0, Math.min(8, buffer.byteLength)));
-  if (magic !== "BGIVIS1\0" || buffer.byteLength < 44) throw new Error("not a bakegi visibility volume");
+  if (magic !== "BGIVIS1\0" || buffer.byteLength < 44) throw new Error("it is not a bakegi visibility volume");
   const u32 = (i) => view.getUint32(8 + 4 * i, true);
   const subdivision = u32(0);
   const size = [u32(1), u32(2), u32(3)];
   const forGrid = [u32(4), u32(5), u32(6)];
   if (forGrid.some((r, a) => r !== resolution[a] || size[a] !== r * subdivision)) {
-    throw new Error("the visibility volume was made for another grid");
+    throw new Error("it was made for another grid");
   }
   const raw = Number(view.getBigUint64(36, true));
-  if (raw !== 2 * size[0] * size[1] * size[2]) throw new Error("the visibility volume is corrupt");
+  if (raw !== 2 * size[0] * size[1] * size[2]) throw new Error("corrupt: its size does not match its subvoxels");
   const stream = new Blob([new Uint8Array(buffer, 44)]).stream().pipeThrough(new DecompressionStream("deflate"));
-  const codes = new Uint8Array(await new Response(stream).arrayBuffer());
-  if (codes.length !== raw) throw new Error("the visibility volume is corrupt");
+  let codes;
+  try {
+    codes = new Uint8Array(await new Response(stream).arrayBuffer());
+  } catch {
+    throw new Error("corrupt: its codes do not inflate");
+  }
+  if (codes.length !== raw) throw new Error("corrupt: its size does not match its subvoxels");
   return { subdivision, size, codes };
 }

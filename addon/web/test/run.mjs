@@ -20,7 +20,7 @@
 //  - --fig6 (--only-fig6: that alone): the grid's transfer time and bytes per request size, quantized against
 //    floats (the paper's Fig. 6), into DIR/transfer.json.
 // Writes DIR/results.json and the screenshots (PNG).
-import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { cpSync, mkdirSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { pathToFileURL } from "node:url";
 import { chromium } from "playwright-core";
@@ -138,6 +138,23 @@ try {
   const localDifference = meanAbsoluteDifference(fromDisk, final);
   results.local_folder_difference = localDifference;
   check(localDifference <= 0.5, `the folder opened from disk shows the streamed final image (difference ${localDifference.toFixed(3)} of 255)`);
+  check(await local.evaluate(() => window.bakegiState.hasVisibility), "the folder opened from disk reads the visibility volume too");
+  // A damaged visibility volume: the page still shows the scene, reading the grid the paper's
+  // way, and says so.
+  const damaged = join(out, "site_damaged_visibility");
+  rmSync(damaged, { recursive: true, force: true });
+  cpSync(args.folder, damaged, { recursive: true });
+  const volume = readFileSync(join(damaged, "grid_visibility.bin"));
+  volume.fill(7, 44);
+  writeFileSync(join(damaged, "grid_visibility.bin"), volume);
+  await local.goto(`${pathToFileURL(join(damaged, "index.html")).href}?size=${width}x${height}&panel=0`);
+  await local.waitForFunction(() => window.bakegiState?.phase === "waiting for a folder");
+  await local.setInputFiles("#folder", damaged);
+  await local.waitForFunction(() => ["done", "failed"].includes(window.bakegiState?.phase), null, { timeout: 120000 });
+  const damagedState = await local.evaluate(() => window.bakegiState);
+  check(damagedState.phase === "done" && !damagedState.hasVisibility &&
+    damagedState.notes.some((note) => note.includes("visibility volume could not be read")),
+    `a damaged visibility volume leaves the page showing the scene, with a note: ${JSON.stringify(damagedState.notes)}`);
   await local.close();
 
   if (args.reference) {
