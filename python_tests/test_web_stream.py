@@ -117,13 +117,14 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
             continue
         if kind == 3:
             # The page's visibility volume: the export's file, whose codes inflate to two bytes
-            # per subvoxel of the grid's cells cut in 2 x 2 x 2.
+            # per subvoxel, each cell cut in s^3, s = 2 ceil(32 / cells), 2 to 8.
             visibility = (folder / gltf["extras"]["bakegi"]["grid_visibility"]).read_bytes()
             assert data[8:8 + entries] == visibility and len(data) == (8 + entries + 3) // 4 * 4
             assert visibility[:8] == b"BGIVIS1\0"
             subdivision, sx, sy, sz = struct.unpack_from("<4I", visibility, 8)
             resolution = manifest["grid"]["resolution"]
-            assert subdivision == 2 and [sx, sy, sz] == [2 * r for r in resolution]
+            expected = min(8, max(2, 2 * -(-32 // max(resolution))))
+            assert subdivision == expected and [sx, sy, sz] == [expected * r for r in resolution]
             assert len(zlib.decompress(visibility[44:])) == 2 * sx * sy * sz
             continue
         offset = 8

@@ -53,7 +53,7 @@ TEST(GridVisibilityVolume, TheDarkSideOfAThinWallReadsNoLightThroughIt) {
   const WallScene s;
   const RayTracer tracer(s.scene);
   const GridVisibilityVolume volume =
-      build_grid_visibility_volume(s.grid, s.scene, tracer, kPageVisibilitySubdivision, false);
+      build_grid_visibility_volume(s.grid, s.scene, tracer, 2, false);
   EXPECT_EQ(volume.size, (std::array<uint32_t, 3>{16, 8, 8}));
   const glm::vec3 up(0.0f, 0.0f, 1.0f);
   // The floor 3 cm right of the wall: its reading's cell spans the wall.
@@ -134,6 +134,36 @@ TEST(GridVisibilityVolume, ASurfaceFacingOutOfTheGridReadsWhatTheWorldGives) {
       evaluate_grid_with_volume(s.grid, black, top, up, GridDirectionalWeights::kSquared, &unsure),
       glm::vec3(0.0f));
   EXPECT_TRUE(unsure);
+}
+
+// Subvoxels of about 1/64 of the grid's longest side, 2 to 8 a cell, even.
+TEST(GridVisibilityVolume, TheWebExportsSubdivisionFollowsTheGridsCells) {
+  const auto subdivision = [](uint32_t cells) {
+    return page_visibility_subdivision(
+        make_grid_layout(glm::vec3(0.0f), glm::vec3(1.0f), {cells, cells / 2 + 2, 2}));
+  };
+  EXPECT_EQ(subdivision(64), 2u);
+  EXPECT_EQ(subdivision(32), 2u);
+  EXPECT_EQ(subdivision(24), 4u);
+  EXPECT_EQ(subdivision(16), 4u);
+  EXPECT_EQ(subdivision(12), 6u);
+  EXPECT_EQ(subdivision(8), 8u);
+  EXPECT_EQ(subdivision(4), 8u);
+}
+
+// A volume past its subvoxel budget is refused before anything is allocated for it.
+TEST(GridVisibilityVolume, TooManySubvoxelsAreRefused) {
+  const WallScene s;
+  const RayTracer tracer(s.scene);
+  const IrradianceVectorGrid large(
+      make_grid_layout(glm::vec3(0.0f), glm::vec3(2.0f, 1.0f, 1.0f), {33, 33, 33}));
+  ASSERT_GT(large.vertex_count() * 8 * 8 * 8, kMaxVisibilitySubvoxels);
+  try {
+    build_grid_visibility_volume(large, s.scene, tracer, 8, false);
+    ADD_FAILURE() << "built";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), BAKEGI_ERROR_OUT_OF_MEMORY);
+  }
 }
 
 TEST(GridVisibilityVolume, FileRoundTripsAndRefusesDamage) {

@@ -165,12 +165,13 @@ TEST(WebExport, WritesAGltfWithItsBufferAndTheGrid) {
   bakegi_grid* read = nullptr;
   ASSERT_EQ(bakegi_grid_read_file((folder / "grid.bgivg").string().c_str(), &read), BAKEGI_OK);
   bakegi_grid_destroy(read);
-  // The page's visibility volume beside it, named in the glTF, for the grid's 4^3 vertices.
+  // The page's visibility volume beside it, named in the glTF, for the grid's 4^3 vertices
+  // (cut 8 x 8 x 8 each: a subvoxel is about 1/64 of the grid's side, at most 8 a cell).
   EXPECT_NE(json.find("\"grid_visibility\":\"grid_visibility.bin\""), std::string::npos);
   const std::vector<uint8_t> visibility =
       read_file_bytes(folder / "grid_visibility.bin", uint64_t(1) << 20);
   EXPECT_EQ(decode_visibility_file(visibility, grid_of(grid.get()).layout).subvoxel_count(),
-            8u * 8u * 8u);
+            32u * 32u * 32u);
   // Read through the C API as the page reads it; the flag stands alone.
   const float position[3] = {0.5f, 0.5f, 0.0f}, normal[3] = {0, 0, 1};
   float rgb[3];

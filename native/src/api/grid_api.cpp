@@ -177,7 +177,7 @@ bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid, const bakeg
     const bakegi::RayTracer tracer(built);
     if (flags & BAKEGI_GRID_PAGE_VISIBILITY) {
       const bakegi::GridVisibilityVolume volume = bakegi::build_grid_visibility_volume(
-          g, built, tracer, bakegi::kPageVisibilitySubdivision,
+          g, built, tracer, bakegi::page_visibility_subdivision(g.layout),
           bakegi::max_component(built.description.world_radiance) > 0.0f);
       bakegi::evaluate_grid_with_volume(
           g, volume, std::span<const glm::vec3>(as_vec3(positions), count),

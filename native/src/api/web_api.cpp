@@ -78,10 +78,19 @@ bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* gr
           bakegi::encode_grid_file(page_grid, bakegi::GridEncoding::kQuantized, grid->info_json);
       bakegi::write_file_atomically(root / options.grid_file, bytes);
       // What each place sees of the grid, so that the page does not read through walls.
-      if (const std::optional<bakegi::Scene> built = scene_for_rays(scene->description)) {
+      const uint32_t subdivision = bakegi::page_visibility_subdivision(page_grid.layout);
+      const size_t subvoxels =
+          page_grid.layout.vertex_count() * subdivision * subdivision * subdivision;
+      std::optional<bakegi::Scene> built;
+      if (subvoxels <= bakegi::kMaxVisibilitySubvoxels) {
+        built = scene_for_rays(scene->description);
+      } else {
+        options.grid_too_large_for_visibility = true;
+      }
+      if (built) {
         const bakegi::RayTracer tracer(*built);
         const bakegi::GridVisibilityVolume volume = bakegi::build_grid_visibility_volume(
-            page_grid, *built, tracer, bakegi::kPageVisibilitySubdivision,
+            page_grid, *built, tracer, subdivision,
             bakegi::max_component(scene->description.world_radiance) > 0.0f);
         options.grid_visibility_file = "grid_visibility.bin";
         bakegi::write_file_atomically(root / options.grid_visibility_file,

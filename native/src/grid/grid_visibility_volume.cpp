@@ -135,6 +135,13 @@ SubvoxelVisibility subvoxel_visibility(const IrradianceVectorGrid& grid, const S
 
 }  // namespace
 
+uint32_t page_visibility_subdivision(const GridLayout& layout) {
+  const uint32_t cells =
+      std::max({layout.resolution[0], layout.resolution[1], layout.resolution[2]});
+  const uint32_t half = (32 + std::max(cells, 1u) - 1) / std::max(cells, 1u);  // ceil(32 / cells)
+  return std::clamp(2 * half, 2u, 8u);
+}
+
 float visibility_read_offset(const GridLayout& layout, uint32_t subdivision) {
   const glm::vec3 cell = layout.cell_size();
   return std::max({cell.x, cell.y, cell.z}) / float(std::max(subdivision, 1u));
@@ -160,6 +167,14 @@ GridVisibilityVolume build_grid_visibility_volume(const IrradianceVectorGrid& gr
   volume.subdivision = subdivision;
   for (int a = 0; a < 3; ++a) volume.size[a] = layout.resolution[a] * subdivision;
   const size_t count = volume.subvoxel_count();
+  if (layout.vertex_count() > kMaxVisibilitySubvoxels ||
+      count / (size_t(subdivision) * subdivision * subdivision) != layout.vertex_count() ||
+      count > kMaxVisibilitySubvoxels) {
+    throw Error(BAKEGI_ERROR_OUT_OF_MEMORY,
+                "visibility volume: " + std::to_string(layout.vertex_count()) +
+                    " grid vertices cut " + std::to_string(subdivision) + "^3 pass its limit of " +
+                    std::to_string(kMaxVisibilitySubvoxels) + " subvoxels");
+  }
   volume.codes.assign(2 * count, 0);
   std::vector<uint8_t> has_open_point(count, 0);
   const glm::vec3 step = layout.cell_size() / float(subdivision);

@@ -45,8 +45,14 @@ class RayTracer;
 struct Scene;
 
 inline constexpr uint8_t kNoFallback = 0xff;
-// What the web export builds (docs/ivg.md measures 2 against 4: no better, 8x the rays).
-inline constexpr uint32_t kPageVisibilitySubdivision = 2;
+// What the web export builds: subvoxels about 1/64 of the grid's longest side (2 for a grid
+// of 32 cells or more, 4 for 16, 8 for 8 or fewer). Measured (docs/ivg.md): at 16 cells 4
+// reads far better than 2 (maze 146% -> 100% NRMSE, two rooms 37% -> 20%); at 32 cells 4 is
+// no better than 2 and worse in the maze.
+uint32_t page_visibility_subdivision(const GridLayout& layout);
+// The most subvoxels a volume may hold (32 MB of codes; a 128^3 grid at 2 a cell). Larger
+// grids are past what a page uploads anyway; the web export leaves their volume out.
+inline constexpr size_t kMaxVisibilitySubvoxels = size_t(1) << 24;
 
 struct GridVisibilityVolume {
   uint32_t subdivision = 2;
@@ -57,8 +63,9 @@ struct GridVisibilityVolume {
 };
 
 // Builds the volume over `grid`'s layout (the scene's BVH in `tracer`); subdivision 2, 4, 6
-// or 8 (even, so that subvoxels do not straddle a trilinear cell's boundary). 16 bytes a
-// grid vertex at 2 (the grid itself: 217). world_lit: the scene's world is not black.
+// or 8 (even, so that subvoxels do not straddle a trilinear cell's boundary). 2 s^3 bytes a
+// grid vertex (16 at 2; the grid itself: 217). world_lit: the scene's world is not black.
+// Throws Error(OUT_OF_MEMORY) past kMaxVisibilitySubvoxels.
 // cancelled (may be empty) is polled; when it returns true the build throws Error(CANCELLED).
 GridVisibilityVolume build_grid_visibility_volume(const IrradianceVectorGrid& grid,
                                                   const Scene& scene, const RayTracer& tracer,

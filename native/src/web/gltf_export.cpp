@@ -119,8 +119,14 @@ struct Primitive {
 // by Export for Web (its warnings): the world's and emitters' direct light needs visibility
 // the page lacks, so it comes from the grid when the grid carries it (soft), else only its
 // bounce reaches the page.
-std::vector<std::string> lighting_notes(const SceneDescription& scene, bool from_grid) {
+std::vector<std::string> lighting_notes(const SceneDescription& scene, bool from_grid,
+                                        bool without_visibility) {
   std::vector<std::string> notes;
+  if (without_visibility) {
+    notes.push_back(
+        "the grid is too large for a visibility volume: on the web page its light "
+        "may pass through walls thinner than a cell");
+  }
   if (std::max({scene.world_radiance.x, scene.world_radiance.y, scene.world_radiance.z}) > 0.0f) {
     notes.push_back(from_grid ? "the world (sky) lights this scene: on the web page its direct "
                                 "light comes from the grid, soft and without sharp shadows"
@@ -365,7 +371,8 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
     json << ",\"buffers\":[{\"uri\":\"scene.bin\",\"byteLength\":" << buffer.bin.size() << "}]";
   }
   std::vector<std::string> quoted_notes;
-  for (const std::string& note : lighting_notes(scene, options.grid_has_emitted_light)) {
+  for (const std::string& note : lighting_notes(scene, options.grid_has_emitted_light,
+                                                options.grid_too_large_for_visibility)) {
     quoted_notes.push_back(json_quote(note));
   }
   json << ",\"extras\":{\"bakegi\":{\"grid\":"

@@ -40,6 +40,8 @@ struct WebExportOptions {
   // Which grid vertices each place sees (grid/grid_visibility_volume.h), beside scene.gltf
   // ("" = none: the page reads the grid as the paper does, through thin walls).
   std::string grid_visibility_file;
+  // The grid has too many vertices for one (kMaxVisibilitySubvoxels): the page says so.
+  bool grid_too_large_for_visibility = false;
   // The grid holds the light straight from the world and emitters as well as the bounced
   // light (IrradianceVectorGrid::emitted, added in): the page draws them from it.
   bool grid_has_emitted_light = false;
