@@ -8,15 +8,19 @@
 //    of the page opening (stated; checked against 3 s, see FIRST_IMAGE_LIMIT_MS);
 //  - screenshots after 10%, 50% and 100% of the stream's bytes: their difference to the
 //    final image falls monotonically, to 0;
+//  - the page reads the grid's visibility volume (streamed, and from disk);
 //  - index.html opened from disk (file://, no server) with the folder's files picked shows
-//    the same final image;
+//    the same final image; with a damaged visibility volume it still shows the scene, and
+//    says so;
 //  - with --reference (Blender's render of the same camera showing BakeGI_Indirect from
-//    the same grid, read as the page reads it), the page's "light" view matches it within
+//    the same grid, as Apply Grid reads it), the page's "light" view matches it within
 //    the tolerance below;
 //  - with --shadow-folder G --shadow-points P.json (a box on a floor under a tilted sun),
 //    direct light alone: the floor in the box's shadow is dark beside a floor point in the
 //    open (three.js' shadow maps, and the sun shining the way the glTF says; without shadow
-//    maps both read the same); and a tile textured red | blue shows both colours where they are;
+//    maps both read the same); a tile textured red | blue shows both colours where they are;
+//    the sky lights the open floor through the grid; and a thin wall across the sun keeps
+//    the grid's light of its sunlit side off its shaded side (against ?visibility=0);
 //  - --fig6 (--only-fig6: that alone): the grid's transfer time and bytes per request size, quantized against
 //    floats (the paper's Fig. 6), into DIR/transfer.json.
 // Writes DIR/results.json and the screenshots (PNG).
