@@ -178,7 +178,7 @@ GridVisibilityVolume build_grid_visibility_volume(const IrradianceVectorGrid& gr
   volume.codes.assign(2 * count, 0);
   std::vector<uint8_t> has_open_point(count, 0);
   const glm::vec3 step = layout.cell_size() / float(subdivision);
-  const auto [nx, ny, nz] = volume.size;
+  const size_t nx = volume.size[0], ny = volume.size[1], nz = volume.size[2];
   // The subvoxel's centre in grid coordinates (vertex (i, j, k) at (i, j, k)).
   const auto centre_of = [&](size_t x, size_t y, size_t z) {
     return (glm::vec3(float(x), float(y), float(z)) + 0.5f) / float(subdivision) - 0.5f;
