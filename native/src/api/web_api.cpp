@@ -23,17 +23,24 @@ using bakegi::require;
 
 namespace {
 
-// The scene flattened for rays only (its light is never read: a white world makes a scene
-// exported without its lamps buildable); none for one build_scene refuses (no triangles).
+// The scene flattened for rays only; none for one build_scene refuses (no triangles). Its
+// light is never read: a scene exported without its lamps (refused for having no light) is
+// built again under a white world, copied only then.
 std::optional<bakegi::Scene> scene_for_rays(const bakegi::SceneDescription& description) {
+  const auto refused = [](const Error& e) { return e.status() == BAKEGI_ERROR_INVALID_SCENE; };
+  try {
+    return bakegi::build_scene(description);
+  } catch (const Error& e) {
+    if (!refused(e)) throw;
+  }
   bakegi::SceneDescription lit = description;
   lit.world_radiance = glm::vec3(1.0f);
   try {
     return bakegi::build_scene(lit);
   } catch (const Error& e) {
-    if (e.status() == BAKEGI_ERROR_INVALID_SCENE) return std::nullopt;
-    throw;
+    if (!refused(e)) throw;
   }
+  return std::nullopt;
 }
 
 }  // namespace
