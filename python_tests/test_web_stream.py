@@ -45,7 +45,7 @@ def box_scene(native):
                     a = base + j * (n + 1) + i
                     quad = [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
                     for t in quad:  # inward-facing: flip on the far side
-                        indices.extend(t if side == 1.0 else (t[0], t[2], t[1]))
+                        indices.extend(t if side == 0.0 else (t[0], t[2], t[1]))
     positions = np.array(positions, np.float32)
     triangles = np.array(indices, np.uint32).reshape(-1, 3)
     # Every face its own uv square: corners share positions but not uvs (seams everywhere).
@@ -101,6 +101,7 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
     vertices = primitive_info["vertex_count"]
     received = np.zeros((vertices, 3), np.float32)
     received_uvs = np.zeros((vertices, 2), np.float32)
+    received_reads = np.zeros((vertices, 1), np.float32)
     parent = {}
     count, faces = 0, []
     grid_seen, kinds = [], []
@@ -129,16 +130,19 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
             continue
         offset = 8
         for _ in range(entries):
-            index, first, n, has_normals, has_uvs, face_count, lookups = struct.unpack_from(
-                "<7I", data, offset)
-            offset += 28
+            index, first, n, has_normals, has_uvs, has_reads_grid, face_count, lookups = \
+                struct.unpack_from("<8I", data, offset)
+            offset += 32
             assert index == 0 and first == count and not has_normals and has_uvs
+            assert has_reads_grid  # a grid was exported: every vertex says whether it reads it
             received[first:first + n] = np.frombuffer(data, np.float32, 3 * n,
                                                       offset).reshape(-1, 3)
             offset += 12 * n
             received_uvs[first:first + n] = np.frombuffer(data, np.float32, 2 * n,
                                                           offset).reshape(-1, 2)
             offset += 8 * n
+            received_reads[first:first + n, 0] = np.frombuffer(data, np.float32, n, offset)
+            offset += 4 * n
             count += n
             new_faces = np.frombuffer(data, np.uint32, 3 * face_count, offset).reshape(-1, 3)
             offset += 12 * face_count
@@ -175,6 +179,11 @@ def test_packets_rebuild_the_scene_as_the_page_does(served):
     assert np.array_equal(np.array(faces, np.uint32), accessor(prim["indices"], np.uint32, 3))
     assert len(faces) == 6 * 8 * 8 * 2
     assert np.array_equal(received_uvs, accessor(prim["attributes"]["TEXCOORD_0"], np.float32, 2))
+    reads = accessor(prim["attributes"]["_BAKEGI_READS_GRID"], np.float32, 1)
+    assert np.array_equal(received_reads, reads)
+    # Inside the lit box every corner sees the grid's vertices, also those on the box's edges
+    # (asked a little inside their faces, as the add-on's bake points are): none reads 0.
+    assert manifest["primitives"][0]["has_reads_grid"] is True and np.all(reads == 1.0)
     # The texture: a PNG beside the glTF, 8 x 4, sRGB-encoded red and blue.
     material = gltf["materials"][prim["material"]]
     image = gltf["images"][gltf["textures"][

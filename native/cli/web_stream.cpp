@@ -71,6 +71,7 @@ struct StreamedPrimitive {
   size_t mesh = 0, primitive = 0, material = 0;
   std::vector<float> positions, normals;  // 3 per vertex; normals empty when flat
   std::vector<float> uvs;                 // 2 per vertex, or empty
+  std::vector<float> reads_grid;          // 1 per vertex, or empty (web/corner_grid_reach.h)
   std::vector<uint32_t> faces, parent, valid_at, level_vertices;
   // Streaming state.
   uint32_t vertices_sent = 0;
@@ -111,14 +112,16 @@ void write_entry(PacketWriter& out, StreamedPrimitive& p, size_t index, uint32_t
     }
   }
   const bool has_normals = !p.normals.empty(), has_uvs = !p.uvs.empty();
+  const bool has_reads_grid = !p.reads_grid.empty();
   for (const uint32_t word :
        {uint32_t(index), first, count, uint32_t(has_normals), uint32_t(has_uvs),
-        uint32_t(face_end - p.faces_sent), uint32_t(lookup.size() / 2)}) {
+        uint32_t(has_reads_grid), uint32_t(face_end - p.faces_sent), uint32_t(lookup.size() / 2)}) {
     out.word(word);
   }
   out.append(p.positions.data() + 3 * size_t(first), 12 * size_t(count));
   if (has_normals) out.append(p.normals.data() + 3 * size_t(first), 12 * size_t(count));
   if (has_uvs) out.append(p.uvs.data() + 2 * size_t(first), 8 * size_t(count));
+  if (has_reads_grid) out.append(p.reads_grid.data() + size_t(first), 4 * size_t(count));
   out.append(p.faces.data() + 3 * p.faces_sent, 12 * (face_end - p.faces_sent));
   out.append(lookup.data(), 4 * lookup.size());
   *faces_written += face_end - p.faces_sent;
@@ -162,6 +165,9 @@ SceneStream::SceneStream(const std::filesystem::path& folder, const StreamSettin
       if (const JsonValue* uv = attributes.find("TEXCOORD_0")) {
         p.uvs = accessor_data<float>(gltf, index_of(*uv, "TEXCOORD_0"), 2, bin);
       }
+      if (const JsonValue* reads = attributes.find("_BAKEGI_READS_GRID")) {
+        p.reads_grid = accessor_data<float>(gltf, index_of(*reads, "_BAKEGI_READS_GRID"), 1, bin);
+      }
       p.faces = accessor_data<uint32_t>(
           gltf, index_of(member(primitive, "indices", "a primitive"), "indices"), 1, bin);
       p.parent = accessor_data<uint32_t>(
@@ -177,7 +183,8 @@ SceneStream::SceneStream(const std::filesystem::path& folder, const StreamSettin
       if (p.parent.size() != vertex_count || p.valid_at.size() * 3 != p.faces.size() ||
           p.level_vertices.empty() || p.level_vertices.back() != vertex_count ||
           !(p.normals.empty() || p.normals.size() == p.positions.size()) ||
-          !(p.uvs.empty() || p.uvs.size() * 3 == p.positions.size() * 2)) {
+          !(p.uvs.empty() || p.uvs.size() * 3 == p.positions.size() * 2) ||
+          !(p.reads_grid.empty() || p.reads_grid.size() * 3 == p.positions.size())) {
         throw FileError("scene.gltf: a primitive's progressive mesh does not add up");
       }
       for (size_t v = 0; v < vertex_count; ++v) {
@@ -320,7 +327,8 @@ SceneStream::SceneStream(const std::filesystem::path& folder, const StreamSettin
                       ",\"vertex_count\":" + std::to_string(p.positions.size() / 3) +
                       ",\"face_count\":" + std::to_string(p.valid_at.size()) +
                       ",\"has_normals\":" + (p.normals.empty() ? "false" : "true") +
-                      ",\"has_uvs\":" + (p.uvs.empty() ? "false" : "true") + "}";
+                      ",\"has_uvs\":" + (p.uvs.empty() ? "false" : "true") +
+                      ",\"has_reads_grid\":" + (p.reads_grid.empty() ? "false" : "true") + "}";
   }
   manifest_ = "{\"format\":1,\"gltf\":\"scene.gltf\",\"grid\":" + grid_json +
               ",\"vectors_per_request\":" + std::to_string(settings.vectors_per_request) +

@@ -12,9 +12,11 @@
 //             u32 vertex[count], then count records of 42 (quantized) or 144 bytes
 //             (bakegi_grid_encode_vertices: hemispheres +x -x +y -y +z -z)
 //   geometry: u32 kind = 2, u32 entries, then per entry u32 primitive, first_vertex,
-//             vertex_count, has_normals, has_uvs, face_count, lookup_count; f32 position[3 *
-//             vertex_count]; f32 normal[3 * vertex_count] if has_normals; f32 uv[2 *
-//             vertex_count] if has_uvs; u32 face[3 * face_count] (streamed vertex indices);
+//             vertex_count, has_normals, has_uvs, has_reads_grid, face_count, lookup_count;
+//             f32 position[3 * vertex_count]; f32 normal[3 * vertex_count] if has_normals; f32
+//             uv[2 * vertex_count] if has_uvs; f32 reads_grid[vertex_count] if has_reads_grid
+//             (glTF's _BAKEGI_READS_GRID, web/corner_grid_reach.h); u32 face[3 * face_count]
+//             (streamed vertex indices);
 //             u32 (vertex, parent)[lookup_count]
 //   visibility: u32 kind = 3, u32 bytes, then the folder's grid_visibility.bin (the grid's
 //             visibility volume, grid/grid_visibility_volume.h), zero-padded to 4 bytes; sent

@@ -33,6 +33,7 @@ export class GridTextures {
       bakegiVisibilitySize: { value: new THREE.Vector3(1, 1, 1) },
       bakegiSubdivision: { value: 1 },
       bakegiReadOffset: { value: 0 },
+      bakegiReachWeight: { value: 0 },
     };
     this.setVisibility(SEES_ALL);
   }
@@ -54,6 +55,9 @@ export class GridTextures {
     // One subvoxel along the normal (visibility_read_offset in the core).
     const cell = this.grid.cellSize();
     this.uniforms.bakegiReadOffset.value = volume === SEES_ALL ? 0 : Math.max(...cell) / volume.subdivision;
+    // With the volume, the vertices' own word too: 0 where the export's rays found a corner
+    // pressed against or buried under geometry (native/src/web/corner_grid_reach.h).
+    this.uniforms.bakegiReachWeight.value = volume === SEES_ALL ? 0 : 1;
   }
 
   // Uploads every vertex's values (IrradianceGrid.filled()).
@@ -104,7 +108,9 @@ uniform float bakegiSubdivision;
 uniform float bakegiReadOffset;
 uniform float bakegiIndirectScale;
 uniform float bakegiWhiteAlbedo;
+uniform float bakegiReachWeight;
 varying vec3 vBakegiWorldPosition;
+varying float vBakegiReadsGrid;
 vec3 bakegiGridIrradiance(vec3 p, vec3 n) {
   vec3 g = (p + bakegiReadOffset * n - bakegiBoundsMin) / bakegiCellSize - 0.5;
   ivec3 subvoxel = ivec3(clamp(floor((g + 0.5) * bakegiSubdivision), vec3(0.0), bakegiVisibilitySize - 1.0));
@@ -160,9 +166,11 @@ export function addGridLighting(material, uniforms) {
   material.onBeforeCompile = (shader) => {
     Object.assign(shader.uniforms, uniforms);
     shader.vertexShader = shader.vertexShader
-      .replace("#include <common>", "#include <common>\nvarying vec3 vBakegiWorldPosition;")
+      .replace("#include <common>", "#include <common>\nvarying vec3 vBakegiWorldPosition;\n" +
+        "attribute float bakegiReadsGrid;\nvarying float vBakegiReadsGrid;")
       .replace("#include <project_vertex>",
-        "#include <project_vertex>\nvBakegiWorldPosition = (modelMatrix * vec4(transformed, 1.0)).xyz;");
+        "#include <project_vertex>\nvBakegiWorldPosition = (modelMatrix * vec4(transformed, 1.0)).xyz;\n" +
+        "vBakegiReadsGrid = bakegiReadsGrid;");
     shader.fragmentShader = shader.fragmentShader
       .replace("#include <common>", "#include <common>\n" + DECLARATIONS)
       .replace("#include <lights_fragment_end>", `#include <lights_fragment_end>
@@ -171,7 +179,8 @@ export function addGridLighting(material, uniforms) {
         vec3 p = vec3(vBakegiWorldPosition.x, -vBakegiWorldPosition.z, vBakegiWorldPosition.y);
         vec3 n = vec3(worldNormal.x, -worldNormal.z, worldNormal.y);
         vec3 albedo = mix(diffuseColor.rgb, vec3(1.0), bakegiWhiteAlbedo);
-        reflectedLight.indirectDiffuse += albedo * bakegiGridIrradiance(p, n) * bakegiIndirectScale;
+        float reach = mix(1.0, vBakegiReadsGrid, bakegiReachWeight);
+        reflectedLight.indirectDiffuse += albedo * bakegiGridIrradiance(p, n) * reach * bakegiIndirectScale;
       }`);
   };
   material.customProgramCacheKey = () => "bakegi-grid";

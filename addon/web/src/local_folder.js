@@ -18,6 +18,8 @@ export function primitiveArrays(gltf, bin, description) {
     positions: accessor(gltf, bin, description.attributes.POSITION, Float32Array),
     normals: description.attributes.NORMAL !== undefined ? accessor(gltf, bin, description.attributes.NORMAL, Float32Array) : null,
     uvs: description.attributes.TEXCOORD_0 !== undefined ? accessor(gltf, bin, description.attributes.TEXCOORD_0, Float32Array) : null,
+    readsGrid: description.attributes._BAKEGI_READS_GRID !== undefined
+      ? accessor(gltf, bin, description.attributes._BAKEGI_READS_GRID, Float32Array) : null,
     faces: accessor(gltf, bin, description.indices, Uint32Array),
     parent: accessor(gltf, bin, progressive.parent, Uint32Array),
   };

@@ -18,9 +18,9 @@ export function readPacket(buffer) {
   const entries = [];
   let offset = 8;
   for (let e = 0; e < count; ++e) {
-    const [primitive, first, vertexCount, hasNormals, hasUvs, faceCount, lookupCount] =
-      [0, 1, 2, 3, 4, 5, 6].map((i) => view.getUint32(offset + 4 * i, true));
-    offset += 28;
+    const [primitive, first, vertexCount, hasNormals, hasUvs, hasReadsGrid, faceCount, lookupCount] =
+      [0, 1, 2, 3, 4, 5, 6, 7].map((i) => view.getUint32(offset + 4 * i, true));
+    offset += 32;
     const positions = new Float32Array(buffer.slice(offset, offset + 12 * vertexCount));
     offset += 12 * vertexCount;
     let normals = null;
@@ -33,11 +33,16 @@ export function readPacket(buffer) {
       uvs = new Float32Array(buffer.slice(offset, offset + 8 * vertexCount));
       offset += 8 * vertexCount;
     }
+    let readsGrid = null;
+    if (hasReadsGrid) {
+      readsGrid = new Float32Array(buffer.slice(offset, offset + 4 * vertexCount));
+      offset += 4 * vertexCount;
+    }
     const faces = new Uint32Array(buffer.slice(offset, offset + 12 * faceCount));
     offset += 12 * faceCount;
     const lookups = new Uint32Array(buffer.slice(offset, offset + 8 * lookupCount));
     offset += 8 * lookupCount;
-    entries.push({ primitive, first, vertexCount, positions, normals, uvs, faces, lookups });
+    entries.push({ primitive, first, vertexCount, positions, normals, uvs, readsGrid, faces, lookups });
   }
   if (offset !== buffer.byteLength) throw new Error("a geometry packet does not add up");
   return { kind, entries };

@@ -22,6 +22,10 @@ export class ProgressiveGeometry {
       this.uvs = new THREE.BufferAttribute(new Float32Array(2 * vertexCount), 2);
       this.geometry.setAttribute("uv", this.uvs);
     }
+    // Whether each vertex reads the grid at all (the export's _BAKEGI_READS_GRID); 1 until told
+    // otherwise, and for scenes exported without it.
+    this.readsGrid = new THREE.BufferAttribute(new Float32Array(vertexCount).fill(1), 1);
+    this.geometry.setAttribute("bakegiReadsGrid", this.readsGrid);
   }
 
   add(entry) {
@@ -29,6 +33,7 @@ export class ProgressiveGeometry {
     this.positions.array.set(entry.positions, 3 * entry.first);
     if (this.normals && entry.normals) this.normals.array.set(entry.normals, 3 * entry.first);
     if (this.uvs && entry.uvs) this.uvs.array.set(entry.uvs, 2 * entry.first);
+    if (entry.readsGrid) this.readsGrid.array.set(entry.readsGrid, entry.first);
     this.received += entry.vertexCount;
     this.faces.set(entry.faces, 3 * this.facesReceived);
     this.facesReceived += entry.faces.length / 3;
@@ -36,10 +41,11 @@ export class ProgressiveGeometry {
   }
 
   // Everything at once (a whole glTF from a local folder).
-  setAll(positions, normals, uvs, faces, parent) {
+  setAll(positions, normals, uvs, readsGrid, faces, parent) {
     this.positions.array.set(positions);
     if (this.normals && normals) this.normals.array.set(normals);
     if (this.uvs && uvs) this.uvs.array.set(uvs);
+    if (readsGrid) this.readsGrid.array.set(readsGrid);
     this.faces.set(faces);
     this.parent.set(parent);
     this.received = this.vertexCount;
@@ -63,6 +69,7 @@ export class ProgressiveGeometry {
     this.positions.needsUpdate = true;
     if (this.normals) this.normals.needsUpdate = true;
     if (this.uvs) this.uvs.needsUpdate = true;
+    this.readsGrid.needsUpdate = true;
     this.geometry.computeBoundingSphere();
   }
 }

@@ -309,7 +309,7 @@ async function openFolder(files) {
   if (visibility && useVisibility) await applyVisibility(visibility);
   view.geometries.forEach((g, i) => {
     const a = info[i].arrays;
-    g.setAll(a.positions, a.normals, a.uvs, a.faces, a.parent);
+    g.setAll(a.positions, a.normals, a.uvs, a.readsGrid, a.faces, a.parent);
   });
   refreshGrid();
   refreshGeometry();

@@ -117,6 +117,13 @@ try {
   results.all_ms = finalState.doneMs;
   results.push_pull_ms = finalState.pushPullMs;
   results.total_bytes = finalState.totalBytes;
+  // The vertices the export found reading nothing of the grid (pressed against or buried
+  // under geometry: the blocks' undersides on the floor), carried to the page.
+  const readingNothing = (p) => p.evaluate(() => window.bakegiView.geometries.reduce(
+    (n, g) => n + g.readsGrid.array.filter((v) => v === 0).length, 0));
+  const streamedNothing = await readingNothing(page);
+  results.vertices_reading_nothing = streamedNothing;
+  check(streamedNothing > 0, `the export's word on which vertices read nothing of the grid reaches the page (${streamedNothing} vertices)`);
   const final = await pixels(page);
   await page.locator("#view").screenshot({ path: join(out, "stream_100.png") });
   for (const stage of [0.1, 0.5]) {
@@ -143,6 +150,8 @@ try {
   results.local_folder_difference = localDifference;
   check(localDifference <= 0.5, `the folder opened from disk shows the streamed final image (difference ${localDifference.toFixed(3)} of 255)`);
   check(await local.evaluate(() => window.bakegiState.hasVisibility), "the folder opened from disk reads the visibility volume too");
+  const localNothing = await readingNothing(local);
+  check(localNothing === streamedNothing, `... and which vertices read nothing (${localNothing} of them)`);
   // A damaged visibility volume: the page still shows the scene, reading the grid the paper's
   // way, and says so.
   const damaged = join(out, "site_damaged_visibility");

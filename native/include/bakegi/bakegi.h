@@ -612,8 +612,10 @@ typedef enum bakegi_grid_encoding {
  * and its BVH built (the cost of a bake's first step).
  * BAKEGI_GRID_PAGE_VISIBILITY (alone, trilinear) reads as the web page does, without rays
  * from the points: from the visibility volume bakegi_web_export writes beside the grid
- * (native/src/grid/grid_visibility_volume.h), built here over the scene; code 1 where it
- * reads 0 for a point that sees no vertex. */
+ * (native/src/grid/grid_visibility_volume.h), built here over the scene, times the factor the
+ * export stores per glTF vertex (native/src/web/corner_grid_reach.h: 0 where the rays above
+ * read nothing); code 1 where it reads 0 for a point that sees no vertex, else the rays'
+ * code where they read nothing. */
 typedef enum bakegi_grid_scene_flags {
   BAKEGI_GRID_VISIBILITY = 1,
   BAKEGI_GRID_DARKEN_BURIED = 2,
@@ -654,7 +656,9 @@ BAKEGI_API bakegi_status bakegi_grid_with_emitted_light(const bakegi_grid* grid,
  * (glTF 2.0; every mesh a progressive mesh: see native/src/web/gltf_export.h) and, when
  * `grid` is given, grid.bgivg (quantized) and grid_visibility.bin (which grid vertices each
  * place sees, so that the page does not read light through thin walls: built with rays over
- * the scene, native/src/grid/grid_visibility_volume.h). camera (may be NULL): 9 floats,
+ * the scene, native/src/grid/grid_visibility_volume.h), and with it every glTF vertex's
+ * _BAKEGI_READS_GRID (0 where the corner reads nothing of the grid: pressed against or
+ * buried under geometry, native/src/web/corner_grid_reach.h). camera (may be NULL): 9 floats,
  * position xyz, the rotation quaternion xyzw (looking down -Z), vertical field of view
  * (radians), aspect ratio. Files are written atomically; BAKEGI_ERROR_IO names what could not be written. */
 BAKEGI_API bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* grid,

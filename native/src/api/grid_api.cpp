@@ -185,6 +185,20 @@ bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid, const bakeg
           bakegi::GridDirectionalWeights(directional),
           std::span<glm::vec3>(reinterpret_cast<glm::vec3*>(out_rgb), count),
           out_codes ? std::span<uint8_t>(out_codes, count) : std::span<uint8_t>());
+      // And, as the page's vertices carry it (web/corner_grid_reach.h), 0 where Apply Grid's
+      // rays read nothing: the point sees no grid vertex or lies buried.
+      std::vector<glm::vec3> rays(count);
+      std::vector<uint8_t> codes(count, bakegi::kGridPointRead);
+      bakegi::GridSceneStatistics statistics;
+      bakegi::evaluate_grid_in_scene(g, built, tracer,
+                                     std::span<const glm::vec3>(as_vec3(positions), count),
+                                     std::span<const glm::vec3>(as_vec3(normals), count),
+                                     bakegi::GridSceneLookup{}, rays, codes, statistics);
+      for (size_t i = 0; i < count; ++i) {
+        if (codes[i] == bakegi::kGridPointRead) continue;
+        std::fill_n(out_rgb + 3 * i, 3, 0.0f);
+        if (out_codes && out_codes[i] == bakegi::kGridPointRead) out_codes[i] = codes[i];
+      }
       return;
     }
     bakegi::GridSceneLookup lookup;

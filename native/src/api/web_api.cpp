@@ -14,6 +14,7 @@
 #include "scene/scene_validation.h"
 #include "util/file_bytes.h"
 #include "util/sampling.h"
+#include "web/corner_grid_reach.h"
 #include "web/gltf_export.h"
 #include "web/grid_stream_order.h"
 
@@ -102,6 +103,9 @@ bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* gr
         options.grid_visibility_file = "grid_visibility.bin";
         bakegi::write_file_atomically(root / options.grid_visibility_file,
                                       bakegi::encode_visibility_file(volume, page_grid.layout));
+        // Corners the volume's reading one subvoxel out cannot judge: pressed against or
+        // buried under geometry.
+        options.corner_reads_grid = bakegi::corners_reading_grid(page_grid, *built, tracer);
       }
     }
     const bakegi::WebGltf gltf = bakegi::encode_web_gltf(scene->description, options);

@@ -176,10 +176,13 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
       const bool textured = material < scene.materials.size() &&
                             scene.materials[material].albedo_texture != BAKEGI_NO_TEXTURE &&
                             !mesh.corner_uvs.empty();
-      std::map<std::tuple<uint32_t, float, float>, uint32_t> local;
+      const bool has_reach = m < options.corner_reads_grid.size() &&
+                             options.corner_reads_grid[m].size() == mesh.indices.size();
+      std::map<std::tuple<uint32_t, float, float, uint8_t>, uint32_t> local;
       std::vector<uint32_t> indices;
       std::vector<glm::vec3> positions, normal_sums;
       std::vector<glm::vec2> uvs;
+      std::vector<float> reads_grid;
       bool flat = true;
       for (const uint32_t t : primitive.triangles) {
         glm::vec3 p[3];
@@ -190,11 +193,14 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
                         "mesh " + std::to_string(m) + " indexes past its vertices");
           }
           const glm::vec2 uv = textured ? mesh.corner_uvs[3 * t + c] : glm::vec2(0.0f);
-          const auto [at, added] = local.try_emplace({v, uv.x, uv.y}, uint32_t(positions.size()));
+          const uint8_t reads = has_reach ? options.corner_reads_grid[m][3 * t + c] : 1;
+          const auto [at, added] =
+              local.try_emplace({v, uv.x, uv.y, reads}, uint32_t(positions.size()));
           if (added) {
             positions.push_back(mesh.positions[v]);
             normal_sums.push_back(glm::vec3(0.0f));
             uvs.push_back(uv);
+            reads_grid.push_back(reads ? 1.0f : 0.0f);
           }
           indices.push_back(at->second);
           p[c] = mesh.positions[v];
@@ -239,6 +245,13 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
         attributes +=
             ",\"TEXCOORD_0\":" + std::to_string(buffer.add(streamed_uvs.data(), count * 8, count,
                                                            kFloat, "VEC2", kArrayBuffer));
+      }
+      if (!options.corner_reads_grid.empty()) {
+        std::vector<float> streamed_reads(count);
+        for (size_t v = 0; v < count; ++v) streamed_reads[v] = reads_grid[pm.original_vertex[v]];
+        attributes += ",\"_BAKEGI_READS_GRID\":" +
+                      std::to_string(buffer.add(streamed_reads.data(), count * 4, count, kFloat,
+                                                "SCALAR", kArrayBuffer));
       }
       const int faces = buffer.add(pm.faces.data(), pm.faces.size() * 4, pm.faces.size(),
                                    kUnsignedInt, "SCALAR", kElementArrayBuffer);

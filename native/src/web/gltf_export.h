@@ -12,6 +12,8 @@
 // roughness 1 base colours, emission in extras (radiance W/(m^2 sr)). Albedo textures
 // become PNG images beside the file (8-bit sRGB) with TEXCOORD_0 (a textured primitive keeps
 // a vertex per distinct corner uv).
+// With the corners' grid reach (options.corner_reads_grid) every primitive carries
+// _BAKEGI_READS_GRID, which the page multiplies into the grid's light.
 #pragma once
 
 #include <cstdint>
@@ -45,6 +47,10 @@ struct WebExportOptions {
   // The grid holds the light straight from the world and emitters as well as the bounced
   // light (IrradianceVectorGrid::emitted, added in): the page draws them from it.
   bool grid_has_emitted_light = false;
+  // Empty, or per mesh per corner whether it reads the grid at all (web/corner_grid_reach.h):
+  // written as the vertex attribute _BAKEGI_READS_GRID (float, 1 or 0), corners that differ
+  // kept apart as vertices.
+  std::vector<std::vector<uint8_t>> corner_reads_grid;
 };
 
 struct WebGltf {
