@@ -40,7 +40,7 @@ export class GridTextures {
 
   // The grid's visibility volume (visibility_volume.js); until it arrives every vertex is
   // read (SEES_ALL), at the fragment itself.
-  setVisibility(volume) {
+  setVisibility(volume, useReach = true) {
     const [sx, sy, sz] = volume.size;
     const texture = new THREE.Data3DTexture(volume.codes, sx, sy, sz);
     texture.format = THREE.RGFormat;
@@ -57,7 +57,7 @@ export class GridTextures {
     this.uniforms.bakegiReadOffset.value = volume === SEES_ALL ? 0 : Math.max(...cell) / volume.subdivision;
     // With the volume, the vertices' own word too: 0 where the export's rays found a corner
     // pressed against or buried under geometry (native/src/web/corner_grid_reach.h).
-    this.uniforms.bakegiReachWeight.value = volume === SEES_ALL ? 0 : 1;
+    this.uniforms.bakegiReachWeight.value = volume === SEES_ALL || !useReach ? 0 : 1;
   }
 
   // Uploads every vertex's values (IrradianceGrid.filled()).
@@ -93,7 +93,9 @@ export class GridTextures {
 // side, trilinearly interpolated, weighted by n_a^2, read as c (d . n). Where the visibility
 // volume says the fragment's place sees all 8 vertices of its cell, the texture unit
 // interpolates; where it sees some, they are fetched and their weights renormalised; where
-// none, the nearest vertex it sees, or nothing (evaluate_grid_with_volume in the core). The
+// none, the nearest vertex it sees, or nothing (evaluate_grid_with_volume in the core);
+// and then times the fragment's interpolated _BAKEGI_READS_GRID (0 at corners the export's
+// rays found pressed against or buried under geometry: web/corner_grid_reach.h). The
 // grid is read one subvoxel along the normal. Positions and normals are turned from glTF's
 // Y-up axes to the grid's Z-up ones.
 const DECLARATIONS = /* glsl */ `

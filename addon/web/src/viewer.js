@@ -6,7 +6,9 @@
 // Query: ?until=F stops after F of the stream's bytes (0..1); ?vectors=V&vertices=N&
 // encoding=quantized|factored choose the packets; ?only=grid streams the grid alone; ?size=
 // WxH fixes the canvas; ?mode=full|indirect|direct|light (light: the grid's value E/pi on
-// white, what Blender shows of the BakeGI_Indirect attribute). window.bakegiState tells
+// white, what Blender shows of the BakeGI_Indirect attribute); ?visibility=0 reads the grid
+// the paper's way (no visibility volume), ?reach=0 ignores the vertices' _BAKEGI_READS_GRID
+// (both to compare). window.bakegiState tells
 // tests and people where it stands.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
@@ -37,6 +39,7 @@ const early = window.bakegiEarly ?? {
 const suffix = early.suffix;
 // ?visibility=0: the paper's reading, through walls (to compare; the test does).
 const useVisibility = query.get("visibility") !== "0";
+const useReach = query.get("reach") !== "0";
 
 const canvas = document.getElementById("view");
 const status = document.getElementById("status");
@@ -216,7 +219,7 @@ function refreshGeometry() {
 // be read leaves the page reading the grid the paper's way, and says so.
 async function applyVisibility(volume) {
   try {
-    view.textures.setVisibility(await (typeof volume === "function" ? volume() : volume));
+    view.textures.setVisibility(await (typeof volume === "function" ? volume() : volume), useReach);
     state.hasVisibility = true;
   } catch (error) {
     state.notes.push(`the grid's visibility volume could not be read (${error.message}): ` +
