@@ -366,6 +366,26 @@ TEST(BakeJob, CancelStopsALongJobPromptly) {
   EXPECT_EQ(report.members["status"].text, "BAKEGI_ERROR_CANCELLED");
 }
 
+// A cancel that comes after the job ended changes nothing: it stays a success, its results
+// readable. (One that comes before the end, even after its last stage polled, ends it
+// cancelled: BakeJob::cancel and finish agree under one lock.)
+TEST(BakeJob, ACancelAfterTheEndChangesNothing) {
+  ScenePtr scene = new_box_scene();
+  PointsPtr points = new_floor_points(16);
+  SettingsPtr settings = new_settings();
+  EXPECT_EQ(bakegi_settings_set_int(settings.get(), "samples", 4), BAKEGI_OK);
+  bakegi_job* job = nullptr;
+  ASSERT_EQ(bakegi_job_start(scene.get(), points.get(), settings.get(), &job), BAKEGI_OK)
+      << bakegi_last_error();
+  JobPtr owned(job);
+  ASSERT_EQ(bakegi_job_wait(job), BAKEGI_OK) << bakegi_last_error();
+  bakegi_job_cancel(job);
+  EXPECT_EQ(bakegi_job_wait(job), BAKEGI_OK);
+  std::vector<float> rgb(3 * 16);
+  EXPECT_EQ(bakegi_job_get_result(job, rgb.data(), 16), BAKEGI_OK) << bakegi_last_error();
+  EXPECT_EQ(stage_of(job), "done");
+}
+
 TEST(BakeJob, DestroyingARunningJobCancelsIt) {
   bakegi_job* job = start_endless_job(64);
   ASSERT_NE(job, nullptr);

@@ -332,7 +332,9 @@ BAKEGI_API double bakegi_job_progress(const bakegi_job* job);
 /* Short text of the current stage, e.g. "building BVH", "tracing 32/256 samples".
  * Copies at most capacity-1 bytes plus NUL. */
 BAKEGI_API void bakegi_job_stage(const bakegi_job* job, char* buffer, size_t capacity);
-/* Asks the job to stop; returns at once. The job ends with BAKEGI_ERROR_CANCELLED. */
+/* Asks the job to stop; returns at once. A job that has not ended by then ends with
+ * BAKEGI_ERROR_CANCELLED (also when its work was complete); one that has ended is left as it
+ * ended. */
 BAKEGI_API void bakegi_job_cancel(bakegi_job* job);
 /* 1 if the job has ended (done, failed or cancelled), else 0. */
 BAKEGI_API int bakegi_job_is_done(const bakegi_job* job);

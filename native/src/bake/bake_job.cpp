@@ -168,6 +168,11 @@ BakeJob::~BakeJob() {
   }
 }
 
+void BakeJob::cancel() {
+  std::lock_guard lock(mutex_);
+  if (!done_) context_.cancel();
+}
+
 bool BakeJob::is_done() const {
   std::lock_guard lock(mutex_);
   return done_;
@@ -609,7 +614,17 @@ void BakeJob::report_error_estimate(const ErrorEstimate& estimate, Report& repor
   report.add_seconds("error_estimate", seconds_since(start));
 }
 
-void BakeJob::finish(bakegi_status status, const std::string& message) noexcept {
+void BakeJob::finish(bakegi_status status, std::string message) noexcept {
+  const auto cancelled_in_time = [&] {
+    if (status == BAKEGI_OK && context_.is_cancelled()) {
+      status = BAKEGI_ERROR_CANCELLED;
+      try {
+        message = "the bake was cancelled";
+      } catch (...) {
+      }
+    }
+  };
+  cancelled_in_time();
   // The field has been evaluated (or never will be); a relight keeps its own references.
   direct_.reset();
   tracer_.reset();
@@ -638,6 +653,8 @@ void BakeJob::finish(bakegi_status status, const std::string& message) noexcept 
     // The report is incomplete; status and message below still reach the caller.
   }
   std::lock_guard lock(mutex_);
+  // cancel() sets the flag under this lock: checked again, no cancel slips in before done_.
+  cancelled_in_time();
   status_ = status;
   try {
     error_ = message;

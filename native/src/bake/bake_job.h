@@ -76,7 +76,10 @@ class BakeJob {
 
   double progress() const { return context_.progress(); }
   std::string stage() const { return context_.stage(); }
-  void cancel() { context_.cancel(); }
+  // A cancel that reaches the job before it has ended makes it end cancelled, also when its
+  // work was complete by then (its last stage no longer polled); after the end it does
+  // nothing.
+  void cancel();
   bool is_done() const;
   // Blocks until the job ends; returns its status and (if failed) its message.
   bakegi_status wait(std::string& message);
@@ -129,7 +132,7 @@ class BakeJob {
   size_t held_bytes() const;
   // Full bakes of every method but "direct" check themselves; relights stay fast.
   bool wants_error_estimate() const;
-  void finish(bakegi_status status, const std::string& message) noexcept;
+  void finish(bakegi_status status, std::string message) noexcept;
 
   SceneDescription description_;
   BakePoints points_;
