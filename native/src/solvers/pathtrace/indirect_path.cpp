@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 
 #include "lights/direct_light.h"
@@ -68,17 +67,6 @@ PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hi
       // Diffuse fast path: rho / pi * E_light.
       if (!(max_component(albedo) > 0.0f)) break;
       radiance += throughput * albedo * (kInvPi * direct.sample_lights(x, rng, rays));
-      static const int sky_k = std::getenv("EXP_SKY_K") ? std::atoi(std::getenv("EXP_SKY_K")) : 0;
-      if (sky_k > 0 && max_component(direct.world_radiance()) > 0.0f) {
-        int escaped = 0;
-        for (int k = 0; k < sky_k; ++k) {
-          const DirectionSample d = sample_cosine(x, rng);
-          if (!(d.pdf > 0.0f) || glm::dot(d.direction, x.geometric_normal) <= 0.0f) continue;
-          ++rays;
-          escaped += !tracer.occluded(Ray{direct.ray_origin(x), d.direction, 0.0f, 1e30f});
-        }
-        radiance += throughput * albedo * direct.world_radiance() * (float(escaped) / sky_k);
-      }
     } else {
       // Diffuse + Phong: the same two strategies with the mixture's f cos and density.
       bsdf.emplace(x.shading_normal, -direction, albedo, material.glossy,
@@ -114,10 +102,6 @@ PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hi
     ++rays;
     hit = tracer.intersect(Ray{origin, direction, 0.0f, 1e30f});
     radiance += throughput * direct.emission_along(x.position, direction, hit, next.pdf);
-    {
-      static const int sky_k = std::getenv("EXP_SKY_K") ? std::atoi(std::getenv("EXP_SKY_K")) : 0;
-      if (sky_k > 0 && !bsdf && !hit.hit) radiance -= throughput * direct.world_radiance();
-    }
 
     if (bounce >= max_bounces) break;
     if (bounce >= kRouletteStartBounce) {
