@@ -10,8 +10,6 @@
 #include "grid/grid_file.h"
 #include "grid/grid_interpolation.h"
 #include "grid/grid_visibility.h"
-#include "lightmap/backface_rejection.h"
-#include <cstdlib>
 #include "grid/grid_visibility_volume.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene_validation.h"
@@ -196,21 +194,6 @@ bakegi_status bakegi_grid_evaluate_in_scene(const bakegi_grid* grid, const bakeg
                                      std::span<const glm::vec3>(as_vec3(positions), count),
                                      std::span<const glm::vec3>(as_vec3(normals), count),
                                      bakegi::GridSceneLookup{}, rays, codes, statistics);
-      const char* mode = std::getenv("BAKEGI_EXP_OPEN");
-      if (mode && *mode != '0') {
-        std::vector<glm::vec3> p(as_vec3(positions), as_vec3(positions) + count);
-        std::vector<glm::vec3> n(as_vec3(normals), as_vec3(normals) + count);
-        for (glm::vec3& each : n) {
-          const float length = glm::length(each);
-          each = length > 0.0f && std::isfinite(length) ? each / length : glm::vec3(0, 0, 1);
-        }
-        const auto flags2 = bakegi::flag_samples_inside_geometry(built, tracer, p, n, n, {});
-        const auto f = bakegi::backface_hit_fractions(built, tracer, p, n, 32);
-        for (size_t i = 0; i < count; ++i) {
-          if (*mode == '1' && !flags2[i]) continue;
-          for (int c = 0; c < 3; ++c) out_rgb[3 * i + c] *= 1.0f - f[i];
-        }
-      }
       for (size_t i = 0; i < count; ++i) {
         if (codes[i] == bakegi::kGridPointRead) continue;
         std::fill_n(out_rgb + 3 * i, 3, 0.0f);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 #include <vector>
 
@@ -69,7 +68,6 @@ void evaluate_grid_in_scene(const IrradianceVectorGrid& grid, const Scene& scene
     throw Error(BAKEGI_ERROR_INTERNAL, "grid evaluation: sizes of the point arrays differ");
   }
   std::vector<uint8_t> buried;
-  std::vector<float> open_fraction;
   if (lookup.darken_buried && count > 0) {
     const std::vector<glm::vec3> p(positions.begin(), positions.end());
     std::vector<glm::vec3> n(normals.begin(), normals.end());
@@ -79,14 +77,6 @@ void evaluate_grid_in_scene(const IrradianceVectorGrid& grid, const Scene& scene
     }
     buried = flag_samples_inside_geometry(scene, tracer, p, n, n, lookup.buried);
     statistics.rays += uint64_t(count) * lookup.buried.rays;
-    const char* mode = std::getenv("BAKEGI_EXP_OPEN");
-    if (mode && *mode != '0') {
-      open_fraction = backface_hit_fractions(scene, tracer, p, n, lookup.buried.rays);
-      for (float& f : open_fraction) f = 1.0f - f;
-      if (*mode == '1') {
-        for (size_t i = 0; i < count; ++i) if (!buried[i]) open_fraction[i] = 1.0f;
-      }
-    }
   }
   // Rays leave this far off the point's surface (and stop as far short of the vertex).
   const float lift = 1e-4f * std::max(scene.extent(), 1e-3f);
@@ -97,7 +87,7 @@ void evaluate_grid_in_scene(const IrradianceVectorGrid& grid, const Scene& scene
       tbb::blocked_range<size_t>(0, count, 256), [&](const tbb::blocked_range<size_t>& block) {
         uint64_t block_rays = 0, block_unsure = 0, block_buried = 0;
         for (size_t i = block.begin(); i != block.end(); ++i) {
-          if (!buried.empty() && buried[i] && open_fraction.empty()) {
+          if (!buried.empty() && buried[i]) {
             out[i] = glm::vec3(0.0f);
             if (!unsure.empty()) unsure[i] = kGridPointBuried;
             ++block_buried;
@@ -128,7 +118,6 @@ void evaluate_grid_in_scene(const IrradianceVectorGrid& grid, const Scene& scene
             out[i] = wider ? *wider : glm::vec3(0.0f);
             refused = !wider;
           }
-          if (!open_fraction.empty()) out[i] *= open_fraction[i];
           if (!unsure.empty()) unsure[i] = refused ? kGridPointUnsure : kGridPointRead;
           block_unsure += refused;
         }

@@ -75,39 +75,4 @@ std::vector<uint8_t> flag_samples_inside_geometry(const Scene& scene, const RayT
   return flags;
 }
 
-std::vector<float> backface_hit_fractions(const Scene& scene, const RayTracer& tracer,
-                                          const std::vector<glm::vec3>& positions,
-                                          const std::vector<glm::vec3>& normals, uint32_t rays) {
-  const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(rays))));
-  const uint32_t rows = (rays + columns - 1) / columns;
-  std::vector<glm::vec3> local(rays);
-  for (uint32_t i = 0; i < rays; ++i) {
-    local[i] = sample_cosine_hemisphere((float(i % columns) + 0.5f) / float(columns),
-                                        (float(i / columns) + 0.5f) / float(rows));
-  }
-  const float offset = 1e-5f * std::max(scene.extent(), 1e-3f);
-  std::vector<float> fractions(positions.size(), 0.0f);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, positions.size(), 64),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      for (size_t i = range.begin(); i != range.end(); ++i) {
-                        const Frame frame(normals[i]);
-                        uint32_t back_hits = 0;
-                        for (uint32_t r = 0; r < rays; ++r) {
-                          Ray ray;
-                          ray.origin = positions[i] + offset * normals[i];
-                          ray.direction = frame.to_world(local[r]);
-                          ray.tfar = 1e30f;
-                          const Hit hit = tracer.intersect(ray);
-                          if (hit.hit &&
-                              glm::dot(ray.direction,
-                                       scene.triangles[hit.triangle].face_normal) > 0) {
-                            ++back_hits;
-                          }
-                        }
-                        fractions[i] = float(back_hits) / float(rays);
-                      }
-                    });
-  return fractions;
-}
-
 }  // namespace bakegi

@@ -43,10 +43,4 @@ std::vector<uint8_t> flag_samples_inside_geometry(const Scene& scene, const RayT
                                                   const BackfaceRejectionOptions& options = {},
                                                   const CancelFlag* cancel = nullptr);
 
-// The fraction of each sample's rays (the same directions as above) that meet back faces:
-// the cosine-weighted share of its hemisphere inside geometry. All rays are traced.
-std::vector<float> backface_hit_fractions(const Scene& scene, const RayTracer& tracer,
-                                          const std::vector<glm::vec3>& positions,
-                                          const std::vector<glm::vec3>& normals, uint32_t rays);
-
 }  // namespace bakegi
