@@ -15,28 +15,40 @@
 #   BAKEGI_SKIP_PORTABLE=1        leave out the portable library
 set -uo pipefail
 cd "$(dirname "$0")/.."
+# Seconds per stage, printed at the end: CI must stay under 45 minutes (docs/testing.md).
+timings=()
+stage_name="setup (Debian packages, the Release build, the web page, the add-on)"
+stage_started=$(date +%s)
+stage() {  # ends the running stage and starts the next
+  local now
+  now=$(date +%s)
+  timings+=("$(printf '%5d s  %s' $((now - stage_started)) "$stage_name")")
+  stage_name=$1
+  stage_started=$now
+  echo "== $1"
+}
 bash tools/setup.sh || { echo "setup failed"; exit 1; }
 build_dir=${BAKEGI_BUILD_DIR:-build}
 results=$(mktemp -d)
 
-echo "== native tests (Release)"
+stage "native tests (Release)"
 ctest --test-dir "$build_dir" --output-on-failure -j2 --output-junit "$results/native.xml"
 native_rc=$?
 
-echo "== add-on tests without Blender (pytest: bpy-free modules and the ctypes binding)"
+stage "add-on tests without Blender (pytest: bpy-free modules and the ctypes binding)"
 BAKEGI_LIBRARY="$build_dir/libbakegi.so" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -m pytest -q \
   -p no:cacheprovider python_tests --junitxml "$results/python.xml"
 python_rc=$?
 
-echo "== native tests (AddressSanitizer + UBSan)"
+stage "native tests (AddressSanitizer + UBSan, their build included)"
 BAKEGI_JUNIT="$results/asan.xml" bash .ci/asan
 asan_rc=$?
 
-echo "== fuzzers (libFuzzer with ASan + UBSan on the readers: .ci/fuzz)"
+stage "fuzzers (libFuzzer with ASan + UBSan on the readers: .ci/fuzz, their build included)"
 BAKEGI_JUNIT="$results/fuzz.xml" BAKEGI_BUILD_DIR="$build_dir" bash .ci/fuzz
 fuzz_rc=$?
 
-echo "== tests in Blender"
+stage "tests in Blender (the bpy modules' download included)"
 /usr/bin/python3 blender_tests/run.py --library "$build_dir/libbakegi.so" --junit "$results/blender.xml" \
   | tee "$results/blender.log"
 blender_rc=${PIPESTATUS[0]}
@@ -55,7 +67,7 @@ fi
 echo "== Blender versions"
 grep -E "^Blender [0-9.]+.*: [0-9]+ passed" "$results/blender.log"
 
-echo "== the web page in Chromium"
+stage "the web page in Chromium"
 if ! command -v chromium >/dev/null; then
   apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
 fi
@@ -67,7 +79,7 @@ grep -E "^(ok  |FAIL)|WEB " "$results/web.log"
 
 portable_rc=0
 if [ "${BAKEGI_SKIP_PORTABLE:-0}" != 1 ]; then
-  echo "== portable library (built on Debian 11, loaded in a clean Debian 11 root)"
+  stage "portable library (built on Debian 11, loaded in a clean Debian 11 root)"
   started=$(date +%s)
   { bash tools/build_portable.sh && bash tools/check_portable.sh; } > "$results/portable.log" 2>&1
   portable_rc=$?
@@ -88,7 +100,7 @@ PY
   # that version's own TBB and OpenEXR (test_install with BAKEGI_INSTALL_ZIP).
   zip=$(ls dist/bakegi-*-portable.zip 2>/dev/null | head -n 1)
   if [ $portable_rc -eq 0 ] && [ -n "$zip" ]; then
-    echo "== portable zip installed in each Blender version"
+    stage "portable zip installed in each Blender version"
     BAKEGI_INSTALL_ZIP="$zip" /usr/bin/python3 blender_tests/run.py --library "$build_dir/libbakegi.so" \
       --junit "$results/portable-install.xml" test_install < /dev/null > "$results/portable-install.log" 2>&1 \
       || portable_rc=1
@@ -102,6 +114,9 @@ PY
     [ $portable_rc -eq 0 ] || tail -n 40 "$results/portable-install.log"
   fi
 fi
+
+stage "time per stage"
+printf "%s\n" "${timings[@]}"
 
 if [ $native_rc -ne 0 ] || [ $python_rc -ne 0 ] || [ $asan_rc -ne 0 ] || [ $fuzz_rc -ne 0 ] || [ $blender_rc -ne 0 ] || [ $web_rc -ne 0 ] || [ $portable_rc -ne 0 ]; then
   echo "FAILED (exit codes: native $native_rc, python $python_rc, asan $asan_rc, fuzz $fuzz_rc, blender $blender_rc, web $web_rc, portable $portable_rc)"
