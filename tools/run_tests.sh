@@ -80,12 +80,11 @@ grep -E "^(ok  |FAIL)|WEB " "$results/web.log"
 portable_rc=0
 if [ "${BAKEGI_SKIP_PORTABLE:-0}" != 1 ]; then
   stage "portable library (built on Debian 11, loaded in a clean Debian 11 root)"
-  started=$(date +%s)
   { bash tools/build_portable.sh && bash tools/check_portable.sh; } > "$results/portable.log" 2>&1
   portable_rc=$?
   grep -E "newest glibc|loaded|NRMSE|PORTABLE OK|glibc of|check_portable:|build_portable:" "$results/portable.log"
   [ $portable_rc -eq 0 ] || tail -n 30 "$results/portable.log"
-  /usr/bin/python3 - "$results/portable.xml" "$portable_rc" "$(( $(date +%s) - started ))" "$results/portable.log" <<'PY'
+  /usr/bin/python3 - "$results/portable.xml" "$portable_rc" "$(( $(date +%s) - stage_started ))" "$results/portable.log" <<'PY'
 import sys, xml.etree.ElementTree as ET
 path, rc, seconds, log = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
 suite = ET.Element("testsuite", name="portable", tests="1", failures=str(int(rc != 0)), errors="0",
