@@ -1,7 +1,8 @@
 """Make the Cycles references that the in-Blender tests compare bakegi against.
 
     blender -b --factory-startup --python blender_tests/make_references.py -- \
-        [--only cornell|principled|lights|textured] [--cornell-samples 65536] \
+        [--only cornell|principled|lights|textured] [--kinds WORLD_IMAGE ...] \
+        [--cornell-samples 65536] \
         [--principled-samples 16384] [--light-samples 16384] \
         [--textured-samples 8192] [--chunk 8192]
     blender -b --factory-startup --python blender_tests/make_references.py -- --bounce-study
@@ -105,8 +106,10 @@ def make_cornell(samples, chunk, seed, surface="DIFFUSE"):
     log(f"Cornell {surface} indirect: {seconds:.1f} s, noise {100 * noise:.3f}%")
 
 
-def make_lights(samples, chunk, seed):
+def make_lights(samples, chunk, seed, kinds=None):
     for kind in light_units.light_kinds():
+        if kinds and kind not in kinds:
+            continue
         bpy.ops.wm.read_factory_settings(use_empty=True)
         built = light_units.build_light_scene(kind)
         objects = [built[name] for name in light_units.RECEIVERS]
@@ -158,6 +161,7 @@ def main():
     parser.add_argument("--textured-samples", type=int, default=8192)
     parser.add_argument("--chunk", type=int, default=8192)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--kinds", nargs="+", help="with --only lights: only these light kinds")
     parser.add_argument("--bounce-study", action="store_true")
     parser.add_argument("--data", help=f"output folder (default {os.path.relpath(DATA, ROOT)})")
     arguments = parser.parse_args(argv)
@@ -168,7 +172,8 @@ def main():
         bounce_study()
         return
     if arguments.only in (None, "lights"):
-        make_lights(arguments.light_samples, min(arguments.chunk, arguments.light_samples // 2), arguments.seed)
+        make_lights(arguments.light_samples, min(arguments.chunk, arguments.light_samples // 2),
+                    arguments.seed, arguments.kinds)
     if arguments.only in (None, "textured"):
         make_textured_emitter(arguments.textured_samples,
                               min(arguments.chunk, arguments.textured_samples // 2), arguments.seed)

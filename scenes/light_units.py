@@ -35,6 +35,7 @@ LIGHT_KINDS = (
     "AREA_ELLIPSE",
     "EMISSIVE_MESH",
     "WORLD",
+    "WORLD_IMAGE",
 )
 
 # Light settings later Blender versions added, each kind with the first version that has them:
@@ -150,6 +151,54 @@ def _add_emissive_quad(collection):
     return emitter
 
 
+# The world image of WORLD_IMAGE: a 64 x 32 equirectangular sky, bluish and brighter towards
+# the horizon, an orange ground below it, and a sun of 2 x 2 texels (5.6 degrees) 40 times the
+# sky's brightness; turned by a Mapping node so that the sun falls obliquely on the receivers
+# and the image's u = 0 seam crosses the sky above them.
+WORLD_IMAGE_SIZE = (64, 32)
+WORLD_IMAGE_SUN_TEXELS = ((41, 25), (42, 25), (41, 26), (42, 26))
+WORLD_IMAGE_ROTATION = (0.35, -0.2, 1.1)  # the Mapping node's XYZ Euler rotation, radians
+
+
+def world_image_pixels():
+    """(height, width, 4) RGBA float pixels of the WORLD_IMAGE sky, row 0 at the bottom."""
+    width, height = WORLD_IMAGE_SIZE
+    pixels = []
+    for j in range(height):
+        elevation = ((j + 0.5) / height - 0.5) * math.pi
+        for i in range(width):
+            if elevation < 0.0:
+                rgb = (0.35, 0.2, 0.1)
+            else:
+                horizon = 1.0 - math.sin(elevation)
+                rgb = (0.3 + 0.5 * horizon, 0.45 + 0.45 * horizon, 0.9 + 0.1 * horizon)
+            if (i, j) in WORLD_IMAGE_SUN_TEXELS:
+                rgb = (40.0, 36.0, 30.0)
+            pixels.append((*rgb, 1.0))
+    return pixels
+
+
+def set_image_world(scene, strength=1.2):
+    """A world lit by the WORLD_IMAGE sky: Texture Coordinate (Generated) -> Mapping (point,
+    WORLD_IMAGE_ROTATION) -> Environment Texture (linear, equirectangular) -> Background."""
+    world = cornell_box.set_black_world(scene, strength=strength)
+    tree = world.node_tree
+    width, height = WORLD_IMAGE_SIZE
+    image = bpy.data.images.new("WorldSky", width, height, float_buffer=True)
+    image.pixels.foreach_set([c for pixel in world_image_pixels() for c in pixel])
+    coordinates = tree.nodes.new("ShaderNodeTexCoord")
+    mapping = tree.nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "POINT"
+    mapping.inputs["Rotation"].default_value = WORLD_IMAGE_ROTATION
+    texture = tree.nodes.new("ShaderNodeTexEnvironment")
+    texture.image = image
+    texture.interpolation = "Linear"
+    tree.links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])
+    tree.links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    tree.links.new(texture.outputs["Color"], tree.nodes["Background"].inputs["Color"])
+    return world
+
+
 def build_light_scene(kind, subdivisions=DEFAULT_SUBDIVISIONS, clear=True):
     """Build the receivers and the one light of `kind`; return {name: object}.
 
@@ -180,6 +229,8 @@ def build_light_scene(kind, subdivisions=DEFAULT_SUBDIVISIONS, clear=True):
 
     if kind == "WORLD":
         cornell_box.set_black_world(scene, color=(0.4, 0.5, 0.6), strength=1.5)
+    elif kind == "WORLD_IMAGE":
+        set_image_world(scene)
     else:
         cornell_box.set_black_world(scene)
         if kind == "EMISSIVE_MESH":

@@ -128,6 +128,8 @@ _SIGNATURES = {
     "bakegi_scene_add_mesh": (c_int, [_P, POINTER(MeshDesc), POINTER(c_uint32)]),
     "bakegi_scene_add_light": (c_int, [_P, POINTER(LightDesc), POINTER(c_uint32)]),
     "bakegi_scene_set_world": (c_int, [_P, POINTER(c_float)]),
+    "bakegi_scene_set_world_texture": (c_int, [_P, c_uint32, POINTER(c_float),
+                                               POINTER(c_float)]),
     "bakegi_scene_validate": (c_int, [_P]),
     "bakegi_scene_triangle_count": (c_uint64, [_P]),
     "bakegi_scene_light_count": (c_uint32, [_P]),
@@ -551,6 +553,28 @@ class Scene(_Handle):
     def set_world(self, radiance):
         _check(load_library().bakegi_scene_set_world(self.handle, _triple(radiance, "world")),
                "bakegi_scene_set_world")
+
+    def set_world_texture(self, texture, scale=(1.0, 1.0, 1.0), rotation=None):
+        """The world's light from the equirectangular texture `texture` (an id from
+        add_texture, None for the constant world again): radiance = scale x texture at the
+        direction turned by `rotation` (a 3 x 3 rotation, world -> image, rows as nested
+        sequences; None: the identity), as Cycles' Environment Texture maps it."""
+        lib = load_library()
+        if texture is None:
+            _check(lib.bakegi_scene_set_world_texture(self.handle, 0xFFFFFFFF, None, None),
+                   "bakegi_scene_set_world_texture")
+            return
+        matrix = None
+        if rotation is not None:
+            r = np.asarray(rotation, dtype=np.float32)
+            if r.shape != (3, 3):
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                                  f"world rotation must be 3 x 3, got shape {r.shape}")
+            matrix = np.ascontiguousarray(r.T)  # column-major for the core
+        _check(lib.bakegi_scene_set_world_texture(self.handle, int(texture),
+                                                  _triple(scale, "world texture scale"),
+                                                  _fptr(matrix)),
+               "bakegi_scene_set_world_texture")
 
     def validate(self):
         _check(load_library().bakegi_scene_validate(self.handle), "bakegi_scene_validate")

@@ -82,6 +82,9 @@ ScenePtr new_full_scene() {
   EXPECT_EQ(bakegi_scene_add_light(scene.get(), &area, nullptr), BAKEGI_OK);
   const float world[3] = {0.05f, 0.06f, 0.07f};
   EXPECT_EQ(bakegi_scene_set_world(scene.get(), world), BAKEGI_OK);
+  // A quarter turn about z, column-major.
+  const float scale[3] = {7.0f, 8.0f, 9.5f}, rotation[9] = {0, 1, 0, -1, 0, 0, 0, 0, 1};
+  EXPECT_EQ(bakegi_scene_set_world_texture(scene.get(), 0, scale, rotation), BAKEGI_OK);
   return scene;
 }
 
@@ -170,6 +173,9 @@ TEST(SceneFile, RoundTripIsExact) {
     EXPECT_EQ(x.flags, y.flags);
   }
   EXPECT_EQ(a.world_radiance, b.world_radiance);
+  EXPECT_EQ(b.world_texture.texture, 0u);
+  EXPECT_EQ(a.world_texture, b.world_texture);
+  EXPECT_EQ(b.world_texture.rotation[0], glm::vec3(0, 1, 0));
   EXPECT_EQ(points->points.positions, points_back->points.positions);
   EXPECT_EQ(points->points.normals, points_back->points.normals);
   EXPECT_EQ(points->points.object_ids, points_back->points.object_ids);
@@ -290,10 +296,34 @@ TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   }
 }
 
+// The current encoding as a file of `version` (below 6) holds it: the world section without
+// the world image (its radiance alone, 12 bytes instead of 64), resealed.
+std::vector<uint8_t> with_old_world(const std::vector<uint8_t>& current, uint32_t version) {
+  auto get_u64 = [&](size_t at) {
+    uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);
+    return value;
+  };
+  size_t at = 24;  // textures, materials, meshes, lights, then the world
+  for (int section = 0; section < 4; ++section) at += 16 + size_t(get_u64(at + 8));
+  EXPECT_EQ(get_u64(at + 8), 64u) << "the world section of version 6";
+  std::vector<uint8_t> old(current.begin(), current.begin() + std::ptrdiff_t(at + 16 + 12));
+  old.insert(old.end(), current.begin() + std::ptrdiff_t(at + 16 + 64), current.end());
+  auto put_u64 = [&](size_t where, uint64_t value) {
+    for (int i = 0; i < 8; ++i) old[where + i] = uint8_t(value >> (8 * i));
+  };
+  old[8] = uint8_t(version);
+  put_u64(at + 8, 12);
+  put_u64(16, old.size() - 24 - 8);
+  reseal(old);
+  return old;
+}
+
 // Rewrites the current encoding (version 4) of a scene with one material as an older build
 // wrote it: version 2 materials end before the emission texture (48 bytes instead of 52),
 // version 1 ones before the glossy lobe too (32 bytes).
-std::vector<uint8_t> as_version(const std::vector<uint8_t>& current, uint32_t version) {
+std::vector<uint8_t> as_version(const std::vector<uint8_t>& newest, uint32_t version) {
+  const std::vector<uint8_t> current = with_old_world(newest, version);
   auto get_u64 = [&](size_t at) {
     uint64_t value = 0;
     for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);
@@ -386,7 +416,7 @@ TEST(SceneFile, Version3LightsHaveNoFlags) {
   spot.flags = BAKEGI_LIGHT_SPOT_WITHOUT_COSINE;
   ASSERT_EQ(bakegi_scene_add_light(scene.get(), &spot, nullptr), BAKEGI_OK);
   ASSERT_EQ(bakegi_scene_add_light(scene.get(), &spot, nullptr), BAKEGI_OK);
-  const std::vector<uint8_t> v4 = encode_scene_file(scene->description, nullptr);
+  const std::vector<uint8_t> v4 = with_old_world(encode_scene_file(scene->description, nullptr), 4);
   auto get_u64 = [](const std::vector<uint8_t>& bytes, size_t at) {
     uint64_t value = 0;
     for (int i = 0; i < 8; ++i) value |= uint64_t(bytes[at + i]) << (8 * i);
@@ -427,14 +457,15 @@ TEST(SceneFile, ShareCandidatesRoundTripAndVersion4HasNone) {
   PointsPtr points = new_floor_points(4);
   const std::vector<uint32_t> candidates = {0, 0, 2, 2};
   ASSERT_EQ(bakegi_points_set_share_candidates(points.get(), candidates.data(), 4), BAKEGI_OK);
-  const SceneFile v5 = decode_scene_file(encode_scene_file(scene->description, &points->points),
-                                         "v5");
+  const SceneFile v5 =
+      decode_scene_file(encode_scene_file(scene->description, &points->points), "v5");
   ASSERT_TRUE(v5.points);
   EXPECT_EQ(v5.points->share_candidates, candidates);
 
   // A version 4 file: the points section ends after the object ids (no candidate count).
   points->points.share_candidates.clear();
-  const std::vector<uint8_t> current = encode_scene_file(scene->description, &points->points);
+  const std::vector<uint8_t> current =
+      with_old_world(encode_scene_file(scene->description, &points->points), 5);
   auto get_u64 = [&](size_t at) {
     uint64_t value = 0;
     for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);

@@ -34,7 +34,7 @@ from .mesh_arrays import (check_finite, corner_normals, get_array, invalid_scene
                           matrix_array, normals_to_world, positions_to_world)
 from .points import display_probes_per_object, target_points
 from .targets import MESH_LIKE, BakeTarget, name_objects, resolve_targets
-from .world import world_radiance
+from .world import world_light
 
 
 @dataclass
@@ -301,7 +301,11 @@ class SceneExporter:
             self.lights += 1
 
     def set_world(self, world):
-        self.scene.set_world(world_radiance(world, self.warnings))
+        light = world_light(world, self.warnings)
+        self.scene.set_world(light.radiance)
+        if light.image is not None:
+            texture = self.scene.add_texture(light.image)
+            self.scene.set_world_texture(texture, light.scale, light.rotation)
 
 
 def _light_tree_is_default(light):

@@ -197,6 +197,22 @@ BAKEGI_API bakegi_status bakegi_scene_clear_lights(bakegi_scene* scene);
 /* Constant world (background) radiance W/(m^2 sr), seen by rays that leave the scene. */
 BAKEGI_API bakegi_status bakegi_scene_set_world(bakegi_scene* scene, const float radiance[3]);
 
+/* The world's radiance from an equirectangular image (an HDRI), as Cycles' Environment
+ * Texture node maps it: a ray leaving the scene in the unit direction d reads the texture at
+ * u = 0.5 - atan2(e.y, e.x) / (2 pi), v = 0.5 + asin(e.z) / pi with e = rotation * d
+ * (rotation: 9 floats, column-major, orthonormal: world -> the image's frame; NULL for the
+ * identity), bilinearly, and receives scale * that value, W/(m^2 sr) (an HDR image is passed
+ * scaled into [0,1], its scale here). Replaces the constant world while set. Direct light
+ * (every method's) and the path tracer sample the image by its light; where antiradiance,
+ * meshless or a grid gather sky light themselves they take its mean over the sphere as a
+ * constant world (the report warns). texture: an index returned by bakegi_scene_add_texture,
+ * or BAKEGI_NO_TEXTURE to go back to the constant world.
+ * Errors: INVALID_ARGUMENT (NULL scene or scale, a texture not yet added), INVALID_SCENE (a
+ * negative or non-finite scale, a rotation that is not one). */
+BAKEGI_API bakegi_status bakegi_scene_set_world_texture(bakegi_scene* scene, uint32_t texture,
+                                                        const float scale[3],
+                                                        const float* rotation);
+
 /* Checks the whole scene (also done when a job starts). Errors name the mesh and
  * element. Warnings (e.g. triangles dropped as degenerate) go into job reports. */
 BAKEGI_API bakegi_status bakegi_scene_validate(const bakegi_scene* scene);
@@ -554,7 +570,8 @@ typedef struct bakegi_grid_info {
 /* A grid layout (not yet baked: all zero) over [bounds_min, bounds_max] (a flat axis is widened
  * to one cell) with cells of about cell_size metres (0 = 32 cells on the longest axis), made
  * coarser until it has at most max_vertices vertices (0 = 262144, i.e. 64^3; each vertex takes
- * 217 bytes while baking, 433 when the scene has a world or emissive surfaces). At least 2 and at most 1024 vertices per axis. */
+ * 217 bytes while baking, 433 when the scene has a world or emissive surfaces). At least 2 and at
+ * most 1024 vertices per axis. */
 BAKEGI_API bakegi_status bakegi_grid_create(const float bounds_min[3], const float bounds_max[3],
                                             float cell_size, uint64_t max_vertices,
                                             bakegi_grid** out_grid);
@@ -662,7 +679,8 @@ BAKEGI_API bakegi_status bakegi_grid_with_emitted_light(const bakegi_grid* grid,
  * _BAKEGI_READS_GRID (0 where the corner reads nothing of the grid: pressed against or
  * buried under geometry, native/src/web/corner_grid_reach.h). camera (may be NULL): 9 floats,
  * position xyz, the rotation quaternion xyzw (looking down -Z), vertical field of view
- * (radians), aspect ratio. Files are written atomically; BAKEGI_ERROR_IO names what could not be written. */
+ * (radians), aspect ratio. Files are written atomically; BAKEGI_ERROR_IO names what could not be
+ * written. */
 BAKEGI_API bakegi_status bakegi_web_export(const bakegi_scene* scene, const bakegi_grid* grid,
                                            const char* folder, const float* camera);
 /* The order a server streams the grid's vertices in: the eight corners, then coarse to fine,

@@ -224,6 +224,33 @@ bakegi_status bakegi_scene_set_world(bakegi_scene* scene, const float radiance[3
   });
 }
 
+bakegi_status bakegi_scene_set_world_texture(bakegi_scene* scene, uint32_t texture,
+                                             const float scale[3], const float* rotation) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    bakegi::WorldTexture world;
+    if (texture != BAKEGI_NO_TEXTURE) {
+      require(scale, "scale");
+      const size_t textures = scene->description.textures.size();
+      if (texture >= textures) {
+        throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                    "world texture index " + std::to_string(texture) +
+                        " is not below the texture count " + std::to_string(textures) +
+                        " (add the texture first)");
+      }
+      world.texture = texture;
+      world.scale = glm::vec3(scale[0], scale[1], scale[2]);
+      if (rotation) {
+        for (int c = 0; c < 3; ++c) {
+          world.rotation[c] = glm::vec3(rotation[3 * c], rotation[3 * c + 1], rotation[3 * c + 2]);
+        }
+      }
+      bakegi::check_world_texture(world);
+    }
+    scene->description.world_texture = world;
+  });
+}
+
 bakegi_status bakegi_scene_validate(const bakegi_scene* scene) {
   return guarded(__func__, [&] {
     require(scene, "scene");

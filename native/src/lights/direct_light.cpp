@@ -27,7 +27,8 @@ DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
       tracer_(tracer),
       ray_epsilon_(scene_ray_epsilon(scene)),
       emissive_triangles_(scene),
-      world_radiance_(scene.description.world_radiance) {
+      world_radiance_(scene.description.world_radiance),
+      environment_(scene.environment.get()) {
   for (const Light& light : scene.description.lights) {
     switch (light.type) {
       case BAKEGI_LIGHT_POINT:
@@ -45,7 +46,7 @@ DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
 }
 
 template <typename Visit>
-void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng,
+void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng, World world,
                                         Visit&& visit) const {
   LightSample s;
   for (const PointLight& light : point_lights_) {
@@ -63,6 +64,11 @@ void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng
   if (!emissive_triangles_.empty()) {
     const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
     if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) visit(s);
+  }
+  // Last, so that scenes without a world image draw the same numbers as before.
+  if (environment_ && world == World::kIncluded) {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    if (environment_->sample(u1, u2, s)) visit(s);
   }
 }
 
@@ -83,9 +89,9 @@ bool DirectLight::unoccluded(const SurfacePoint& x, const LightSample& s, uint64
 
 template <typename Visit>
 glm::vec3 DirectLight::light_sample_irradiance(const SurfacePoint& x, RandomStream& rng,
-                                               uint64_t& rays, Visit&& visit) const {
+                                               uint64_t& rays, World world, Visit&& visit) const {
   glm::vec3 irradiance(0.0f);
-  for_each_light_sample(x, rng, [&](const LightSample& s) {
+  for_each_light_sample(x, rng, world, [&](const LightSample& s) {
     const float cos_receiver = glm::dot(x.shading_normal, s.direction);
     if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
     const float weight = s.pdf > 0.0f ? power_heuristic(s.pdf, cos_receiver * kInvPi) : 1.0f;
@@ -99,13 +105,14 @@ glm::vec3 DirectLight::light_sample_irradiance(const SurfacePoint& x, RandomStre
 
 glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, RandomStream& rng,
                                      uint64_t& rays) const {
-  return light_sample_irradiance(x, rng, rays, [](const glm::vec3&, const glm::vec3&) {});
+  return light_sample_irradiance(x, rng, rays, World::kIncluded,
+                                 [](const glm::vec3&, const glm::vec3&) {});
 }
 
 glm::vec3 DirectLight::lamp_irradiance(const SurfacePoint& x, RandomStream& rng,
                                        uint64_t& rays) const {
   glm::vec3 irradiance(0.0f);
-  for_each_light_sample(x, rng, [&](const LightSample& s) {
+  for_each_light_sample(x, rng, World::kExcluded, [&](const LightSample& s) {
     const float cos_receiver = glm::dot(x.shading_normal, s.direction);
     if (cos_receiver <= 0.0f || glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
     if (unoccluded(x, s, rays)) irradiance += s.contribution * cos_receiver;
@@ -116,7 +123,7 @@ glm::vec3 DirectLight::lamp_irradiance(const SurfacePoint& x, RandomStream& rng,
 glm::vec3 DirectLight::sample_lights(const SurfacePoint& x, const SurfaceBsdf& bsdf,
                                      RandomStream& rng, uint64_t& rays) const {
   glm::vec3 radiance(0.0f);
-  for_each_light_sample(x, rng, [&](const LightSample& s) {
+  for_each_light_sample(x, rng, World::kIncluded, [&](const LightSample& s) {
     if (glm::dot(x.geometric_normal, s.direction) <= 0.0f) return;
     const glm::vec3 reflected = bsdf.reflected(s.direction);
     if (!(max_component(reflected) > 0.0f)) return;
@@ -166,8 +173,13 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
       radiance += light_hit.radiance * power_heuristic(bsdf_pdf, light_hit.pdf);
     }
   }
-  // No light sampling for the world: weight 1.
-  return world == World::kIncluded ? radiance + world_radiance_ : radiance;
+  if (world == World::kExcluded) return radiance;
+  if (environment_) {
+    return radiance + environment_->radiance(direction) *
+                          power_heuristic(bsdf_pdf, environment_->pdf(direction));
+  }
+  // No light sampling for a constant world: weight 1.
+  return radiance + world_radiance_;
 }
 
 glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, RandomStream& rng,
@@ -187,9 +199,10 @@ glm::vec3 DirectLight::cosine_ray_irradiance(const SurfacePoint& x, RandomStream
   return kPi * emission_along(x.position, direction, hit, bsdf_pdf, world);
 }
 
-glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, RandomStream& rng,
-                                         uint64_t& rays, World world) const {
-  const glm::vec3 irradiance = sample_lights(x, rng, rays);
+glm::vec3 DirectLight::irradiance_sample(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
+                                         World world) const {
+  const glm::vec3 irradiance =
+      light_sample_irradiance(x, rng, rays, world, [](const glm::vec3&, const glm::vec3&) {});
   glm::vec3 direction;
   return irradiance + cosine_ray_irradiance(x, rng, rays, direction, world);
 }
@@ -198,7 +211,7 @@ glm::vec3 DirectLight::irradiance_sample_terms(const SurfacePoint& x, RandomStre
                                                uint64_t& rays,
                                                const IrradianceTermVisitor& visit) const {
   // irradiance_sample term by term, in the same order.
-  const glm::vec3 irradiance = light_sample_irradiance(x, rng, rays, visit);
+  const glm::vec3 irradiance = light_sample_irradiance(x, rng, rays, World::kIncluded, visit);
   glm::vec3 direction;
   const glm::vec3 term = cosine_ray_irradiance(x, rng, rays, direction);
   if (max_component(term) > 0.0f) visit(direction, term);

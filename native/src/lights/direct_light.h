@@ -20,6 +20,7 @@
 
 #include "lights/area_light.h"
 #include "lights/emissive_triangles.h"
+#include "lights/environment_light.h"
 #include "lights/point_light.h"
 #include "lights/sun_light.h"
 #include "lights/surface_point.h"
@@ -88,13 +89,16 @@ class DirectLight {
 
   const Scene& scene() const { return scene_; }
   const RayTracer& tracer() const { return tracer_; }
-  // The world's radiance, the same from every direction (W/(m² sr)).
+  // The world's radiance, the same from every direction (W/(m² sr)); with a world image its
+  // mean (the light samples and rays of this class use the image itself).
   const glm::vec3& world_radiance() const { return world_radiance_; }
 
  private:
-  // Calls visit(sample) for one sample of every lamp and one of the emissive triangles.
+  // Calls visit(sample) for one sample of every lamp and one of the emissive triangles, and
+  // with the world included one of the world's image where it has one.
   template <typename Visit>
-  void for_each_light_sample(const SurfacePoint& x, RandomStream& rng, Visit&& visit) const;
+  void for_each_light_sample(const SurfacePoint& x, RandomStream& rng, World world,
+                             Visit&& visit) const;
   // The BSDF-sampling half of irradiance_sample: one cosine-weighted ray (its direction into
   // `direction`) and π times the MIS-weighted emission it picks up; 0 below the surface.
   glm::vec3 cosine_ray_irradiance(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
@@ -106,7 +110,7 @@ class DirectLight {
   // term also handed to visit(direction, term).
   template <typename Visit>
   glm::vec3 light_sample_irradiance(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
-                                    Visit&& visit) const;
+                                    World world, Visit&& visit) const;
   // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
   bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
 
@@ -118,6 +122,7 @@ class DirectLight {
   std::vector<AreaLight> area_lights_;
   EmissiveTriangles emissive_triangles_;
   glm::vec3 world_radiance_;
+  const EnvironmentLight* environment_;  // the scene's, or null: the world is world_radiance_
 };
 
 }  // namespace bakegi

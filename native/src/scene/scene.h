@@ -83,13 +83,29 @@ struct Light {
   uint32_t flags = 0;  // bakegi_light_flags
 };
 
+// The world's light from an equirectangular image (lights/environment_light.h): radiance
+// = scale x the texture at the direction turned by `rotation` into the image's frame.
+struct WorldTexture {
+  uint32_t texture = BAKEGI_NO_TEXTURE;  // an index into SceneDescription::textures
+  glm::vec3 scale{0.0f};
+  glm::mat3 rotation{1.0f};  // world direction -> the image's frame (orthonormal)
+
+  bool is_set() const { return texture != BAKEGI_NO_TEXTURE; }
+  bool operator==(const WorldTexture&) const = default;
+};
+
+class EnvironmentLight;
+
 // Everything the API received, before validation.
 struct SceneDescription {
   std::vector<Texture> textures;
   std::vector<Material> materials;
   SharedVector<Mesh> meshes;  // shared by copies of the description (copy on write)
   std::vector<Light> lights;
+  // A constant world; where world_texture is set, validation replaces it by the image's mean
+  // (for the methods that take a constant world).
   glm::vec3 world_radiance{0.0f};
+  WorldTexture world_texture;
 };
 
 // A triangle ready for rendering: world positions, shading normals per corner, uvs.
@@ -114,6 +130,8 @@ struct Scene {
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
   std::vector<std::string> warnings;
   std::vector<MeshTopology> mesh_topology;  // per description.meshes entry (mesh_topology.h)
+  // The world's image as a light, where description.world_texture is set (else null).
+  std::shared_ptr<const EnvironmentLight> environment;
 
   const Material& material_of(const Triangle& t) const { return description.materials[t.material]; }
   float extent() const { return glm::length(bounds_max - bounds_min); }

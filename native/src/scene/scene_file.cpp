@@ -89,6 +89,9 @@ void write_scene(Writer& w, const SceneDescription& scene) {
 
   at = w.begin_section(kWorld);
   w.vec3(scene.world_radiance);
+  w.u32(scene.world_texture.texture);
+  w.vec3(scene.world_texture.scale);
+  for (int c = 0; c < 3; ++c) w.vec3(scene.world_texture.rotation[c]);
   w.end_section(at);
 }
 
@@ -101,6 +104,14 @@ void write_points(Writer& w, const BakePoints& points) {
   w.u64(points.share_candidates.size());
   for (uint32_t c : points.share_candidates) w.u32(c);
   w.end_section(at);
+}
+
+void read_world(Reader& r, SceneDescription& scene, uint32_t version) {
+  scene.world_radiance = r.vec3();
+  if (version < 6) return;
+  scene.world_texture.texture = r.u32();
+  scene.world_texture.scale = r.vec3();
+  for (int c = 0; c < 3; ++c) scene.world_texture.rotation[c] = r.vec3();
 }
 
 void read_textures(Reader& r, SceneDescription& scene) {
@@ -218,6 +229,10 @@ void check_contents(const SceneFile& file, const std::string& name) {
     for (size_t i = 0; i < s.meshes.size(); ++i) check_mesh(s.meshes[i], i);
     for (size_t i = 0; i < s.lights.size(); ++i) check_light(s.lights[i], i);
     check_world(s.world_radiance);
+    check_world_texture(s.world_texture);
+    if (s.world_texture.is_set() && s.world_texture.texture >= s.textures.size()) {
+      throw Error(BAKEGI_ERROR_INVALID_SCENE, "world texture index out of range");
+    }
     if (file.points) check_bake_points(*file.points);
   } catch (const Error& e) {
     throw Error(BAKEGI_ERROR_BAD_FILE, name + ": holds an invalid scene: " + e.what());
@@ -261,7 +276,7 @@ SceneFile decode_scene_file(std::span<const uint8_t> bytes, const std::string& n
     if (expected == kMaterials) read_materials(r, file.scene, version);
     if (expected == kMeshes) read_meshes(r, file.scene);
     if (expected == kLights) read_lights(r, file.scene, version);
-    if (expected == kWorld) file.scene.world_radiance = r.vec3();
+    if (expected == kWorld) read_world(r, file.scene, version);
     if (expected == kPoints) file.points = read_points(r, version);
     if (r.position() != end) fail("section size does not match its contents");
   }

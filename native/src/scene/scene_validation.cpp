@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 
+#include "lights/environment_light.h"
 #include "scene/bake_points.h"
 #include "util/error.h"
 
@@ -312,10 +313,35 @@ void check_world(const glm::vec3& radiance) {
   check_color(radiance, "world radiance");
 }
 
+void check_world_texture(const WorldTexture& world) {
+  if (!world.is_set()) return;
+  check_color(world.scale, "world texture scale");
+  // Orthonormal to within float rounding: the image's directions must stay unit vectors.
+  for (int c = 0; c < 3; ++c) {
+    if (!finite(world.rotation[c])) invalid("world texture rotation is not finite");
+  }
+  const glm::dmat3 r(world.rotation);
+  const glm::dmat3 product = glm::transpose(r) * r;
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(product[c][k] - (c == k ? 1.0 : 0.0)) > 1e-4) {
+        invalid("world texture rotation is not a rotation (its columns are not orthonormal)");
+      }
+    }
+  }
+}
+
 size_t estimate_scene_bytes(const SceneDescription& description) {
   size_t triangles = 0;
   for (const Mesh& mesh : description.meshes) triangles += mesh.indices.size() / 3;
-  return triangles * (sizeof(Triangle) + sizeof(uint32_t));
+  size_t bytes = triangles * (sizeof(Triangle) + sizeof(uint32_t));
+  // A world image's sampling tables: about two floats per texel (lights/environment_light.h).
+  const WorldTexture& world = description.world_texture;
+  if (world.is_set() && world.texture < description.textures.size()) {
+    const Texture& image = description.textures[world.texture];
+    bytes += 2 * sizeof(float) * (size_t(image.width) + 1) * size_t(image.height);
+  }
+  return bytes;
 }
 
 namespace {
@@ -343,6 +369,22 @@ void check_scene_parts(const SceneDescription& description) {
   }
   for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
   check_world(description.world_radiance);
+  check_world_texture(description.world_texture);
+  if (description.world_texture.is_set() &&
+      description.world_texture.texture >= description.textures.size()) {
+    invalid("world texture index " + std::to_string(description.world_texture.texture) +
+            " out of range (" + std::to_string(description.textures.size()) + " textures)");
+  }
+}
+
+// The world's image as a light, its mean standing in for the constant world.
+void build_environment(Scene& scene) {
+  scene.environment.reset();
+  const WorldTexture& world = scene.description.world_texture;
+  if (!world.is_set()) return;
+  auto environment = std::make_shared<const EnvironmentLight>(world, scene.description.textures);
+  scene.description.world_radiance = environment->mean_radiance();
+  scene.environment = std::move(environment);
 }
 
 // Checks every mesh and returns their triangle count (refused beyond 32-bit indices).
@@ -465,6 +507,7 @@ Scene build_scene(const SceneDescription& description) {
     invalid("the scene is empty: it has no triangles");
   }
 
+  build_environment(scene);
   normalize_lights_and_require_one(scene);
   scene.emission_cells = build_emission_cells(scene);
   compute_bounds(scene);
@@ -474,9 +517,17 @@ Scene build_scene(const SceneDescription& description) {
 Scene build_relit_scene(const Scene& previous, const SceneDescription& description) {
   for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
   check_world(description.world_radiance);
+  check_world_texture(description.world_texture);
+  if (description.world_texture.is_set() &&
+      description.world_texture.texture >= previous.description.textures.size()) {
+    invalid("world texture index " + std::to_string(description.world_texture.texture) +
+            " out of range");
+  }
   Scene scene = previous;
   scene.description.lights = description.lights;
   scene.description.world_radiance = description.world_radiance;
+  scene.description.world_texture = description.world_texture;
+  build_environment(scene);
   normalize_lights_and_require_one(scene);
   return scene;
 }

@@ -19,6 +19,8 @@ void check_material(const Material& material, size_t index);
 void check_mesh(const Mesh& mesh, size_t index);  // not its material references
 void check_light(const Light& light, size_t index);
 void check_world(const glm::vec3& radiance);
+// The scale and rotation of a world image (its texture index is checked with the scene's).
+void check_world_texture(const WorldTexture& world);
 
 // Every position the core accepts (vertices, lights, bake points, position-valued settings)
 // lies within +-1e12 m on each axis: beyond it float spacing exceeds 60 km, and Embree aborts
