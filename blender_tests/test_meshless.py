@@ -86,6 +86,26 @@ class Meshless(common.SmallCornellCase):
         # runs the same lighting code, so the two agree to float rounding.
         numpy.testing.assert_allclose(relit, full, rtol=1e-5, atol=1e-7)
 
+    def test_live_relight_turns_a_world_image(self):
+        """With an HDRI world, a relight re-exports the world into the baked scene: the same
+        image keeps its texture (the core refuses a relight whose textures changed), so
+        turning the sky or moving a light relights, and the result equals a full bake."""
+        import light_units
+        world = light_units.set_image_world(bpy.context.scene)
+        self.bakegi.bake(method="meshless", target="CORNER", objects="VISIBLE", live=True,
+                         method_settings=QUICK)
+        mapping = next(n for n in world.node_tree.nodes if n.type == "MAPPING")
+        mapping.inputs["Rotation"].default_value[2] += 0.5
+        self._move_light()
+        bpy.context.view_layer.update()
+        self.bakegi.live_update()
+        relit = common.read_color_attribute(NAMES, domain="CORNER")
+        self.bakegi.live_stop()
+        self.bakegi.bake(method="meshless", target="CORNER", objects="VISIBLE",
+                         method_settings=QUICK)
+        numpy.testing.assert_allclose(relit, common.read_color_attribute(NAMES, domain="CORNER"),
+                                      rtol=1e-5, atol=1e-7)
+
     def test_handler_relights_on_light_changes_and_ignores_its_own_writes(self):
         live = sys.modules["bakegi.live"]
         self.bakegi.bake(method="meshless", target="CORNER", objects="VISIBLE", live=True,

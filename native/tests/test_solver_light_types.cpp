@@ -6,7 +6,7 @@
 // The scene: a closed-looking 2 m room of open quads with a 0.6 m skylight in the ceiling
 // and a block on the floor, lit in turn by each light type (an emissive panel in the
 // skylight plain or with an emission texture, a panel inside the room, the lamps, the sun
-// and the world through the skylight). Per face of the room (floor,
+// and the world through the skylight, constant or an image with a sun). Per face of the room (floor,
 // ceiling, four walls, block top) the mean indirect luminance of every solver must agree
 // with the path tracer's.
 #include <cmath>
@@ -35,18 +35,29 @@ enum class LightKind {
   kEmissiveTwoSided,
   kEmissiveTextured,
   kWorld,
+  kWorldImage,
 };
 
 const char* name_of(LightKind kind) {
   switch (kind) {
-    case LightKind::kPoint: return "point";
-    case LightKind::kSpot: return "spot";
-    case LightKind::kSun: return "sun";
-    case LightKind::kArea: return "area";
-    case LightKind::kEmissiveOneSided: return "emissive_one_sided";
-    case LightKind::kEmissiveTwoSided: return "emissive_two_sided";
-    case LightKind::kEmissiveTextured: return "emissive_textured";
-    case LightKind::kWorld: return "world";
+    case LightKind::kPoint:
+      return "point";
+    case LightKind::kSpot:
+      return "spot";
+    case LightKind::kSun:
+      return "sun";
+    case LightKind::kArea:
+      return "area";
+    case LightKind::kEmissiveOneSided:
+      return "emissive_one_sided";
+    case LightKind::kEmissiveTwoSided:
+      return "emissive_two_sided";
+    case LightKind::kEmissiveTextured:
+      return "emissive_textured";
+    case LightKind::kWorld:
+      return "world";
+    case LightKind::kWorldImage:
+      return "world_image";
   }
   return "?";
 }
@@ -61,15 +72,15 @@ SceneDescription room_with_skylight(LightKind kind) {
   const uint32_t green = add_material(d, glm::vec3(0.12f, 0.5f, 0.1f));
   const uint32_t block = add_material(d, glm::vec3(0.5f, 0.5f, 0.6f));
   const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
-  add_quad(d, {0, 0, 0}, x, y, 1, 1, white);       // floor, normal +z
-  add_quad(d, {-1, 0, 1}, y, z, 1, 1, red);        // normal +x
-  add_quad(d, {1, 0, 1}, z, y, 1, 1, green);       // normal -x
-  add_quad(d, {0, -1, 1}, z, x, 1, 1, white);      // normal +y
-  add_quad(d, {0, 1, 1}, x, z, 1, 1, white);       // normal -y
-  const float strip = 0.5f * (1.0f - kHole);      // half width of the ceiling strips
-  const float middle = 0.5f * (1.0f + kHole);      // their centres' distance from the axis
-  add_quad(d, {0, -middle, 2}, y, x, strip, 1, white);  // normal -z, y in [-1, -0.3]
-  add_quad(d, {0, middle, 2}, y, x, strip, 1, white);   // y in [0.3, 1]
+  add_quad(d, {0, 0, 0}, x, y, 1, 1, white);                // floor, normal +z
+  add_quad(d, {-1, 0, 1}, y, z, 1, 1, red);                 // normal +x
+  add_quad(d, {1, 0, 1}, z, y, 1, 1, green);                // normal -x
+  add_quad(d, {0, -1, 1}, z, x, 1, 1, white);               // normal +y
+  add_quad(d, {0, 1, 1}, x, z, 1, 1, white);                // normal -y
+  const float strip = 0.5f * (1.0f - kHole);                // half width of the ceiling strips
+  const float middle = 0.5f * (1.0f + kHole);               // their centres' distance from the axis
+  add_quad(d, {0, -middle, 2}, y, x, strip, 1, white);      // normal -z, y in [-1, -0.3]
+  add_quad(d, {0, middle, 2}, y, x, strip, 1, white);       // y in [0.3, 1]
   add_quad(d, {-middle, 0, 2}, y, x, kHole, strip, white);  // x in [-1, -0.3]
   add_quad(d, {middle, 0, 2}, y, x, kHole, strip, white);   // x in [0.3, 1]
   d.meshes.push_back(test::make_cube(glm::vec3(-0.7f, 0.2f, 0.0f), glm::vec3(-0.2f, 0.7f, 0.6f),
@@ -97,8 +108,8 @@ SceneDescription room_with_skylight(LightKind kind) {
       d.lights.push_back(light);
       break;
     case LightKind::kArea:
-      d.lights.push_back(test::area_light(BAKEGI_AREA_RECTANGLE, {0.2f, -0.4f, 1.9f}, -z, x,
-                                          0.5f, 0.3f, glm::vec3(12.0f, 11.0f, 10.0f)));
+      d.lights.push_back(test::area_light(BAKEGI_AREA_RECTANGLE, {0.2f, -0.4f, 1.9f}, -z, x, 0.5f,
+                                          0.3f, glm::vec3(12.0f, 11.0f, 10.0f)));
       break;
     case LightKind::kEmissiveOneSided:
       // Fills the skylight, facing down: a closed room lit by a ceiling panel.
@@ -126,6 +137,15 @@ SceneDescription room_with_skylight(LightKind kind) {
     }
     case LightKind::kWorld:
       d.world_radiance = glm::vec3(3.0f, 3.5f, 4.0f);
+      break;
+    case LightKind::kWorldImage:
+      // A dim blue sky with a warm sun 25 degrees from the zenith, towards +x: seen through
+      // the skylight it lights a patch of the floor that the sky's mean would spread.
+      d.world_texture.texture = test::add_texture(d, 32, 16, [](uint32_t i, uint32_t j) {
+        const bool sun = (i == 15 || i == 16) && j == 13;  // u about 0.5 (+x), 65 degrees up
+        return sun ? glm::vec3(1.0f, 0.9f, 0.7f) : glm::vec3(0.01f, 0.015f, 0.03f);
+      });
+      d.world_texture.scale = glm::vec3(200.0f);
       break;
   }
   return d;
@@ -165,7 +185,9 @@ BakePoints face_points() {
   return test::make_points(positions, normals);
 }
 
-double luminance(const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double luminance(const glm::vec3& c) {
+  return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
 
 std::vector<double> face_means(const std::vector<glm::vec3>& values) {
   std::vector<double> means;
@@ -226,9 +248,10 @@ TEST_P(SolverUnderLight, FaceMeansAgreeWithThePathTracer) {
 std::vector<Case> every_case() {
   std::vector<Case> cases;
   for (const char* method : {"antiradiance", "meshless"}) {
-    for (LightKind light : {LightKind::kPoint, LightKind::kSpot, LightKind::kSun, LightKind::kArea,
-                            LightKind::kEmissiveOneSided, LightKind::kEmissiveTwoSided,
-                            LightKind::kEmissiveTextured, LightKind::kWorld}) {
+    for (LightKind light :
+         {LightKind::kPoint, LightKind::kSpot, LightKind::kSun, LightKind::kArea,
+          LightKind::kEmissiveOneSided, LightKind::kEmissiveTwoSided, LightKind::kEmissiveTextured,
+          LightKind::kWorld, LightKind::kWorldImage}) {
       cases.push_back({method, light});
     }
   }

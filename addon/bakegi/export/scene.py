@@ -17,6 +17,7 @@ Nothing here changes the Blender data: evaluated meshes come from to_mesh() and 
 cleared again.
 """
 
+import hashlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -303,9 +304,21 @@ class SceneExporter:
     def set_world(self, world):
         light = world_light(world, self.warnings)
         self.scene.set_world(light.radiance)
-        if light.image is not None:
+        if light.image is None:
+            self.scene.set_world_texture(None)
+            return
+        # A live relight re-exports the world into the baked core scene: the same image must
+        # reuse its texture (a new one would change the scene's textures, which a relight
+        # refuses), so that turning or dimming the sky relights.
+        key = (light.image.shape,
+               hashlib.blake2b(light.image.tobytes(), digest_size=16).digest())
+        kept = getattr(self.scene, "world_image", None)
+        if kept is not None and kept[0] == key:
+            texture = kept[1]
+        else:
             texture = self.scene.add_texture(light.image)
-            self.scene.set_world_texture(texture, light.scale, light.rotation)
+            self.scene.world_image = (key, texture)
+        self.scene.set_world_texture(texture, light.scale, light.rotation)
 
 
 def _light_tree_is_default(light):

@@ -510,10 +510,11 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
     }
   }
   report.set_text("method_used", method_used);
-  if (scene.environment && method_used != "pathtrace" && method_used != "direct") {
-    report.warn("the world's image lights the direct light exactly, but " + method_used +
-                " takes the world as constant where it gathers sky light itself: there it "
-                "uses the image's mean colour (the path tracer models the image everywhere)");
+  if (scene.environment && method_used == "splatting") {
+    report.warn(
+        "splatting lights its reflective shadow maps of the sky with the world "
+        "image's mean colour, not the image (its direct light and the other methods "
+        "use the image)");
   }
   report.add_seconds("solve", seconds_since(stage_start));
 

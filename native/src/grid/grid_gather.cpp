@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "grid/grid_hit_radiance.h"
+#include "lights/environment_light.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "util/error.h"
@@ -34,11 +35,13 @@ glm::vec3 uniform_hemisphere(float u1, float u2) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-// I_delta of the light straight from the world (a ray that escapes) or from an emissive
-// surface (a ray that meets its emitting side), += L * weighted direction, per channel.
+// I_delta of the light straight from the world (a ray along the unit `direction` that
+// escapes: the world's image there, or its constant radiance) or from an emissive surface (a
+// ray that meets its emitting side), += L * weighted direction, per channel.
 void add_emitted(const Scene& scene, const glm::vec3& world, const Hit& hit,
-                 const glm::vec3& weighted_direction, glm::mat3& out) {
-  glm::vec3 radiance = world;
+                 const glm::vec3& direction, float weight, glm::mat3& out) {
+  const glm::vec3 weighted_direction = direction * weight;
+  glm::vec3 radiance = scene.environment ? scene.environment->radiance(direction) : world;
   if (hit.hit) {
     const Triangle& t = scene.triangles[hit.triangle];
     const Material& m = scene.material_of(t);
@@ -136,7 +139,7 @@ IrradianceVectorGrid gather_grid(const GridLayout& layout, const Scene& scene,
       const size_t v = chunk_begin + slot / rays_per_vertex;
       if (!grid.valid[v]) continue;
       if (gather_emitted)
-        add_emitted(scene, world, first_hits[slot], directions[slot] * weight,
+        add_emitted(scene, world, first_hits[slot], directions[slot], weight,
                     grid.emitted_at(v, int((slot % rays_per_vertex) / rays)));
       if (!first_hits[slot].hit) continue;
       hits.push_back({directions[slot], first_hits[slot],

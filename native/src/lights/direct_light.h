@@ -92,6 +92,8 @@ class DirectLight {
   // The world's radiance, the same from every direction (W/(m² sr)); with a world image its
   // mean (the light samples and rays of this class use the image itself).
   const glm::vec3& world_radiance() const { return world_radiance_; }
+  // Whether the world is an image (sampled with the lamps) rather than a constant.
+  bool has_environment() const { return environment_ != nullptr; }
 
  private:
   // Calls visit(sample) for one sample of every lamp and one of the emissive triangles, and

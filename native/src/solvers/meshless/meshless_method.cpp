@@ -25,7 +25,8 @@ const std::vector<SettingSpec>& MeshlessSolver::setting_specs() {
       integer_setting("bounces", 16, 1, 1000, R::kLighting,
                       "bounces at most, the first included (the series runs when lighting)"),
       integer_setting("direct_samples", 4, 1, 65536, R::kLighting,
-                      "direct-light samples per sender point"),
+                      "direct-light samples per sender point (16 times this where the world is "
+                      "an image)"),
       number_setting("sender_cutoff", 1e-3, 0.0, 1.0, R::kLighting,
                      "lighting skips senders whose projected direct light is below this "
                      "fraction of the largest (§3.3)"),
