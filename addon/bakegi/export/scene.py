@@ -304,6 +304,10 @@ class SceneExporter:
     def set_world(self, world):
         light = world_light(world, self.warnings)
         self.scene.set_world(light.radiance)
+        for direction, angle, irradiance in light.suns:
+            self.scene.add_light("SUN", direction=tuple(-c for c in direction), color=irradiance,
+                                 angle=angle)
+            self.lights += 1
         if light.image is None:
             self.scene.set_world_texture(None)
             return

@@ -1,10 +1,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The world's light as the core takes it: a constant colour, or an equirectangular
-environment image (an HDRI) read through the world's node tree (node_tree.py), with the
-rotation of a Mapping node in front of it."""
+"""The world's light as the core takes it: a constant colour, an equirectangular
+environment image (an HDRI) read through the world's node tree (node_tree.py) with the
+rotation of a Mapping node in front of it, or, for any other tree on the Background (a Sky
+Texture, gradients, mixes), that tree rendered by Cycles into such an image
+(world_render.py)."""
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
 
 import numpy as np
@@ -25,6 +27,10 @@ class WorldLight:
     image: Optional[np.ndarray] = None  # (height, width, 3) float32 in [0, 1], row 0 bottom
     scale: Tuple[float, float, float] = (1.0, 1.0, 1.0)  # radiance = scale x image
     rotation: Optional[List[List[float]]] = None  # world direction -> image frame; None: none
+    # Sky Textures' sun discs, taken out of the image: (direction to the sun, angular diameter,
+    # irradiance RGB) each, baked as sun lights.
+    suns: List[Tuple[Tuple[float, float, float], float, Tuple[float, float, float]]] = \
+        field(default_factory=list)
 
 
 def world_radiance(world, warnings):
@@ -55,29 +61,58 @@ def world_light(world, warnings) -> WorldLight:
                         "read as black")
         return WorldLight((0.0, 0.0, 0.0))
     strength_socket = node.inputs["Strength"]
-    if strength_socket.is_linked:
-        warnings.append(f"{what}: a linked strength is read as its default value")
     strength = float(strength_socket.default_value)
     color_socket = node.inputs["Color"]
     color = tuple(float(c) for c in color_socket.default_value[:3])
     color_source = linked_from(color_socket)
-    if color_source is None:
-        return WorldLight(light_units.world_radiance(color, strength))
-    tex = color_source.node
-    if tex.type == "TEX_ENVIRONMENT" and tex.image is not None:
-        light = _environment_light(tex, strength, what, warnings)
-        if light is not None:
-            return light
-    elif tex.type == "RGB":
-        color = tuple(float(c) for c in color_source.default_value[:3])
-    else:
-        warnings.append(f"{what}: the '{tex.bl_label}' node on the background color is not "
-                        "evaluated; its default color is used")
-    return WorldLight(light_units.world_radiance(color, strength))
+    constant = WorldLight(light_units.world_radiance(color, strength))
+    if color_source is None and not strength_socket.is_linked:
+        return constant
+    tex = color_source.node if color_source is not None else None
+    if not strength_socket.is_linked and tex is not None:
+        if tex.type == "RGB":
+            color = tuple(float(c) for c in color_source.default_value[:3])
+            return WorldLight(light_units.world_radiance(color, strength))
+        if tex.type == "TEX_ENVIRONMENT" and tex.image is not None:
+            light = _environment_light(tex, strength, what, warnings)
+            if light is not None:
+                return light
+    return _rendered_light(world, what, warnings, constant)
+
+
+def _rendered_light(world, what, warnings, fallback):
+    """The WorldLight of a world tree rendered by Cycles (world_render.py); `fallback` with a
+    warning where it cannot be rendered."""
+    from . import world_render  # bpy's render operators: only where a tree needs them
+
+    if world_render.world_uses_light_path(world):
+        warnings.append(f"{what}: its node tree reads the Light Path node; the world is baked "
+                        "as the camera sees it")
+    try:
+        rgb, suns = world_render.rendered_world(world)
+    except Exception as error:  # a world the render refuses must not stop the bake
+        warnings.append(f"{what}: its node tree could not be rendered into an image ({error}); "
+                        "the Background's default color is used")
+        return fallback
+    rgb = np.nan_to_num(np.maximum(rgb, 0.0), nan=0.0, posinf=0.0)
+    suns = [(sun.direction, sun.angle, sun.irradiance) for sun in suns]
+    peak = float(rgb.max()) if rgb.size else 0.0
+    if not peak > 0.0:
+        return WorldLight((0.0, 0.0, 0.0), suns=suns)
+    return WorldLight(_mean_over_sphere(rgb),
+                      image=np.ascontiguousarray(rgb / np.float32(peak), dtype=np.float32),
+                      scale=(peak, peak, peak), suns=suns)
 
 
 def _environment_light(tex, strength, what, warnings):
-    """The WorldLight of an Environment Texture node, or None where its image has no pixels."""
+    """The WorldLight of an Environment Texture node read from its image, or None where that
+    is not exact (a projection other than equirectangular, a vector that is not a rotation of
+    the direction): the tree is then rendered."""
+    if getattr(tex, "projection", "EQUIRECTANGULAR") != "EQUIRECTANGULAR":
+        return None
+    exact, rotation = _mapping_rotation(tex)
+    if not exact:
+        return None
     rgb = materials.image_linear_rgb(tex.image, warnings)
     if rgb is None:
         return None
@@ -86,14 +121,9 @@ def _environment_light(tex, strength, what, warnings):
         rgb = np.maximum(rgb, 0.0)
     rgb = _averaged_down(rgb, MAX_WORLD_IMAGE_WIDTH)
     mean = _mean_over_sphere(rgb)
-    if getattr(tex, "projection", "EQUIRECTANGULAR") != "EQUIRECTANGULAR":
-        warnings.append(f"{what}: the environment texture's '{tex.projection}' projection is "
-                        "not read; its mean color lights the scene as a constant world")
-        return WorldLight(light_units.world_radiance(mean, strength))
     if getattr(tex, "interpolation", "Linear") != "Linear":
         warnings.append(f"{what}: the environment texture is read with linear interpolation, "
                         f"not '{tex.interpolation}'")
-    rotation = _mapping_rotation(tex, what, warnings)
     peak = float(rgb.max()) if rgb.size else 0.0
     if not peak > 0.0:
         return WorldLight((0.0, 0.0, 0.0))
@@ -126,45 +156,33 @@ def _mean_over_sphere(rgb):
                  (rgb.mean(axis=1) * weights[:, None]).sum(axis=0) / weights.sum())
 
 
-def _mapping_rotation(tex, what, warnings):
-    """The rotation (world -> image frame, 3 x 3 rows) of a Mapping node feeding the
-    texture's vector, None without one. Only what turns a direction is read: a location, a
-    scale that is not uniform or a vector from elsewhere are left out with a warning."""
+def _mapping_rotation(tex):
+    """(exact, rotation): the rotation (world -> image frame, 3 x 3 rows; None for none) of a
+    Mapping node between the Texture Coordinate's direction and the texture, and whether
+    that is all the vector does (no location, a uniform scale, nothing linked into it)."""
     source = linked_from(tex.inputs["Vector"])
     if source is None:
-        return None
+        return True, None
     mapping = source.node
     if mapping.type != "MAPPING":
-        warnings.append(f"{what}: the '{mapping.bl_label}' node on the environment texture's "
-                        "vector is not evaluated; the image is read unrotated")
-        return None
+        return False, None
     coordinates = linked_from(mapping.inputs["Vector"])
     if coordinates is None or coordinates.node.type != "TEX_COORD" or \
             coordinates.name not in ("Generated", "Object", "Normal"):
-        warnings.append(f"{what}: the Mapping node in front of the environment texture does not "
-                        "take the Texture Coordinate's direction; the image is read unrotated")
-        return None
+        return False, None
     kind = mapping.vector_type
     sockets = {name: mapping.inputs.get(name) for name in ("Location", "Rotation", "Scale")}
-    for name, socket in sockets.items():
-        if socket is not None and socket.is_linked:
-            warnings.append(f"{what}: the Mapping node's linked {name.lower()} is read as its "
-                            "default value")
-    if kind == "POINT" and sockets["Location"] is not None and \
-            any(abs(float(c)) > 0.0 for c in sockets["Location"].default_value):
-        warnings.append(f"{what}: the Mapping node's location is left out (it does not turn "
-                        "directions)")
-    if sockets["Scale"] is not None:
-        scale = [float(c) for c in sockets["Scale"].default_value]
-        if max(scale) - min(scale) > 1e-6 * max(abs(c) for c in scale) or min(scale) <= 0.0:
-            warnings.append(f"{what}: the Mapping node's scale {tuple(scale)} is left out (only "
-                            "a rotation is read)")
-    euler = [float(c) for c in sockets["Rotation"].default_value] \
-        if sockets["Rotation"] is not None else [0.0, 0.0, 0.0]
-    rotation = _euler_xyz_matrix(euler)
+    if any(socket is None or socket.is_linked for socket in sockets.values()):
+        return False, None
+    if kind == "POINT" and any(abs(float(c)) > 0.0 for c in sockets["Location"].default_value):
+        return False, None
+    scale = [float(c) for c in sockets["Scale"].default_value]
+    if min(scale) <= 0.0 or max(scale) - min(scale) > 1e-6 * max(scale):
+        return False, None
+    rotation = _euler_xyz_matrix([float(c) for c in sockets["Rotation"].default_value])
     if kind == "TEXTURE":  # the inverse transform
         rotation = [list(row) for row in zip(*rotation)]
-    return rotation
+    return True, rotation
 
 
 def _euler_xyz_matrix(euler):
