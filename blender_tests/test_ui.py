@@ -281,7 +281,35 @@ class UiTest:
         yield from self.lightmap(scene, objects, before, predicted, positions)
         yield from self.grid(scene, before, predicted, positions)
         yield from self.preview_engine(scene, positions)
+        yield from self.sky_world(bpy.context.scene)
         os.remove(os.path.join(self.output, "_probe.png"))
+
+    def sky_world(self, scene):
+        """Bake Indirect from the window under a Sky Texture world: the export renders the
+        world with Cycles (world_render.py) from inside the operator, and the bake reads it."""
+        import json
+
+        started = time.perf_counter()
+        failures = []
+        world = scene.world
+        tree = world.node_tree
+        sky = tree.nodes.new("ShaderNodeTexSky")
+        background = next(n for n in tree.nodes if n.type == "BACKGROUND")
+        tree.links.new(sky.outputs["Color"], background.inputs["Color"])
+        scene.bakegi.method = "pathtrace"
+        scene.bakegi.target = "CORNER"
+        scene.bakegi.quality = "SAMPLES"
+        scene.bakegi.samples = 16
+        yield from self.bake_from_window(failures)
+        report = json.loads(scene.bakegi.last_report or "{}")
+        world_warnings = [w for w in report.get("warnings", []) if "world" in w]
+        if world_warnings:
+            failures.append(f"world warnings: {world_warnings}")
+        if len(bpy.data.scenes) != 1:
+            failures.append(f"{len(bpy.data.scenes)} scenes after the bake: the scratch scene stayed")
+        print(f"ui: Sky Texture world baked from the window: {report.get('seconds', {})}")
+        tree.nodes.remove(sky)
+        self.record("test_ui.sky_world_baked_from_the_window", started, failures)
 
     def lightmap(self, scene, objects, before, predicted, positions):
         """Bake Indirect with the Lightmap Textures target from the window: Material Preview
