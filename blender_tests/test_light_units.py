@@ -173,6 +173,27 @@ class LightUnitsAgainstCycles(common.AddonCase):
                          reports[0]["warnings"])
         self.compare("WORLD_IMAGE rendered", bakes, reference)
 
+    def test_world_image_missing_file_uses_the_background_color(self):
+        """An Environment Texture whose file is missing (Cycles draws it magenta) or that has no
+        image lights with the Background's own colour, and says so."""
+        from bakegi.export import world as world_export
+        common.new_empty_scene()
+        world = light_units.set_image_world(bpy.context.scene)
+        background = world.node_tree.nodes["Background"]
+        background.inputs["Color"].default_value = (0.2, 0.3, 0.4, 1.0)
+        texture = next(n for n in world.node_tree.nodes if n.type == "TEX_ENVIRONMENT")
+        gone = bpy.data.images.new("gone", 4, 2, float_buffer=True)
+        gone.source = "FILE"
+        gone.filepath = "/nonexistent/sky.exr"
+        for image in (gone, None):
+            texture.image = image
+            warnings = []
+            light = world_export.world_light(world, warnings)
+            self.assertIsNone(light.image)
+            for got, expected in zip(light.radiance, (0.24, 0.36, 0.48)):  # x strength 1.2
+                self.assertAlmostEqual(got, expected, places=5)
+            self.assertTrue(any("no image" in w for w in warnings), warnings)
+
     def test_sky_texture_against_cycles(self):
         """Blender's Sky Texture (its default sky model, a low sun): the sky rendered into an
         image, its sun disc as a sun light, light the receivers as they light them in Cycles

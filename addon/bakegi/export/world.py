@@ -73,11 +73,20 @@ def world_light(world, warnings) -> WorldLight:
         if tex.type == "RGB":
             color = tuple(float(c) for c in color_source.default_value[:3])
             return WorldLight(light_units.world_radiance(color, strength))
-        if tex.type == "TEX_ENVIRONMENT" and tex.image is not None:
+        if tex.type == "TEX_ENVIRONMENT":
+            if tex.image is None or not _has_pixels(tex.image):
+                # Cycles would draw a missing image magenta: the Background's colour instead.
+                warnings.append(f"{what}: the environment texture has no image (missing "
+                                "file?); the Background's default color is used")
+                return constant
             light = _environment_light(tex, strength, what, warnings)
             if light is not None:
                 return light
     return _rendered_light(world, what, warnings, constant)
+
+
+def _has_pixels(image):
+    return int(image.size[0]) > 0 and int(image.size[1]) > 0 and int(image.channels) > 0
 
 
 def _rendered_light(world, what, warnings, fallback):
