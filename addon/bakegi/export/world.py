@@ -33,15 +33,11 @@ class WorldLight:
         field(default_factory=list)
 
 
-def world_radiance(world, warnings):
-    """The constant background radiance of a world (an image's mean where it has one)."""
-    return world_light(world, warnings).radiance
-
-
 def world_light(world, warnings) -> WorldLight:
-    """The world's light: its Background's colour x strength, or the Environment Texture's
-    image feeding the colour (an equirectangular image, optionally turned by a Mapping node)
-    x the strength. What is not read is said in `warnings`."""
+    """The world's light: its Background's colour x strength; the Environment Texture's image
+    feeding the colour (an equirectangular image, optionally turned by a Mapping node) x the
+    strength; or, for any other tree on the Background, the tree rendered by Cycles (with a
+    Sky Texture's sun as a sun light). What is not read is said in `warnings`."""
     if world is None:
         return WorldLight((0.0, 0.0, 0.0))
     what = f"world '{world.name}'"
