@@ -35,6 +35,8 @@ from .mesh_arrays import (check_finite, corner_normals, get_array, invalid_scene
                           matrix_array, normals_to_world, positions_to_world)
 from .points import display_probes_per_object, target_points
 from .targets import MESH_LIKE, BakeTarget, name_objects, resolve_targets
+from . import render_visibility
+from .render_visibility import RenderVisibility
 from .world import world_light
 
 
@@ -416,14 +418,24 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
     exported_lightmaps = None
     try:
         linked = set()
+        visibility = RenderVisibility(context.scene)
+        target_names = {o.name for o in targets}
         for instance in depsgraph.object_instances:
             obj = instance.object
+            # A target is baked as asked, also where renders leave it out.
+            is_target = not instance.is_instance and obj.original.name in target_names
             if obj.type in MESH_LIKE:
+                if not is_target and visibility.leave_out(instance):
+                    continue
                 exporter.add_instance(obj, instance.matrix_world, instance.is_instance)
             elif obj.type == "LIGHT":
+                if visibility.leave_out(instance):
+                    continue
                 exporter.add_light(obj, instance.matrix_world)
             if (obj.type in MESH_LIKE or obj.type == "LIGHT") and compat.light_linking_in_use(obj):
                 linked.add(obj.name)
+        warnings.extend(render_visibility.warnings_for(context, visibility,
+                                                       set(MESH_LIKE) | {"LIGHT"}))
         if linked:
             warnings.append(f"light linking is ignored (set on {', '.join(sorted(linked)[:5])}"
                             f"{' ...' if len(linked) > 5 else ''}): their light reaches every "
@@ -523,8 +535,9 @@ def export_lights(context, scene, depsgraph=None):
     warnings = []
     exporter = SceneExporter(depsgraph, warnings, scene=scene)
     scene.clear_lights()
+    visibility = RenderVisibility(context.scene)
     for instance in depsgraph.object_instances:
-        if instance.object.type == "LIGHT":
+        if instance.object.type == "LIGHT" and not visibility.leave_out(instance):
             exporter.add_light(instance.object, instance.matrix_world)
     exporter.set_world(context.scene.world)
     return exporter.lights, _unique(warnings)

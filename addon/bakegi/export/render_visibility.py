@@ -1,0 +1,96 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Which objects a render has, against what the viewport shows. The export walks the
+viewport's evaluated objects; Cycles renders and bakes the objects enabled for renders. An
+object disabled in renders (its own camera toggle, or a collection's) but shown in the
+viewport, a helper plane or a stand-in, is left out of the bake as Cycles leaves it out; an
+object hidden in the viewport but rendered (a ceiling hidden to look into a room) is not in
+the viewport's evaluation, so the bake cannot have it: the report says so, since its light
+and shadow are missing."""
+
+
+def _render_hidden_collections(scene):
+    """Collections disabled in renders, with every collection inside them."""
+    hidden = set()
+
+    def walk(collection, inherited):
+        off = inherited or collection.hide_render
+        if off:
+            hidden.add(collection.name_full)
+        for child in collection.children:
+            walk(child, off)
+
+    for child in scene.collection.children:
+        walk(child, False)
+    return hidden
+
+
+class RenderVisibility:
+    """Answers, for the objects of one export, whether renders have them."""
+
+    def __init__(self, scene):
+        self.hidden_collections = _render_hidden_collections(scene)
+        self.left_out = []  # names of objects left out as disabled in renders
+
+    def _object_renders(self, obj):
+        obj = getattr(obj, "original", obj)
+        if obj is None or obj.hide_render:
+            return False
+        collections = obj.users_collection
+        # An object in several collections renders if one of them renders.
+        return not collections or any(c.name_full not in self.hidden_collections
+                                      for c in collections)
+
+    def renders(self, instance):
+        """Whether a depsgraph object instance is in a render: the object, and for an instance
+        of a collection also the object that instances it."""
+        if not self._object_renders(instance.object):
+            return False
+        if instance.is_instance and instance.parent is not None:
+            return self._object_renders(instance.parent)
+        return True
+
+    def leave_out(self, instance):
+        """renders(instance), noting the object when it does not."""
+        if self.renders(instance):
+            return False
+        name = getattr(instance.object, "original", instance.object).name
+        if name not in self.left_out:
+            self.left_out.append(name)
+        return True
+
+
+def hidden_but_rendered(context, kinds):
+    """Names of objects of `kinds` that renders have but the viewport hides (eye icon, or
+    hidden in the viewport), whose collections are in the view layer."""
+    view_layer = context.view_layer
+    hidden_collections = _render_hidden_collections(context.scene)
+    names = []
+    for obj in context.scene.objects:
+        if obj.type not in kinds or obj.hide_render:
+            continue
+        if obj.users_collection and all(c.name_full in hidden_collections
+                                        for c in obj.users_collection):
+            continue
+        if view_layer.objects.get(obj.name) is None:
+            continue  # its collection is excluded from the view layer: not rendered either
+        if not obj.visible_get(view_layer=view_layer):
+            names.append(obj.name)
+    return names
+
+
+def warnings_for(context, visibility, kinds):
+    """The report's lines about objects the bake leaves out or cannot have."""
+    lines = []
+    if visibility.left_out:
+        names = visibility.left_out
+        lines.append(f"{len(names)} object(s) disabled in renders are left out of the bake, as "
+                     f"Cycles leaves them out: {', '.join(sorted(names)[:5])}"
+                     f"{' ...' if len(names) > 5 else ''}")
+    hidden = hidden_but_rendered(context, kinds)
+    if hidden:
+        lines.append(f"{len(hidden)} object(s) hidden in the viewport but rendered are not in "
+                     f"the bake (Cycles would have their light and shadow): "
+                     f"{', '.join(sorted(hidden)[:5])}{' ...' if len(hidden) > 5 else ''}; "
+                     "show them while baking")
+    return lines
+
