@@ -30,15 +30,20 @@ class RenderVisibility:
     def __init__(self, scene):
         self.hidden_collections = _render_hidden_collections(scene)
         self.left_out = []  # names of objects left out as disabled in renders
+        self._answers = {}  # object name -> renders (users_collection scans every collection)
 
     def _object_renders(self, obj):
         obj = getattr(obj, "original", obj)
-        if obj is None or obj.hide_render:
+        if obj is None:
             return False
-        collections = obj.users_collection
-        # An object in several collections renders if one of them renders.
-        return not collections or any(c.name_full not in self.hidden_collections
-                                      for c in collections)
+        answer = self._answers.get(obj.name_full)
+        if answer is None:
+            collections = obj.users_collection
+            # An object in several collections renders if one of them renders.
+            answer = not obj.hide_render and (not collections or any(
+                c.name_full not in self.hidden_collections for c in collections))
+            self._answers[obj.name_full] = answer
+        return answer
 
     def renders(self, instance):
         """Whether a depsgraph object instance is in a render: the object, and for an instance
