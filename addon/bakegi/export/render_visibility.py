@@ -91,7 +91,8 @@ def warnings_for(context, visibility, kinds):
         lines.append(f"{len(names)} object(s) disabled in renders are left out of the bake, as "
                      f"Cycles leaves them out: {', '.join(sorted(names)[:5])}"
                      f"{' ...' if len(names) > 5 else ''}")
-    hidden = hidden_but_rendered(context, kinds)
+    # A render's own evaluation (the preview engine: no view layer in its context) has them.
+    hidden = hidden_but_rendered(context, kinds) if getattr(context, "view_layer", None) else []
     if hidden:
         lines.append(f"{len(hidden)} object(s) hidden in the viewport but rendered are not in "
                      f"the bake (Cycles would have their light and shadow): "
