@@ -175,8 +175,9 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
   }
   if (world == World::kExcluded) return radiance;
   if (environment_) {
-    return radiance + environment_->radiance(direction) *
-                          power_heuristic(bsdf_pdf, environment_->pdf(direction));
+    float light_pdf = 0.0f;
+    const glm::vec3 sky = environment_->radiance(direction, light_pdf);
+    return radiance + sky * power_heuristic(bsdf_pdf, light_pdf);
   }
   // No light sampling for a constant world: weight 1.
   return radiance + world_radiance_;

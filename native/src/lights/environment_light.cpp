@@ -102,11 +102,19 @@ size_t EnvironmentLight::bytes() const {
   return (row_cdf_.size() + column_cdf_.size() + texel_pdf_.size()) * sizeof(float);
 }
 
-glm::vec2 EnvironmentLight::image_coordinates(const glm::vec3& direction) const {
+EnvironmentLight::Place EnvironmentLight::place_of(const glm::vec3& direction) const {
   const glm::vec3 d = rotation_ * direction;
   const float u = 0.5f - std::atan2(d.y, d.x) * (0.5f * kInvPi);
   const float v = 0.5f + std::asin(std::clamp(d.z, -1.0f, 1.0f)) * kInvPi;
-  return {u, v};
+  return {{u, v}, std::sqrt(std::max(0.0f, 1.0f - d.z * d.z))};
+}
+
+float EnvironmentLight::density_at(const Place& place) const {
+  if (black_ || !(place.sine > 0.0f)) return 0.0f;
+  const glm::vec2& uv = place.uv;
+  const size_t i = std::min(size_t(width_ - 1), size_t((uv.x - std::floor(uv.x)) * float(width_)));
+  const size_t j = std::min(size_t(height_ - 1), size_t(std::clamp(uv.y, 0.0f, 1.0f) * height_));
+  return texel_pdf_[j * width_ + i] / (2.0f * kPi * kPi * place.sine);
 }
 
 glm::vec3 EnvironmentLight::lookup(const glm::vec2& uv) const {
@@ -129,18 +137,17 @@ glm::vec3 EnvironmentLight::lookup(const glm::vec2& uv) const {
 }
 
 glm::vec3 EnvironmentLight::radiance(const glm::vec3& direction) const {
-  return lookup(image_coordinates(direction));
+  return lookup(place_of(direction).uv);
 }
 
 float EnvironmentLight::pdf(const glm::vec3& direction) const {
-  if (black_) return 0.0f;
-  const glm::vec3 d = rotation_ * direction;
-  const float sine = std::sqrt(std::max(0.0f, 1.0f - d.z * d.z));
-  if (!(sine > 0.0f)) return 0.0f;
-  const glm::vec2 uv = image_coordinates(direction);
-  const size_t i = std::min(size_t(width_ - 1), size_t((uv.x - std::floor(uv.x)) * float(width_)));
-  const size_t j = std::min(size_t(height_ - 1), size_t(std::clamp(uv.y, 0.0f, 1.0f) * height_));
-  return texel_pdf_[j * width_ + i] / (2.0f * kPi * kPi * sine);
+  return density_at(place_of(direction));
+}
+
+glm::vec3 EnvironmentLight::radiance(const glm::vec3& direction, float& pdf) const {
+  const Place place = place_of(direction);
+  pdf = density_at(place);
+  return lookup(place.uv);
 }
 
 bool EnvironmentLight::sample(float u1, float u2, LightSample& out) const {

@@ -33,6 +33,8 @@ class EnvironmentLight {
   glm::vec3 radiance(const glm::vec3& direction) const;
   // Solid-angle density of sample() for direction d.
   float pdf(const glm::vec3& direction) const;
+  // Both at once (a ray that escaped: its radiance and MIS weight), the direction mapped once.
+  glm::vec3 radiance(const glm::vec3& direction, float& pdf) const;
   // A direction towards the sky by the image's light; false where the image is black.
   bool sample(float u1, float u2, LightSample& out) const;
   // The mean radiance over the sphere (what methods that take a constant world use).
@@ -41,7 +43,13 @@ class EnvironmentLight {
   size_t bytes() const;
 
  private:
-  glm::vec2 image_coordinates(const glm::vec3& direction) const;
+  // Where a direction falls in the image, and sin theta there (the solid angle per (u, v)).
+  struct Place {
+    glm::vec2 uv;
+    float sine;
+  };
+  Place place_of(const glm::vec3& direction) const;
+  float density_at(const Place& place) const;
   glm::vec3 lookup(const glm::vec2& uv) const;
 
   Texture texture_;  // a copy: it shares the scene's texels, and outlives any copy of the scene
