@@ -70,6 +70,7 @@ class BlenderLight:
     normalize: bool = True  # 4.5+: area power spread over the area (False: per unit area)
     use_soft_falloff: bool = True  # 4.0+: point/spot radius; False = a true sphere
     cycles_version: Tuple[int, int] = (3, 4)  # whose conventions: compat.cycles_conventions()
+    is_portal: bool = False  # an area light with Cycles' Portal on: guides the sky, emits nothing
 
 
 @dataclass
@@ -230,6 +231,21 @@ def convert_light(light: BlenderLight) -> Conversion:
     convert = {"POINT": _point_or_spot, "SPOT": _point_or_spot, "SUN": _sun,
                "AREA": _area}[light.type]
     return convert(light, color, energy, down, warnings)
+
+
+def convert_portal(light: BlenderLight) -> Conversion:
+    """A portal's shape as a CoreLight (its colour 0: a portal emits nothing), or None with a
+    warning where its shape cannot be one. Power, colour and spread do not matter."""
+    m = light.matrix_world
+    try:
+        down = _normalized(_scaled(_column(m, 2), -1.0))
+    except ValueError:
+        return Conversion(None, [f"portal '{light.name}': its object has zero scale; left out"])
+    conversion = _area(light, (0.0, 0.0, 0.0), 0.0, down, [])
+    if conversion.light is None:
+        return Conversion(None, [w.replace("area light", "portal", 1)
+                                 for w in conversion.warnings])
+    return Conversion(conversion.light, [])
 
 
 def _position(light: BlenderLight) -> Vec3:

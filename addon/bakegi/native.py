@@ -160,6 +160,8 @@ _SIGNATURES = {
     "bakegi_job_destroy": (None, [_P]),
     "bakegi_scene_get_light": (c_int, [_P, c_uint32, _P]),
     "bakegi_scene_clear_lights": (c_int, [_P]),
+    "bakegi_scene_add_portal": (c_int, [_P, POINTER(LightDesc)]),
+    "bakegi_scene_portal_count": (c_uint32, [_P]),
     "bakegi_job_can_relight": (c_int, [_P]),
     "bakegi_job_start_relight": (c_int, [_P, _P, _P, _P, _PP]),
     "bakegi_lightmaps_create": (c_int, [_PP]),
@@ -547,8 +549,24 @@ class Scene(_Handle):
         return out.value
 
     def clear_lights(self):
-        """Removes every light (to add changed ones for a relight)."""
+        """Removes every light and portal (to add changed ones for a relight)."""
         _check(load_library().bakegi_scene_clear_lights(self.handle), "bakegi_scene_clear_lights")
+
+    def add_portal(self, position, direction, axis_u, shape, size_x, size_y=0.0, **_ignored):
+        """A window portal (Cycles' area light with Portal on): the area light's shape, which
+        emits nothing and guides the world's light samples through it. Takes a CoreLight's
+        fields (add_portal(**vars(core_light)); its colour is ignored)."""
+        if shape not in AREA_SHAPES:
+            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown area shape {shape!r}")
+        desc = LightDesc(LIGHT_TYPES["AREA"], _triple(position, "position"),
+                         _triple(direction, "direction"), _triple(axis_u, "axis_u"),
+                         (c_float * 3)(), 0.0, 0.0, 0.0, 0.0, AREA_SHAPES[shape], size_x,
+                         size_y, 0)
+        _check(load_library().bakegi_scene_add_portal(self.handle, byref(desc)),
+               "bakegi_scene_add_portal")
+
+    def portal_count(self):
+        return int(load_library().bakegi_scene_portal_count(self.handle))
 
     def set_world(self, radiance):
         _check(load_library().bakegi_scene_set_world(self.handle, _triple(radiance, "world")),

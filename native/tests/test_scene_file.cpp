@@ -85,6 +85,12 @@ ScenePtr new_full_scene() {
   // A quarter turn about z, column-major.
   const float scale[3] = {7.0f, 8.0f, 9.5f}, rotation[9] = {0, 1, 0, -1, 0, 0, 0, 0, 1};
   EXPECT_EQ(bakegi_scene_set_world_texture(scene.get(), 0, scale, rotation), BAKEGI_OK);
+  bakegi_light_desc portal = area;
+  portal.shape = BAKEGI_AREA_RECTANGLE;
+  portal.position[0] = 1.0f;
+  portal.direction[0] = -1.0f, portal.direction[2] = 0.0f;
+  portal.axis_u[0] = 0.0f, portal.axis_u[1] = 1.0f, portal.axis_u[2] = 0.0f;
+  EXPECT_EQ(bakegi_scene_add_portal(scene.get(), &portal), BAKEGI_OK);
   return scene;
 }
 
@@ -176,6 +182,15 @@ TEST(SceneFile, RoundTripIsExact) {
   EXPECT_EQ(b.world_texture.texture, 0u);
   EXPECT_EQ(a.world_texture, b.world_texture);
   EXPECT_EQ(b.world_texture.rotation[0], glm::vec3(0, 1, 0));
+  ASSERT_EQ(b.portals.size(), 1u);
+  EXPECT_EQ(b.portals[0].type, BAKEGI_LIGHT_AREA);
+  EXPECT_EQ(b.portals[0].shape, BAKEGI_AREA_RECTANGLE);
+  EXPECT_EQ(b.portals[0].position, a.portals[0].position);
+  EXPECT_EQ(b.portals[0].direction, a.portals[0].direction);
+  EXPECT_EQ(b.portals[0].axis_u, a.portals[0].axis_u);
+  EXPECT_TRUE(same_bits(b.portals[0].size_x, a.portals[0].size_x) &&
+              same_bits(b.portals[0].size_y, a.portals[0].size_y));
+  EXPECT_EQ(b.portals[0].color, glm::vec3(0.0f));  // a portal emits nothing
   EXPECT_EQ(points->points.positions, points_back->points.positions);
   EXPECT_EQ(points->points.normals, points_back->points.normals);
   EXPECT_EQ(points->points.object_ids, points_back->points.object_ids);
@@ -296,8 +311,9 @@ TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   }
 }
 
-// The current encoding as a file of `version` (below 6) holds it: the world section without
-// the world image (its radiance alone, 12 bytes instead of 64), resealed.
+// The current encoding (no portals) as a file of `version` (below 6) holds it: the world
+// section without the world image and the portal count (its radiance alone, 12 bytes instead
+// of 68), resealed.
 std::vector<uint8_t> with_old_world(const std::vector<uint8_t>& current, uint32_t version) {
   auto get_u64 = [&](size_t at) {
     uint64_t value = 0;
@@ -306,9 +322,9 @@ std::vector<uint8_t> with_old_world(const std::vector<uint8_t>& current, uint32_
   };
   size_t at = 24;  // textures, materials, meshes, lights, then the world
   for (int section = 0; section < 4; ++section) at += 16 + size_t(get_u64(at + 8));
-  EXPECT_EQ(get_u64(at + 8), 64u) << "the world section of version 6";
+  EXPECT_EQ(get_u64(at + 8), 68u) << "the world section of version 7 without portals";
   std::vector<uint8_t> old(current.begin(), current.begin() + std::ptrdiff_t(at + 16 + 12));
-  old.insert(old.end(), current.begin() + std::ptrdiff_t(at + 16 + 64), current.end());
+  old.insert(old.end(), current.begin() + std::ptrdiff_t(at + 16 + 68), current.end());
   auto put_u64 = [&](size_t where, uint64_t value) {
     for (int i = 0; i < 8; ++i) old[where + i] = uint8_t(value >> (8 * i));
   };
@@ -404,6 +420,36 @@ TEST(SceneFile, OlderVersionsAreStillRead) {
         "format version " + std::to_string(kSceneFileVersion + 1) + " is not supported";
     EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
   }
+}
+
+// A version 6 file (the world section ends after the image's rotation) reads without portals.
+TEST(SceneFile, Version6HasNoPortals) {
+  ScenePtr scene = new_textured_emitter_scene();
+  const std::vector<uint8_t> current = encode_scene_file(scene->description, nullptr);
+  auto get_u64 = [&](size_t at) {
+    uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);
+    return value;
+  };
+  size_t at = 24;
+  for (int section = 0; section < 4; ++section) at += 16 + size_t(get_u64(at + 8));
+  ASSERT_EQ(get_u64(at + 8), 68u);
+  std::vector<uint8_t> old(current.begin(), current.begin() + std::ptrdiff_t(at + 16 + 64));
+  old.insert(old.end(), current.begin() + std::ptrdiff_t(at + 16 + 68), current.end());
+  auto put_u64 = [&](size_t where, uint64_t value) {
+    for (int i = 0; i < 8; ++i) old[where + i] = uint8_t(value >> (8 * i));
+  };
+  old[8] = 6;
+  put_u64(at + 8, 64);
+  put_u64(16, old.size() - 24 - 8);
+  reseal(old);
+  const SceneFile v6 = decode_scene_file(old, "v6");
+  EXPECT_TRUE(v6.scene.portals.empty());
+  EXPECT_EQ(v6.scene.world_radiance, scene->description.world_radiance);
+  // The same bytes labelled version 7 lack the portal count: refused, not misread.
+  old[8] = 7;
+  reseal(old);
+  EXPECT_THROW(decode_scene_file(old, "v7 without portal count"), Error);
 }
 
 // A version 3 file (light records of 80 bytes, no flags) reads with flags 0.

@@ -102,6 +102,7 @@ class SceneExporter:
         self.triangles = 0
         self.meshes = 0
         self.lights = 0
+        self.portals = 0  # Cycles' window portals: guide the world's light samples
         self.object_names = []
 
     # materials
@@ -296,7 +297,16 @@ class SceneExporter:
             use_nodes=compat.uses_nodes(light),
             node_tree_is_default=_light_tree_is_default(light),
             cycles_version=compat.cycles_conventions(),
+            is_portal=_is_portal(light),
             **compat.light_settings(light))
+        if settings.is_portal:
+            # Cycles draws no light from a portal: it only samples the world through it.
+            conversion = light_units.convert_portal(settings)
+            self.warnings.extend(conversion.warnings)
+            if conversion.light is not None:
+                self.scene.add_portal(**vars(conversion.light))
+                self.portals += 1
+            return
         conversion = light_units.convert_light(settings)
         self.warnings.extend(conversion.warnings)
         if conversion.light is not None:
@@ -325,6 +335,12 @@ class SceneExporter:
             texture = self.scene.add_texture(light.image)
             self.scene.world_image = (key, texture)
         self.scene.set_world_texture(texture, light.scale, light.rotation)
+
+
+def _is_portal(light):
+    """Whether an area light has Cycles' Portal on (light.cycles.is_portal, 3.x to 5.0)."""
+    return light.type == "AREA" and bool(getattr(getattr(light, "cycles", None), "is_portal",
+                                                 False))
 
 
 def _light_tree_is_default(light):
@@ -514,7 +530,8 @@ def _set_display_probes(points, probes):
 def _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
               exported_lightmaps=None):
     counts = {"meshes": exporter.meshes, "triangles": exporter.triangles,
-              "lights": exporter.lights, "materials": len(exporter.material_ids),
+              "lights": exporter.lights, "portals": exporter.portals,
+              "materials": len(exporter.material_ids),
               "textures": exporter.texture_count(),
               "bake_points": offset, "targets": len(bake_targets)}
     if exported_lightmaps is not None:

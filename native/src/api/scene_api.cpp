@@ -22,6 +22,31 @@ void check_room(size_t count, const char* what) {
   }
 }
 
+// A bakegi_light_desc as the core's Light, not yet checked; `index` names it in errors.
+bakegi::Light light_from_desc(const bakegi_light_desc& light, size_t index) {
+  auto v3 = [](const float* v) { return glm::vec3(v[0], v[1], v[2]); };
+  // Read as integers: an out-of-range value must not be loaded as an enum.
+  uint32_t raw_type = 0, raw_shape = 0;
+  static_assert(sizeof(light.type) == sizeof raw_type && sizeof(light.shape) == sizeof raw_shape);
+  std::memcpy(&raw_type, &light.type, sizeof raw_type);
+  std::memcpy(&raw_shape, &light.shape, sizeof raw_shape);
+  bakegi::Light l;
+  l.type = bakegi::light_type_from(raw_type, index);
+  l.position = v3(light.position);
+  l.direction = v3(light.direction);
+  l.axis_u = v3(light.axis_u);
+  l.color = v3(light.color);
+  l.radius = light.radius;
+  l.spot_size = light.spot_size;
+  l.spot_blend = light.spot_blend;
+  l.angle = light.angle;
+  l.shape = bakegi::area_shape_from(raw_shape, index);
+  l.size_x = light.size_x;
+  l.size_y = light.size_y;
+  l.flags = light.flags;
+  return l;
+}
+
 }  // namespace
 
 extern "C" {
@@ -165,27 +190,7 @@ bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_des
     require(light, "light");
     const size_t index = scene->description.lights.size();
     check_room(index, "lights");
-    auto v3 = [](const float* v) { return glm::vec3(v[0], v[1], v[2]); };
-    // Read as integers: an out-of-range value must not be loaded as an enum.
-    uint32_t raw_type = 0, raw_shape = 0;
-    static_assert(sizeof(light->type) == sizeof raw_type &&
-                  sizeof(light->shape) == sizeof raw_shape);
-    std::memcpy(&raw_type, &light->type, sizeof raw_type);
-    std::memcpy(&raw_shape, &light->shape, sizeof raw_shape);
-    bakegi::Light l;
-    l.type = bakegi::light_type_from(raw_type, index);
-    l.position = v3(light->position);
-    l.direction = v3(light->direction);
-    l.axis_u = v3(light->axis_u);
-    l.color = v3(light->color);
-    l.radius = light->radius;
-    l.spot_size = light->spot_size;
-    l.spot_blend = light->spot_blend;
-    l.angle = light->angle;
-    l.shape = bakegi::area_shape_from(raw_shape, index);
-    l.size_x = light->size_x;
-    l.size_y = light->size_y;
-    l.flags = light->flags;
+    const bakegi::Light l = light_from_desc(*light, index);
     bakegi::check_light(l, index);
     scene->description.lights.push_back(l);
     if (out_light) *out_light = uint32_t(index);
@@ -211,7 +216,26 @@ bakegi_status bakegi_scene_clear_lights(bakegi_scene* scene) {
   return guarded(__func__, [&] {
     require(scene, "scene");
     scene->description.lights.clear();
+    scene->description.portals.clear();
   });
+}
+
+bakegi_status bakegi_scene_add_portal(bakegi_scene* scene, const bakegi_light_desc* portal) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    require(portal, "portal");
+    const size_t index = scene->description.portals.size();
+    check_room(index, "portals");
+    bakegi::Light l = light_from_desc(*portal, index);
+    bakegi::check_portal(l, index);
+    l.color = glm::vec3(0.0f);  // a portal emits nothing
+    l.flags = 0;
+    scene->description.portals.push_back(l);
+  });
+}
+
+uint32_t bakegi_scene_portal_count(const bakegi_scene* scene) {
+  return bakegi::live(scene) ? uint32_t(scene->description.portals.size()) : 0;
 }
 
 bakegi_status bakegi_scene_set_world(bakegi_scene* scene, const float radiance[3]) {

@@ -23,6 +23,7 @@ class AreaLight {
   float area() const { return area_; }
   const glm::vec3& radiance() const { return radiance_; }
   const glm::vec3& normal() const { return normal_; }  // the emitting side
+  const glm::vec3& center() const { return center_; }
   // The point of the light's shape at (u1, u2) in [0,1)^2, uniform by area (reflective
   // shadow maps place their views there).
   glm::vec3 point_at(float u1, float u2) const;

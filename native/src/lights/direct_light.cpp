@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "util/random.h"
 #include "util/sampling.h"
@@ -28,7 +29,8 @@ DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
       ray_epsilon_(scene_ray_epsilon(scene)),
       emissive_triangles_(scene),
       world_radiance_(scene.description.world_radiance),
-      environment_(scene.environment.get()) {
+      environment_(scene.environment.get()),
+      portals_(scene.description.portals) {
   for (const Light& light : scene.description.lights) {
     switch (light.type) {
       case BAKEGI_LIGHT_POINT:
@@ -66,10 +68,50 @@ void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng
     if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) visit(s);
   }
   // Last, so that scenes without a world image draw the same numbers as before.
-  if (environment_ && world == World::kIncluded) {
+  if (world == World::kExcluded) return;
+  // Where no portal is seen, exactly as without portals (the same random numbers).
+  const float share = portal_share(x.position);
+  if (share > 0.0f) {
+    if (sample_world_through_portals(x.position, share, rng, s)) visit(s);
+  } else if (environment_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
     if (environment_->sample(u1, u2, s)) visit(s);
   }
+}
+
+float DirectLight::portal_share(const glm::vec3& x) const {
+  if (portals_.empty() || !portals_.seen_from(x)) return 0.0f;
+  return environment_ ? 0.5f : 1.0f;
+}
+
+float DirectLight::world_pdf(const glm::vec3& x, const glm::vec3& direction) const {
+  const float share = portal_share(x);
+  float pdf = share > 0.0f ? share * portals_.pdf(x, direction) : 0.0f;
+  if (environment_) pdf += (1.0f - share) * environment_->pdf(direction);
+  return pdf;
+}
+
+bool DirectLight::sample_world_through_portals(const glm::vec3& x, float share, RandomStream& rng,
+                                               LightSample& out) const {
+  const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
+  glm::vec3 direction;
+  if (u0 < share) {
+    float portal_pdf = 0.0f;
+    if (!portals_.sample(x, u0 / share, u1, u2, direction, portal_pdf)) return false;
+  } else {
+    if (!environment_ || !environment_->sample(u1, u2, out)) return false;
+    direction = out.direction;
+  }
+  // The density of the mixture of both strategies, so that either one's sample is weighted
+  // against the BSDF's rays as one light.
+  const float pdf = world_pdf(x, direction);
+  if (!(pdf > 0.0f)) return false;
+  const glm::vec3 radiance = environment_ ? environment_->radiance(direction) : world_radiance_;
+  out.direction = direction;
+  out.distance = std::numeric_limits<float>::infinity();
+  out.pdf = pdf;
+  out.contribution = radiance / pdf;
+  return true;
 }
 
 bool DirectLight::unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const {
@@ -174,6 +216,11 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
     }
   }
   if (world == World::kExcluded) return radiance;
+  if (portal_share(position) > 0.0f) {
+    const glm::vec3 sky = environment_ ? environment_->radiance(direction) : world_radiance_;
+    const float light_pdf = world_pdf(position, direction);
+    return radiance + sky * (light_pdf > 0.0f ? power_heuristic(bsdf_pdf, light_pdf) : 1.0f);
+  }
   if (environment_) {
     float light_pdf = 0.0f;
     const glm::vec3 sky = environment_->radiance(direction, light_pdf);

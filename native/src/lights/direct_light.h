@@ -24,6 +24,7 @@
 #include "lights/point_light.h"
 #include "lights/sun_light.h"
 #include "lights/surface_point.h"
+#include "lights/world_portals.h"
 #include "scene/ray_tracer.h"
 #include "scene/surface_bsdf.h"
 
@@ -113,6 +114,17 @@ class DirectLight {
   template <typename Visit>
   glm::vec3 light_sample_irradiance(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
                                     World world, Visit&& visit) const;
+  // Where x sees a portal (`share` = portal_share(x) > 0): one sample of the world's light
+  // from x, through the portals or (with a world image) by the image's light.
+  bool sample_world_through_portals(const glm::vec3& x, float share, RandomStream& rng,
+                                    LightSample& out) const;
+  // The share of the world's light samples that aim through the portals at x: 0 where x
+  // sees none, 1/2 with a world image (the image's sampler keeps the sun and the rest),
+  // 1 with a constant world (bounced rays find the sky outside the portals).
+  float portal_share(const glm::vec3& x) const;
+  // The solid-angle density of the world's light sample at x for the unit direction; 0
+  // where the world is not light-sampled (a constant world without portals).
+  float world_pdf(const glm::vec3& x, const glm::vec3& direction) const;
   // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
   bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
 
@@ -125,6 +137,7 @@ class DirectLight {
   EmissiveTriangles emissive_triangles_;
   glm::vec3 world_radiance_;
   const EnvironmentLight* environment_;  // the scene's, or null: the world is world_radiance_
+  WorldPortals portals_;
 };
 
 }  // namespace bakegi

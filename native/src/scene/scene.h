@@ -106,6 +106,9 @@ struct SceneDescription {
   // (for the methods that take a constant world).
   glm::vec3 world_radiance{0.0f};
   WorldTexture world_texture;
+  // Window portals (area-light shapes, BAKEGI_LIGHT_AREA) that guide the world's light
+  // samples; they emit nothing (lights/world_portals.h).
+  std::vector<Light> portals;
 };
 
 // A triangle ready for rendering: world positions, shading normals per corner, uvs.

@@ -28,6 +28,48 @@ constexpr uint32_t kHasNormals = 1, kHasUvs = 2, kHasTriangleMaterials = 4;
 using Writer = ByteWriter;
 using Reader = ByteReader;
 
+void write_light(Writer& w, const Light& l) {
+  w.u32(uint32_t(l.type));
+  w.vec3(l.position);
+  w.vec3(l.direction);
+  w.vec3(l.axis_u);
+  w.vec3(l.color);
+  w.f32(l.radius);
+  w.f32(l.spot_size);
+  w.f32(l.spot_blend);
+  w.f32(l.angle);
+  w.u32(uint32_t(l.shape));
+  w.f32(l.size_x);
+  w.f32(l.size_y);
+  w.u32(l.flags);
+}
+
+// Reads what write_light wrote (without the flags before version 4); `index` names it in
+// errors.
+Light read_light(Reader& r, bool has_flags, size_t index) {
+  Light l;
+  const uint32_t type = r.u32();
+  l.position = r.vec3();
+  l.direction = r.vec3();
+  l.axis_u = r.vec3();
+  l.color = r.vec3();
+  l.radius = r.f32();
+  l.spot_size = r.f32();
+  l.spot_blend = r.f32();
+  l.angle = r.f32();
+  const uint32_t shape = r.u32();
+  l.size_x = r.f32();
+  l.size_y = r.f32();
+  if (has_flags) l.flags = r.u32();
+  try {
+    l.type = light_type_from(type, index);
+    l.shape = area_shape_from(shape, index);
+  } catch (const Error& e) {
+    r.fail(e.what());
+  }
+  return l;
+}
+
 void write_scene(Writer& w, const SceneDescription& scene) {
   size_t at = w.begin_section(kTextures);
   w.u32(uint32_t(scene.textures.size()));
@@ -70,21 +112,7 @@ void write_scene(Writer& w, const SceneDescription& scene) {
 
   at = w.begin_section(kLights);
   w.u32(uint32_t(scene.lights.size()));
-  for (const Light& l : scene.lights) {
-    w.u32(uint32_t(l.type));
-    w.vec3(l.position);
-    w.vec3(l.direction);
-    w.vec3(l.axis_u);
-    w.vec3(l.color);
-    w.f32(l.radius);
-    w.f32(l.spot_size);
-    w.f32(l.spot_blend);
-    w.f32(l.angle);
-    w.u32(uint32_t(l.shape));
-    w.f32(l.size_x);
-    w.f32(l.size_y);
-    w.u32(l.flags);
-  }
+  for (const Light& l : scene.lights) write_light(w, l);
   w.end_section(at);
 
   at = w.begin_section(kWorld);
@@ -92,6 +120,8 @@ void write_scene(Writer& w, const SceneDescription& scene) {
   w.u32(scene.world_texture.texture);
   w.vec3(scene.world_texture.scale);
   for (int c = 0; c < 3; ++c) w.vec3(scene.world_texture.rotation[c]);
+  w.u32(uint32_t(scene.portals.size()));
+  for (const Light& portal : scene.portals) write_light(w, portal);
   w.end_section(at);
 }
 
@@ -112,6 +142,10 @@ void read_world(Reader& r, SceneDescription& scene, uint32_t version) {
   scene.world_texture.texture = r.u32();
   scene.world_texture.scale = r.vec3();
   for (int c = 0; c < 3; ++c) scene.world_texture.rotation[c] = r.vec3();
+  if (version < 7) return;
+  const uint32_t count = r.u32();
+  size_t index = 0;
+  r.array(scene.portals, count, 84, "portals", [&] { return read_light(r, true, index++); });
 }
 
 void read_textures(Reader& r, SceneDescription& scene) {
@@ -179,30 +213,8 @@ void read_lights(Reader& r, SceneDescription& scene, uint32_t version) {
   const bool has_flags = version >= 4;
   const uint32_t count = r.u32();
   size_t index = 0;
-  r.array(scene.lights, count, has_flags ? 84 : 80, "lights", [&] {
-    Light l;
-    const uint32_t type = r.u32();
-    l.position = r.vec3();
-    l.direction = r.vec3();
-    l.axis_u = r.vec3();
-    l.color = r.vec3();
-    l.radius = r.f32();
-    l.spot_size = r.f32();
-    l.spot_blend = r.f32();
-    l.angle = r.f32();
-    const uint32_t shape = r.u32();
-    l.size_x = r.f32();
-    l.size_y = r.f32();
-    if (has_flags) l.flags = r.u32();
-    try {
-      l.type = light_type_from(type, index);
-      l.shape = area_shape_from(shape, index);
-    } catch (const Error& e) {
-      r.fail(e.what());
-    }
-    ++index;
-    return l;
-  });
+  r.array(scene.lights, count, has_flags ? 84 : 80, "lights",
+          [&] { return read_light(r, has_flags, index++); });
 }
 
 BakePoints read_points(Reader& r, uint32_t version) {
@@ -228,6 +240,7 @@ void check_contents(const SceneFile& file, const std::string& name) {
     for (size_t i = 0; i < s.materials.size(); ++i) check_material(s.materials[i], i);
     for (size_t i = 0; i < s.meshes.size(); ++i) check_mesh(s.meshes[i], i);
     for (size_t i = 0; i < s.lights.size(); ++i) check_light(s.lights[i], i);
+    for (size_t i = 0; i < s.portals.size(); ++i) check_portal(s.portals[i], i);
     check_world(s.world_radiance);
     check_world_texture(s.world_texture);
     if (s.world_texture.is_set() && s.world_texture.texture >= s.textures.size()) {

@@ -25,9 +25,10 @@ namespace bakegi {
 
 // Version 2 added the glossy lobe to materials (48 bytes each instead of 32), version 3
 // their emission texture (52 bytes), version 5 the bake points' share candidates, version 6
-// the world's image (texture index, scale, rotation after the world's radiance). Older files
-// are still read: version 1 materials are diffuse, and neither has emission textures.
-inline constexpr uint32_t kSceneFileVersion = 6;
+// the world's image (texture index, scale, rotation after the world's radiance), version 7
+// the window portals (a count and light records after the rotation). Older files are still
+// read: version 1 materials are diffuse, and neither has emission textures.
+inline constexpr uint32_t kSceneFileVersion = 7;
 inline constexpr uint32_t kOldestSceneFileVersion = 1;
 
 struct SceneFile {

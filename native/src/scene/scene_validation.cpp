@@ -291,6 +291,28 @@ void check_light(const Light& light, size_t index) {
   }
 }
 
+void check_portal(const Light& portal, size_t index) {
+  const std::string name = "portal " + std::to_string(index);
+  if (portal.type != BAKEGI_LIGHT_AREA) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, name + ": a portal is an area light's shape (type " +
+                                                   std::to_string(int(BAKEGI_LIGHT_AREA)) +
+                                                   "), got type " +
+                                                   std::to_string(int(portal.type)));
+  }
+  Light shape = portal;
+  shape.color = glm::vec3(0.0f);
+  shape.flags = 0;
+  try {
+    check_light(shape, index);
+  } catch (const Error& e) {
+    // check_light names it "light N (area)"; say what it is.
+    std::string what = e.what();
+    const std::string prefix = "light " + std::to_string(index) + " (area)";
+    if (what.rfind(prefix, 0) == 0) what = name + what.substr(prefix.size());
+    throw Error(e.status(), what);
+  }
+}
+
 bakegi_light_type light_type_from(uint32_t raw, size_t index) {
   if (raw > BAKEGI_LIGHT_AREA) {
     throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "light " + std::to_string(index) +
@@ -368,6 +390,7 @@ void check_scene_parts(const SceneDescription& description) {
     }
   }
   for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
+  for (size_t i = 0; i < description.portals.size(); ++i) check_portal(description.portals[i], i);
   check_world(description.world_radiance);
   check_world_texture(description.world_texture);
   if (description.world_texture.is_set() &&
@@ -516,6 +539,7 @@ Scene build_scene(const SceneDescription& description) {
 
 Scene build_relit_scene(const Scene& previous, const SceneDescription& description) {
   for (size_t i = 0; i < description.lights.size(); ++i) check_light(description.lights[i], i);
+  for (size_t i = 0; i < description.portals.size(); ++i) check_portal(description.portals[i], i);
   check_world(description.world_radiance);
   check_world_texture(description.world_texture);
   if (description.world_texture.is_set() &&
@@ -527,6 +551,7 @@ Scene build_relit_scene(const Scene& previous, const SceneDescription& descripti
   scene.description.lights = description.lights;
   scene.description.world_radiance = description.world_radiance;
   scene.description.world_texture = description.world_texture;
+  scene.description.portals = description.portals;
   build_environment(scene);
   normalize_lights_and_require_one(scene);
   return scene;

@@ -18,6 +18,8 @@ void check_texture(const Texture& texture, size_t index);
 void check_material(const Material& material, size_t index);
 void check_mesh(const Mesh& mesh, size_t index);  // not its material references
 void check_light(const Light& light, size_t index);
+// A window portal: an area light's shape (its colour and flags are not used).
+void check_portal(const Light& portal, size_t index);
 void check_world(const glm::vec3& radiance);
 // The scale and rotation of a world image (its texture index is checked with the scene's).
 void check_world_texture(const WorldTexture& world);
