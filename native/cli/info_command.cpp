@@ -20,6 +20,7 @@ int run_info_command(const std::vector<std::string>& words) {
   std::printf("triangles:  %llu\n",
               static_cast<unsigned long long>(bakegi_scene_triangle_count(file.scene.get())));
   std::printf("lights:     %u\n", bakegi_scene_light_count(file.scene.get()));
+  std::printf("portals:    %u\n", bakegi_scene_portal_count(file.scene.get()));
   std::printf("points:     %llu\n", static_cast<unsigned long long>(
                                         file.points ? bakegi_points_count(file.points.get()) : 0));
   const bakegi_status status = bakegi_scene_validate(file.scene.get());

@@ -443,6 +443,9 @@ const Scene& BakeJob::build_scene_and_report(Report& report,
   for (const std::string& warning : scene_->warnings) report.warn(warning);
   report.add_count("triangles", scene_->triangles.size());
   report.add_count("lights", scene_->description.lights.size());
+  if (!scene_->description.portals.empty()) {
+    report.add_count("portals", scene_->description.portals.size());
+  }
   report.add_count("emissive_triangles", scene_->emissive_triangles.size());
   report.add_seconds("validate", seconds_since(start));
   context_.throw_if_cancelled();
@@ -556,6 +559,9 @@ std::unique_ptr<IndirectField> BakeJob::solve_relight(Report& report) {
   const Scene& scene = *scene_;
   report.add_count("triangles", scene.triangles.size());
   report.add_count("lights", scene.description.lights.size());
+  if (!scene.description.portals.empty()) {
+    report.add_count("portals", scene.description.portals.size());
+  }
   report.add_count("emissive_triangles", scene.emissive_triangles.size());
   report.add_seconds("validate", seconds_since(stage_start));
   context_.throw_if_cancelled();
