@@ -10,6 +10,7 @@ import common  # noqa: E402
 import metrics  # noqa: E402
 
 import bpy  # noqa: E402
+import cornell_box  # noqa: E402  (scenes/: use_nodes)
 import numpy  # noqa: E402
 
 
@@ -53,8 +54,8 @@ def build_room():
     material.diffuse_color = (0.6, 0.6, 0.6, 1.0)
     mesh.materials.append(material)
     world = bpy.data.worlds.new("Sky")
-    world.color = (1.0, 1.0, 1.0)
-    world.use_nodes = False
+    cornell_box.use_nodes(world)
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
     bpy.context.scene.world = world
     return room
 

@@ -18,6 +18,7 @@ Conventions (Cycles 3.4, see CYCLES_FACTS.md and bakegi.h):
                                        radiance).
   emission shader, strength S        : radiance c S, two-sided on meshes in Cycles 3.4.
   world background, strength S       : radiance c S.
+  Cast Shadow off                    : the core's BAKEGI_LIGHT_NO_SHADOW (no shadow rays).
 
 What Cycles 4.0 and later do differently (measured against 4.2, 4.5 and 5.0's own Cycles,
 blender_tests/test_light_units.py; `cycles_version` of a BlenderLight picks the rules):
@@ -71,6 +72,7 @@ class BlenderLight:
     use_soft_falloff: bool = True  # 4.0+: point/spot radius; False = a true sphere
     cycles_version: Tuple[int, int] = (3, 4)  # whose conventions: compat.cycles_conventions()
     is_portal: bool = False  # an area light with Cycles' Portal on: guides the sky, emits nothing
+    cast_shadow: bool = True  # Cast Shadow (3.x: light.cycles.cast_shadow; 4.0+: use_shadow)
 
 
 @dataclass
@@ -94,6 +96,7 @@ class CoreLight:
 
 # bakegi_light_flags (bakegi.h)
 SPOT_WITHOUT_COSINE = 1
+NO_SHADOW = 2
 
 
 @dataclass
@@ -230,7 +233,10 @@ def convert_light(light: BlenderLight) -> Conversion:
         return Conversion(None, [f"light '{name}': its object has zero scale; left out"])
     convert = {"POINT": _point_or_spot, "SPOT": _point_or_spot, "SUN": _sun,
                "AREA": _area}[light.type]
-    return convert(light, color, energy, down, warnings)
+    conversion = convert(light, color, energy, down, warnings)
+    if conversion.light is not None and not light.cast_shadow:
+        conversion.light.flags |= NO_SHADOW  # its light samples pass through everything
+    return conversion
 
 
 def convert_portal(light: BlenderLight) -> Conversion:

@@ -384,8 +384,8 @@ TEST(ApiErrors, BadLightParameters) {
   set_raw(area.shape, 9);
   EXPECT_ERROR(add(area), BAKEGI_ERROR_INVALID_ARGUMENT, "unknown shape 9");
   area.shape = BAKEGI_AREA_SQUARE;
-  area.flags = 6u;
-  EXPECT_ERROR(add(area), S, "unknown flags 6");
+  area.flags = 12u;
+  EXPECT_ERROR(add(area), S, "unknown flags 12");
   area.flags = 0u;
   area.shape = BAKEGI_AREA_DISK;
   area.axis_u[0] = 0.0f;

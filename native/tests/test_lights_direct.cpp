@@ -12,8 +12,8 @@
 
 #include <cstdio>
 
-#include "lights/emissive_triangles.h"
 #include "light_transport_fixtures.h"
+#include "lights/emissive_triangles.h"
 #include "scene/triangle_cells.h"
 #include "util/random.h"
 #include "util/sampling.h"
@@ -112,6 +112,41 @@ TEST(LightsDirect, OccludedPointLightAndSunGiveNothing) {
   const float dist2 = 25.0f + 9.0f;
   const float expected = (3.0f + 10.0f * 3.0f / std::sqrt(dist2) / dist2) / kPi;
   EXPECT_NEAR(values[2].x, expected, 1e-4 * expected);
+}
+
+TEST(LightsDirect, LightsWithoutShadowsShineThroughTheRoof) {
+  // Cast Shadow off (BAKEGI_LIGHT_NO_SHADOW): the roof of the test above no longer shadows
+  // the point light, the sun or a small area light; each gives what it gives in the open.
+  for (uint32_t type : {BAKEGI_LIGHT_POINT, BAKEGI_LIGHT_SUN, BAKEGI_LIGHT_AREA}) {
+    SceneDescription open = plane_scene();
+    Light light;
+    if (type == BAKEGI_LIGHT_POINT) light = test::point_light({0.0f, 0.0f, 3.0f}, glm::vec3(10.0f));
+    if (type == BAKEGI_LIGHT_SUN) {
+      light.type = BAKEGI_LIGHT_SUN;
+      light.direction = {0, 0, -1};
+      light.color = glm::vec3(3.0f);
+    }
+    if (type == BAKEGI_LIGHT_AREA) {
+      light = test::area_light(BAKEGI_AREA_SQUARE, {0, 0, 3}, {0, 0, -1}, {1, 0, 0}, 0.2f, 0.2f,
+                               glm::vec3(50.0f));
+    }
+    open.lights.push_back(light);
+    SceneDescription roofed = open;
+    const uint32_t grey = test::add_material(roofed, glm::vec3(0.5f));
+    test::add_quad(roofed, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 1.0f, 1.0f, grey);
+    roofed.lights[0].flags = BAKEGI_LIGHT_NO_SHADOW;
+    const BakePoints points = points_on_plane({{0, 0}, {0.5f, -0.5f}});
+    const auto expected = bake_direct(open, points, 4);
+    const auto got = bake_direct(roofed, points, 4);
+    for (size_t i = 0; i < points.size(); ++i) {
+      EXPECT_GT(expected[i].x, 0.0f);
+      // The same light samples; the area light's cosine rays, which hit the roof first,
+      // differ (weighted by MIS against the light samples, as in Cycles): a few per cent.
+      const float tolerance = type == BAKEGI_LIGHT_AREA ? 0.05f : 1e-4f;
+      EXPECT_NEAR(got[i].x, expected[i].x, tolerance * expected[i].x)
+          << "light type " << type << ", point " << i;
+    }
+  }
 }
 
 TEST(LightsDirect, SunGivesIrradianceTimesCosine) {

@@ -283,6 +283,13 @@ class SceneExporter:
     # lights
     def add_light(self, obj, matrix_world):
         light = obj.data
+        if not getattr(obj, "visible_diffuse", True):
+            # Cycles' diffuse light (direct and indirect) has none of it (measured in 3.4, 4.5).
+            self.warnings.append(
+                f"light '{obj.name}' is invisible to diffuse rays (Object Properties > "
+                "Visibility > Ray Visibility > Diffuse off): left out, as Cycles' diffuse light "
+                "has none of it")
+            return
         settings = light_units.BlenderLight(
             name=obj.name, type=light.type, color=tuple(light.color), energy=light.energy,
             matrix_world=[list(row) for row in matrix_world],
@@ -297,7 +304,10 @@ class SceneExporter:
             use_nodes=compat.uses_nodes(light),
             node_tree_is_default=_light_tree_is_default(light),
             cycles_version=compat.cycles_conventions(),
-            is_portal=_is_portal(light),
+            # Cycles' own settings are read from the original: setting them from a script
+            # does not tag the depsgraph, so the evaluated copy can hold old values.
+            is_portal=_is_portal(obj.original.data),
+            cast_shadow=_casts_shadow(obj.original.data),
             **compat.light_settings(light))
         if settings.is_portal:
             # Cycles draws no light from a portal: it only samples the world through it.
@@ -314,6 +324,14 @@ class SceneExporter:
             self.lights += 1
 
     def set_world(self, world):
+        visibility = getattr(world, "cycles_visibility", None)
+        if visibility is not None and not visibility.diffuse:
+            # Cycles' diffuse light has none of it (measured in 3.4, 4.5).
+            self.warnings.append("the world is invisible to diffuse rays (World Properties > "
+                                 "Ray Visibility > Diffuse off): it adds no light, as in Cycles")
+            self.scene.set_world((0.0, 0.0, 0.0))
+            self.scene.set_world_texture(None)
+            return
         light = world_light(world, self.warnings)
         self.scene.set_world(light.radiance)
         for direction, angle, irradiance in light.suns:
@@ -335,6 +353,15 @@ class SceneExporter:
             texture = self.scene.add_texture(light.image)
             self.scene.world_image = (key, texture)
         self.scene.set_world_texture(texture, light.scale, light.rotation)
+
+
+def _casts_shadow(light):
+    """Cycles' Cast Shadow: light.cycles.cast_shadow in 3.x (its light.use_shadow is EEVEE's
+    alone there, measured), light.use_shadow from 4.0 on."""
+    cycles = getattr(light, "cycles", None)
+    if cycles is not None and hasattr(cycles, "cast_shadow"):
+        return bool(cycles.cast_shadow)
+    return bool(getattr(light, "use_shadow", True))
 
 
 def _is_portal(light):
@@ -433,7 +460,7 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
     points = None
     exported_lightmaps = None
     try:
-        linked = set()
+        linked, ray_hidden = set(), set()
         visibility = RenderVisibility(context.scene)
         target_names = {o.name for o in targets}
         for instance in depsgraph.object_instances:
@@ -450,8 +477,16 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
                 exporter.add_light(obj, instance.matrix_world)
             if (obj.type in MESH_LIKE or obj.type == "LIGHT") and compat.light_linking_in_use(obj):
                 linked.add(obj.name)
+            if obj.type in MESH_LIKE and not (getattr(obj, "visible_diffuse", True) and
+                                              getattr(obj, "visible_shadow", True)):
+                ray_hidden.add(obj.name)
         warnings.extend(render_visibility.warnings_for(context, visibility,
                                                        set(MESH_LIKE) | {"LIGHT"}))
+        if ray_hidden:
+            warnings.append(f"ray visibility is ignored (Diffuse or Shadow off on "
+                            f"{', '.join(sorted(ray_hidden)[:5])}"
+                            f"{' ...' if len(ray_hidden) > 5 else ''}): they reflect light and "
+                            "cast shadows in the bake, where Cycles lets those rays through them")
         if linked:
             warnings.append(f"light linking is ignored (set on {', '.join(sorted(linked)[:5])}"
                             f"{' ...' if len(linked) > 5 else ''}): their light reaches every "

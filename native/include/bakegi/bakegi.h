@@ -182,9 +182,12 @@ typedef struct bakegi_light_desc {
 typedef enum bakegi_light_flags {
   /* spot: inside the cone the intensity is I, softened at the edge by the blend's smoothstep
    * alone (Cycles 4.0 and later). Without it, it also falls as the cosine to the axis (3.x). */
-  BAKEGI_LIGHT_SPOT_WITHOUT_COSINE = 1u
+  BAKEGI_LIGHT_SPOT_WITHOUT_COSINE = 1u,
+  /* point, spot, sun, area: nothing blocks its light samples (Cycles' Cast Shadow off); rays
+   * that bounce still find the light only where nothing is in front of it, as in Cycles. */
+  BAKEGI_LIGHT_NO_SHADOW = 2u
 } bakegi_light_flags;
-#define BAKEGI_LIGHT_KNOWN_FLAGS 1u
+#define BAKEGI_LIGHT_KNOWN_FLAGS 3u
 
 BAKEGI_API bakegi_status bakegi_scene_add_light(bakegi_scene* scene, const bakegi_light_desc* light,
                                                 uint32_t* out_light);

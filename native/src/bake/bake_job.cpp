@@ -513,6 +513,14 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
     }
   }
   report.set_text("method_used", method_used);
+  const bool shadowless_light =
+      std::any_of(scene.description.lights.begin(), scene.description.lights.end(),
+                  [](const Light& light) { return (light.flags & BAKEGI_LIGHT_NO_SHADOW) != 0; });
+  if (shadowless_light && method_used == "splatting") {
+    report.warn(
+        "splatting's reflective shadow maps shadow every light, also those with Cast Shadow "
+        "off (their direct light and the other methods do not)");
+  }
   if (scene.environment && method_used == "splatting") {
     report.warn(
         "splatting lights its reflective shadow maps of the sky with the world "

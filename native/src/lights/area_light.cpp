@@ -8,7 +8,10 @@
 namespace bakegi {
 
 AreaLight::AreaLight(const Light& light)
-    : center_(light.position), normal_(glm::normalize(light.direction)), radiance_(light.color) {
+    : casts_shadow_(!(light.flags & BAKEGI_LIGHT_NO_SHADOW)),
+      center_(light.position),
+      normal_(glm::normalize(light.direction)),
+      radiance_(light.color) {
   // Orthonormalize axis_u against the normal; fall back to any tangent if they are parallel.
   glm::vec3 u = light.axis_u - normal_ * glm::dot(light.axis_u, normal_);
   const float u_length = glm::length(u);
@@ -27,8 +30,9 @@ AreaLight::AreaLight(const Light& light)
 }
 
 glm::vec3 AreaLight::point_at(float u1, float u2) const {
-  const glm::vec2 local = round_ ? sample_concentric_disk(u1, u2) * glm::vec2(half_u_, half_v_)
-                                 : glm::vec2((2.0f * u1 - 1.0f) * half_u_, (2.0f * u2 - 1.0f) * half_v_);
+  const glm::vec2 local =
+      round_ ? sample_concentric_disk(u1, u2) * glm::vec2(half_u_, half_v_)
+             : glm::vec2((2.0f * u1 - 1.0f) * half_u_, (2.0f * u2 - 1.0f) * half_v_);
   return center_ + axis_u_ * local.x + axis_v_ * local.y;
 }
 

@@ -16,6 +16,8 @@ namespace bakegi {
 class AreaLight {
  public:
   explicit AreaLight(const Light& light);
+  // False for a light with Cast Shadow off (BAKEGI_LIGHT_NO_SHADOW).
+  bool casts_shadow() const { return casts_shadow_; }
 
   bool sample(const glm::vec3& p, float u1, float u2, LightSample& out) const;
   bool intersect(const glm::vec3& origin, const glm::vec3& direction, float t_max,
@@ -33,6 +35,7 @@ class AreaLight {
     return SphericalRectangle(glm::dvec3(p), rectangle_);
   }
 
+  bool casts_shadow_;
   glm::vec3 center_;
   glm::vec3 normal_;  // emission side
   glm::vec3 axis_u_, axis_v_;

@@ -53,16 +53,20 @@ void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng
   LightSample s;
   for (const PointLight& light : point_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
+    s.casts_shadow = light.casts_shadow();
     if (light.sample(x.position, u1, u2, s)) visit(s);
   }
   for (const AreaLight& light : area_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
+    s.casts_shadow = light.casts_shadow();
     if (light.sample(x.position, u1, u2, s)) visit(s);
   }
   for (const SunLight& light : sun_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
+    s.casts_shadow = light.casts_shadow();
     if (light.sample(u1, u2, s)) visit(s);
   }
+  s.casts_shadow = true;  // emissive triangles and the world
   if (!emissive_triangles_.empty()) {
     const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
     if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) visit(s);
@@ -115,6 +119,7 @@ bool DirectLight::sample_world_through_portals(const glm::vec3& x, float share, 
 }
 
 bool DirectLight::unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const {
+  if (!s.casts_shadow) return true;
   // Light geometry is seen from the surface point itself; only the shadow ray starts off
   // the surface, aimed at the sampled point, so the offset adds no bias to 1/d^2.
   const glm::vec3 origin = ray_origin(x);

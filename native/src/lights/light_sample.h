@@ -13,7 +13,8 @@ struct LightSample {
   // Emitted radiance over the solid-angle density of the sample (for delta lights:
   // intensity / distance^2): irradiance contributed per unit of receiver cosine.
   glm::vec3 contribution{0.0f};
-  float pdf = 0.0f;  // solid-angle density of the strategy, 0 for delta lights (no MIS)
+  float pdf = 0.0f;          // solid-angle density of the strategy, 0 for delta lights (no MIS)
+  bool casts_shadow = true;  // false: no shadow ray (a light with BAKEGI_LIGHT_NO_SHADOW)
 };
 
 // A ray that crossed a light shape which is not a triangle of the BVH.

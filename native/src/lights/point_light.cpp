@@ -7,7 +7,8 @@
 namespace bakegi {
 
 PointLight::PointLight(const Light& light)
-    : center_(light.position),
+    : casts_shadow_(!(light.flags & BAKEGI_LIGHT_NO_SHADOW)),
+      center_(light.position),
       radius_(light.radius),
       intensity_(light.color),
       cone_(light.type == BAKEGI_LIGHT_SPOT ? SpotCone(light) : SpotCone()) {}

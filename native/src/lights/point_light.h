@@ -14,6 +14,8 @@ namespace bakegi {
 class PointLight {
  public:
   explicit PointLight(const Light& light);  // BAKEGI_LIGHT_POINT or BAKEGI_LIGHT_SPOT
+  // False for a light with Cast Shadow off (BAKEGI_LIGHT_NO_SHADOW).
+  bool casts_shadow() const { return casts_shadow_; }
 
   bool is_delta() const { return radius_ <= 0.0f; }
   // Samples the light seen from p; false if it sends nothing there.
@@ -23,6 +25,7 @@ class PointLight {
                  LightHit& out) const;
 
  private:
+  bool casts_shadow_;
   glm::vec3 center_;
   float radius_;
   glm::vec3 intensity_;

@@ -6,7 +6,8 @@
 namespace bakegi {
 
 SunLight::SunLight(const Light& light)
-    : frame_(-glm::normalize(light.direction)),
+    : casts_shadow_(!(light.flags & BAKEGI_LIGHT_NO_SHADOW)),
+      frame_(-glm::normalize(light.direction)),
       tan_half_angle_(std::tan(0.5f * light.angle)),
       cos_half_angle_(std::cos(0.5f * light.angle)),
       disk_area_(kPi * tan_half_angle_ * tan_half_angle_),

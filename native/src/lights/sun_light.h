@@ -17,6 +17,8 @@ namespace bakegi {
 class SunLight {
  public:
   explicit SunLight(const Light& light);
+  // False for a light with Cast Shadow off (BAKEGI_LIGHT_NO_SHADOW).
+  bool casts_shadow() const { return casts_shadow_; }
 
   bool is_delta() const { return disk_area_ <= 0.0f; }
   bool sample(float u1, float u2, LightSample& out) const;
@@ -24,6 +26,7 @@ class SunLight {
   bool intersect(const glm::vec3& direction, LightHit& out) const;
 
  private:
+  bool casts_shadow_;
   Frame frame_;  // normal: unit direction towards the sun
   float tan_half_angle_;
   float cos_half_angle_;
