@@ -148,6 +148,18 @@ class Materials(unittest.TestCase):
             self.assertTrue(any(words in w and "blocks light" in w for w in warnings),
                             f"{material.name}: {warnings}")
 
+    def test_volumes_are_named_and_volume_only_materials_marked(self):
+        surface, _ = node_material("smoky", "ShaderNodeBsdfDiffuse")
+        output = next(n for n in surface.node_tree.nodes if n.type == "OUTPUT_MATERIAL")
+        volume = surface.node_tree.nodes.new("ShaderNodeVolumeAbsorption")
+        surface.node_tree.links.new(volume.outputs[0], output.inputs["Volume"])
+        info = self.materials.read_material(surface)
+        self.assertFalse(info.volume_only)
+        self.assertTrue(any("Volume is ignored" in w for w in info.warnings), info.warnings)
+        surface.node_tree.links.remove(output.inputs["Surface"].links[0])
+        info = self.materials.read_material(surface)
+        self.assertTrue(info.volume_only)
+
     def test_image_into_emission_shader_is_an_emission_texture(self):
         material, node = node_material("screen", "ShaderNodeEmission")
         node.inputs["Strength"].default_value = 5.0

@@ -87,6 +87,30 @@ class RayVisibility(common.AddonCase):
         self.assertLessEqual(error, 0.02)
         self.assertGreater(error_shadowed, 0.05)
 
+    def test_a_volume_without_a_surface_is_left_out(self):
+        """A fog box (a Principled Volume on the Volume output, no Surface) around the lamp:
+        Cycles lets light through its boundary; the bake, without participating media, leaves
+        it out instead of baking a black box."""
+        expected, _ = self.bake()
+        # Around the lamp: baked as a surface, this closed box would hold all its light in.
+        bpy.ops.mesh.primitive_cube_add(size=1.0, location=self.light.location)
+        fog = bpy.context.active_object
+        fog.name = "Fog"
+        material = bpy.data.materials.new("Fog")
+        cornell_box.use_nodes(material)
+        nodes = material.node_tree.nodes
+        for node in list(nodes):
+            if node.type != "OUTPUT_MATERIAL":
+                nodes.remove(node)
+        output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
+        volume = nodes.new("ShaderNodeVolumePrincipled")
+        material.node_tree.links.new(volume.outputs[0], output.inputs["Volume"])
+        fog.data.materials.append(material)
+        got, report = self.bake()
+        numpy.testing.assert_array_equal(got, expected)
+        self.assertTrue(any("left out Fog" in w and "Volume without a Surface" in w
+                            for w in report["warnings"]), report["warnings"])
+
     def test_objects_hidden_from_diffuse_or_shadow_rays_are_named(self):
         self.built["Blocker"].visible_shadow = False
         _, report = self.bake()

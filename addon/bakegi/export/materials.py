@@ -68,6 +68,9 @@ class MaterialInfo:
     # The modified Phong lobe of the core (bakegi.h): reflectance and exponent; 0 = none.
     glossy: Tuple[float, float, float] = (0.0, 0.0, 0.0)
     glossy_exponent: float = 0.0
+    # A Volume and no Surface (fog, a light shaft's box): Cycles lets light through its
+    # boundary; the bake has no participating media, so objects made of it are left out.
+    volume_only: bool = False
 
 
 # ---- colour -----------------------------------------------------------------------------
@@ -441,6 +444,15 @@ def read_material(material):
         info.albedo = (0.0, 0.0, 0.0)
         return info
     surface = linked_from(output.inputs["Surface"])
+    volume_socket = output.inputs.get("Volume")
+    volume = linked_from(volume_socket) if volume_socket is not None else None
+    if surface is None and volume is not None:
+        info.volume_only = True
+        info.albedo = (0.0, 0.0, 0.0)
+        return info
+    if volume is not None:
+        info.warnings.append(f"{what}: its Volume is ignored (the bake has no participating "
+                             "media: inside, light passes as through air)")
     if surface is not None and surface.node.name.startswith(NODE_PREFIX):
         # Hooked by an earlier bake: read the material as it was before the hook.
         surface = linked_from(surface.node.inputs[0])

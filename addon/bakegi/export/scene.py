@@ -143,6 +143,12 @@ class SceneExporter:
             self.emission_texture_ids[key] = entry
         return self.emission_texture_ids[key]
 
+    def is_volume_only(self, obj):
+        """Whether every material of `obj` is a Volume without a Surface (a fog box)."""
+        slots = [s.material for s in obj.material_slots]
+        return bool(slots) and all(m is not None and self.material(m)[1].volume_only
+                                   for m in slots)
+
     def material(self, material):
         """(core material id, MaterialInfo) of an (evaluated or original) material."""
         original = material.original if material is not None else None
@@ -460,7 +466,7 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
     points = None
     exported_lightmaps = None
     try:
-        linked, ray_hidden = set(), set()
+        linked, ray_hidden, volumes = set(), set(), set()
         visibility = RenderVisibility(context.scene)
         target_names = {o.name for o in targets}
         for instance in depsgraph.object_instances:
@@ -469,6 +475,9 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             is_target = not instance.is_instance and obj.original.name in target_names
             if obj.type in MESH_LIKE:
                 if not is_target and visibility.leave_out(instance):
+                    continue
+                if not is_target and exporter.is_volume_only(obj):
+                    volumes.add(obj.name)
                     continue
                 exporter.add_instance(obj, instance.matrix_world, instance.is_instance)
             elif obj.type == "LIGHT":
@@ -482,6 +491,11 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
                 ray_hidden.add(obj.name)
         warnings.extend(render_visibility.warnings_for(context, visibility,
                                                        set(MESH_LIKE) | {"LIGHT"}))
+        if volumes:
+            warnings.append(f"left out {', '.join(sorted(volumes)[:5])}"
+                            f"{' ...' if len(volumes) > 5 else ''}: their materials are a Volume "
+                            "without a Surface; the bake has no participating media, and Cycles "
+                            "lets light through their boundary")
         if ray_hidden:
             warnings.append(f"ray visibility is ignored (Diffuse or Shadow off on "
                             f"{', '.join(sorted(ray_hidden)[:5])}"

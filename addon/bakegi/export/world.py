@@ -48,6 +48,10 @@ def world_light(world, warnings) -> WorldLight:
     output = next((n for n in outputs if n.is_active_output), outputs[0] if outputs else None)
     if output is None:
         return WorldLight((0.0, 0.0, 0.0))
+    volume = output.inputs.get("Volume")
+    if volume is not None and linked_from(volume) is not None:
+        warnings.append(f"{what}: its Volume (fog filling the scene) is ignored: the bake has no "
+                        "participating media, which dim and scatter the light in Cycles")
     source = linked_from(output.inputs["Surface"])
     if source is None:
         return WorldLight((0.0, 0.0, 0.0))
