@@ -73,6 +73,24 @@ class RenderVisibility(common.SmallCornellCase):
         self.assertTrue(any("hidden in the viewport but rendered" in w and "TallBox" in w
                             for w in report["warnings"]), report["warnings"])
 
+    def test_modifiers_that_differ_in_renders_are_named(self):
+        """The bake evaluates the viewport; Cycles bakes the render's geometry: a modifier on
+        in only one of them, or other subdivision levels, is named."""
+        box = self.objects["TallBox"]
+        array = box.modifiers.new("Copies", "ARRAY")
+        array.show_viewport = False
+        subdivision = self.objects["ShortBox"].modifiers.new("Smooth", "SUBSURF")
+        subdivision.levels, subdivision.render_levels = 1, 2
+        _, report = self.bake()
+        lines = [w for w in report["warnings"] if "viewport's modifiers" in w]
+        self.assertEqual(len(lines), 1, report["warnings"])
+        self.assertIn("'TallBox' 'Copies' on only in renders", lines[0])
+        self.assertIn("'ShortBox' 'Smooth' 1 levels in the viewport, 2 in renders", lines[0])
+        array.show_viewport = True
+        subdivision.levels = 2
+        _, report = self.bake()
+        self.assertFalse([w for w in report["warnings"] if "viewport's modifiers" in w])
+
 
 if __name__ == "__main__":
     common.run_tests(__name__)

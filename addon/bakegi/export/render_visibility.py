@@ -100,3 +100,20 @@ def warnings_for(context, visibility, kinds):
                      "show them while baking")
     return lines
 
+
+
+def modifiers_differ_in_renders(obj):
+    """What differs between the viewport's and the render's modifiers of `obj` (an original
+    object), as words, or "" where nothing does: a modifier on in one and off in the other, or
+    a Subdivision Surface or Multiresolution of other levels. The export evaluates the viewport;
+    Cycles renders (and bakes) the render's settings."""
+    differences = []
+    for modifier in getattr(obj, "modifiers", ()):
+        if modifier.show_viewport != modifier.show_render:
+            where = "renders" if modifier.show_render else "the viewport"
+            differences.append(f"'{modifier.name}' on only in {where}")
+        elif modifier.show_viewport and modifier.type in ("SUBSURF", "MULTIRES"):
+            if modifier.levels != modifier.render_levels:
+                differences.append(f"'{modifier.name}' {modifier.levels} levels in the viewport, "
+                                   f"{modifier.render_levels} in renders")
+    return ", ".join(differences)

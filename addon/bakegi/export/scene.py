@@ -466,7 +466,7 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
     points = None
     exported_lightmaps = None
     try:
-        linked, ray_hidden, volumes = set(), set(), set()
+        linked, ray_hidden, volumes, render_geometry = set(), set(), set(), {}
         visibility = RenderVisibility(context.scene)
         target_names = {o.name for o in targets}
         for instance in depsgraph.object_instances:
@@ -489,8 +489,18 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
             if obj.type in MESH_LIKE and not (getattr(obj, "visible_diffuse", True) and
                                               getattr(obj, "visible_shadow", True)):
                 ray_hidden.add(obj.name)
+            if obj.type in MESH_LIKE and not instance.is_instance:
+                difference = render_visibility.modifiers_differ_in_renders(obj.original)
+                if difference:
+                    render_geometry[obj.name] = difference
         warnings.extend(render_visibility.warnings_for(context, visibility,
                                                        set(MESH_LIKE) | {"LIGHT"}))
+        if render_geometry:
+            names = sorted(render_geometry)
+            warnings.append("the bake uses the viewport's modifiers, and renders differ: " +
+                            "; ".join(f"'{n}' {render_geometry[n]}" for n in names[:5]) +
+                            (" ..." if len(names) > 5 else "") +
+                            " (Cycles bakes the render's geometry; match them to bake it)")
         if volumes:
             warnings.append(f"left out {', '.join(sorted(volumes)[:5])}"
                             f"{' ...' if len(volumes) > 5 else ''}: their materials are a Volume "
