@@ -215,6 +215,40 @@ class LightUnitsAgainstCycles(common.AddonCase):
         print(f"Cycles {SKY_CYCLES_SAMPLES} samples: {seconds:.1f} s")
         self.compare("SKY_TEXTURE", bakes, reference, tolerance=SKY_TOLERANCE)
 
+    def test_light_node_tree_against_cycles(self):
+        """A light whose Emission node has strength 2.5 and its colour from a Blackbody node
+        (3,000 K; how lights were tinted before 4.5's temperature setting), then from an RGB
+        node: read as colour x strength, against a live Cycles bake of each."""
+        import cycles_bake
+        common.new_empty_scene()
+        built = light_units.build_light_scene("POINT")
+        light = next(o for o in bpy.context.scene.objects if o.type == "LIGHT").data
+        light.use_nodes = True  # lights keep the setting in 5.0 too
+        tree = light.node_tree
+        emission = next(n for n in tree.nodes if n.type == "EMISSION")
+        emission.inputs["Strength"].default_value = 2.5
+        blackbody = tree.nodes.new("ShaderNodeBlackbody")
+        blackbody.inputs["Temperature"].default_value = 3000.0
+        tree.links.new(blackbody.outputs[0], emission.inputs["Color"])
+        receivers = [built[name] for name in light_units.RECEIVERS]
+        for kind in ("BLACKBODY", "RGB"):
+            if kind == "RGB":
+                rgb = tree.nodes.new("ShaderNodeRGB")
+                rgb.outputs[0].default_value = (0.2, 0.9, 0.4, 1.0)
+                tree.links.new(rgb.outputs[0], emission.inputs["Color"])
+            reference, _ = cycles_bake.cycles_direct(receivers, SKY_CYCLES_SAMPLES)
+            bakes, reports = self.bake_receivers("POINT", built)
+            self.assertFalse([w for w in reports[0]["warnings"] if "nodes" in w],
+                             reports[0]["warnings"])
+            self.compare(f"light nodes: {kind}", bakes, reference)
+        # A tree it cannot read warns.
+        tree.nodes.new("ShaderNodeLightFalloff")
+        falloff = next(n for n in tree.nodes if n.type == "LIGHT_FALLOFF")
+        tree.links.new(falloff.outputs[0], emission.inputs["Strength"])
+        _, reports = self.bake_receivers("POINT", built, seeds=(0,))
+        self.assertTrue([w for w in reports[0]["warnings"] if "shader nodes are ignored" in w],
+                        reports[0]["warnings"])
+
     # Settings of later versions, against that version's Cycles.
     def check_newer_kind(self, kind):
         first = light_units.NEWER_LIGHT_KINDS[kind]

@@ -57,3 +57,38 @@ def test_a_light_that_cannot_be_placed_or_emits_nothing_is_left_out():
     assert dark.light is None and dark.warnings == []
     nan = lu.convert_light(lu.BlenderLight("nan", "AREA", (1, 1, 1), float("nan"), IDENTITY))
     assert nan.light is None and "not finite" in nan.warnings[0]
+
+
+def test_a_light_node_tree_tints_the_colour_and_an_unreadable_one_warns():
+    base = lu.convert_light(lu.BlenderLight("a", "POINT", (1, 1, 1), 10.0, IDENTITY)).light
+    tinted = lu.convert_light(lu.BlenderLight("a", "POINT", (1, 1, 1), 10.0, IDENTITY,
+                                              use_nodes=True, node_tint=(2.0, 1.0, 0.5)))
+    assert tinted.light.color == pytest.approx(tuple(c * t for c, t in
+                                                     zip(base.color, (2.0, 1.0, 0.5))))
+    assert not tinted.warnings
+    unread = lu.convert_light(lu.BlenderLight("a", "POINT", (1, 1, 1), 10.0, IDENTITY,
+                                              use_nodes=True, node_tint=None))
+    assert unread.light.color == pytest.approx(base.color)
+    assert any("shader nodes are ignored" in w for w in unread.warnings)
+
+
+def test_cast_shadow_off_sets_the_core_flag_on_every_type():
+    for kind in ("POINT", "SPOT", "SUN", "AREA"):
+        light = lu.BlenderLight("a", kind, (1, 1, 1), 10.0, IDENTITY, size=1.0, size_y=1.0,
+                                cast_shadow=False)
+        assert lu.convert_light(light).light.flags & lu.NO_SHADOW, kind
+        light.cast_shadow = True
+        assert not lu.convert_light(light).light.flags & lu.NO_SHADOW, kind
+
+
+def test_a_portal_keeps_the_area_lights_shape_and_emits_nothing():
+    light = lu.BlenderLight("window", "AREA", (1, 1, 1), 1000.0, IDENTITY, shape="RECTANGLE",
+                            size=2.0, size_y=1.5, is_portal=True)
+    portal = lu.convert_portal(light)
+    assert portal.light.color == (0.0, 0.0, 0.0)
+    assert (portal.light.size_x, portal.light.size_y) == (2.0, 1.5)
+    assert portal.light.direction == (0.0, 0.0, -1.0)
+    flat = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 2], [0, 0, 0, 1]]  # zero scale along z
+    light.matrix_world = flat
+    gone = lu.convert_portal(light)
+    assert gone.light is None and any("portal 'window'" in w for w in gone.warnings)

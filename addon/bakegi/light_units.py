@@ -63,7 +63,10 @@ class BlenderLight:
     size_y: float = 1.0
     spread: float = math.pi  # area light spread (Cycles 3.0+); pi = Lambertian
     use_nodes: bool = False
-    node_tree_is_default: bool = True  # an Emission node of strength 1, white, nothing else
+    # What the light's node tree multiplies its colour and power by: an Emission node's
+    # Color x Strength (its colour a constant, an RGB node or a Blackbody node of a constant
+    # temperature); None where the tree is more than that (ignored, with a warning).
+    node_tint: Optional[Vec3] = (1.0, 1.0, 1.0)
     # Added in later versions (compat.light_settings: the values that act as if absent).
     exposure: float = 0.0  # 4.5+: power x 2^exposure
     use_temperature: bool = False  # 4.5+: color x blackbody(temperature)
@@ -214,14 +217,17 @@ def convert_light(light: BlenderLight) -> Conversion:
         return Conversion(None, [f"light '{name}': negative power is not supported; left out"])
     if light.energy == 0.0 or max(light.color) <= 0.0:
         return Conversion(None, [])  # emits nothing; silently left out
-    if light.use_nodes and not light.node_tree_is_default:
+    if light.use_nodes and light.node_tint is None:
         warnings.append(
-            f"light '{name}': its shader nodes are ignored (only color and power are used)")
+            f"light '{name}': its shader nodes are ignored (only color and power are used; "
+            "an Emission node's constant, RGB or Blackbody colour and its strength are read)")
     exposure = float(light.exposure)
     if not math.isfinite(exposure):
         return Conversion(None, [f"light '{name}': exposure is not finite; left out"])
     energy = light.energy * 2.0 ** min(max(exposure, -64.0), 64.0)
     color = tuple(float(c) for c in light.color[:3])
+    if light.use_nodes and light.node_tint is not None:
+        color = tuple(c * float(t) for c, t in zip(color, light.node_tint))
     if light.use_temperature:
         tint = blackbody_color(light.temperature)
         color = (color[0] * tint[0], color[1] * tint[1], color[2] * tint[2])

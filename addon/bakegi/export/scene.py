@@ -31,6 +31,7 @@ from ..request import TARGET_DOMAINS, LightmapOptions
 from ..write import uv_maps
 from . import materials
 from .atlas import ExportedLightmaps, lightmap_points
+from .node_tree import linked_from
 from .mesh_arrays import (check_finite, corner_normals, get_array, invalid_scene,
                           matrix_array, normals_to_world, positions_to_world)
 from .points import display_probes_per_object, target_points
@@ -308,7 +309,7 @@ class SceneExporter:
             size_y=getattr(light, "size_y", 0.0),
             spread=getattr(light, "spread", math.pi),
             use_nodes=compat.uses_nodes(light),
-            node_tree_is_default=_light_tree_is_default(light),
+            node_tint=_light_tree_tint(light),
             cycles_version=compat.cycles_conventions(),
             # Cycles' own settings are read from the original: setting them from a script
             # does not tag the depsgraph, so the evaluated copy can hold old values.
@@ -376,18 +377,37 @@ def _is_portal(light):
                                                  False))
 
 
-def _light_tree_is_default(light):
-    tree = getattr(light, "node_tree", None)
+def _light_tree_tint(light):
+    """What a light's node tree multiplies its colour by (light_units.BlenderLight.node_tint):
+    (1, 1, 1) without nodes; an Emission node into the Light Output gives its Color x Strength,
+    the colour a constant or from an RGB or Blackbody node with constant inputs; None for any
+    other tree (textures, falloff, math: not read)."""
     if not compat.uses_nodes(light):
-        return True
-    kinds = sorted(n.type for n in tree.nodes)
-    if kinds != ["EMISSION", "OUTPUT_LIGHT"]:
-        return False
-    emission = next(n for n in tree.nodes if n.type == "EMISSION")
-    color, strength = emission.inputs["Color"], emission.inputs["Strength"]
-    return (not color.is_linked and not strength.is_linked and
-            tuple(color.default_value)[:3] == (1.0, 1.0, 1.0) and
-            strength.default_value == 1.0)
+        return (1.0, 1.0, 1.0)
+    tree = light.node_tree
+    outputs = [n for n in tree.nodes if n.type == "OUTPUT_LIGHT"]
+    output = next((n for n in outputs if n.is_active_output), outputs[0] if outputs else None)
+    if output is None:
+        return None
+    surface = linked_from(output.inputs["Surface"])
+    if surface is None or surface.node.type != "EMISSION":
+        return None
+    emission = surface.node
+    strength = emission.inputs["Strength"]
+    if strength.is_linked:
+        return None
+    color_socket = emission.inputs["Color"]
+    if not color_socket.is_linked:
+        color = tuple(color_socket.default_value)[:3]
+    else:
+        source = linked_from(color_socket).node
+        if source.type == "RGB":
+            color = tuple(source.outputs[0].default_value)[:3]
+        elif source.type == "BLACKBODY" and not source.inputs["Temperature"].is_linked:
+            color = light_units.blackbody_color(source.inputs["Temperature"].default_value)
+        else:
+            return None
+    return tuple(float(c) * float(strength.default_value) for c in color)
 
 
 # ---- the whole export ---------------------------------------------------------------------
