@@ -111,6 +111,12 @@ class RayVisibility(common.AddonCase):
         self.assertTrue(any("left out Fog" in w and "Volume without a Surface" in w
                             for w in report["warnings"]), report["warnings"])
 
+    def test_a_lights_max_bounces_is_named(self):
+        self.light.data.cycles.max_bounces = 2
+        _, report = self.bake()
+        self.assertTrue(any("Max Bounces (2) is ignored" in w for w in report["warnings"]),
+                        report["warnings"])
+
     def test_objects_hidden_from_diffuse_or_shadow_rays_are_named(self):
         self.built["Blocker"].visible_shadow = False
         _, report = self.bake()

@@ -329,6 +329,11 @@ class SceneExporter:
         if conversion.light is not None:
             self.scene.add_light(**vars(conversion.light))
             self.lights += 1
+            bounces = getattr(getattr(obj.original.data, "cycles", None), "max_bounces", 1024)
+            if bounces < MAX_BOUNCES_MODELLED:
+                self.warnings.append(
+                    f"light '{obj.name}': its Max Bounces ({bounces}) is ignored: the bake follows "
+                    "its light through every bounce, where Cycles stops it sooner")
 
     def set_world(self, world):
         visibility = getattr(world, "cycles_visibility", None)
@@ -360,6 +365,10 @@ class SceneExporter:
             texture = self.scene.add_texture(light.image)
             self.scene.world_image = (key, texture)
         self.scene.set_world_texture(texture, light.scale, light.rotation)
+
+
+# The path tracer's default max_bounces: a light's own Max Bounces below it is not modelled.
+MAX_BOUNCES_MODELLED = 64
 
 
 def _casts_shadow(light):
