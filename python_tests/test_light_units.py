@@ -92,3 +92,17 @@ def test_a_portal_keeps_the_area_lights_shape_and_emits_nothing():
     light.matrix_world = flat
     gone = lu.convert_portal(light)
     assert gone.light is None and any("portal 'window'" in w for w in gone.warnings)
+
+
+def test_an_area_spread_below_180_degrees_goes_to_the_core():
+    light = lu.BlenderLight("box", "AREA", (1, 1, 1), 100.0, IDENTITY, size=1.0,
+                            spread=math.radians(45.0))
+    converted = lu.convert_light(light)
+    assert converted.light.spot_size == pytest.approx(math.radians(45.0))
+    assert not converted.warnings
+    light.spread = math.pi
+    assert lu.convert_light(light).light.spot_size == 0.0  # Lambertian
+    light.spread = 0.0
+    narrow = lu.convert_light(light)
+    assert narrow.light.spot_size == pytest.approx(lu.MIN_SPREAD)
+    assert any("baked as 1 deg" in w for w in narrow.warnings)

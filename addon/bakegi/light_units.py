@@ -19,6 +19,8 @@ Conventions (Cycles 3.4, see CYCLES_FACTS.md and bakegi.h):
   emission shader, strength S        : radiance c S, two-sided on meshes in Cycles 3.4.
   world background, strength S       : radiance c S.
   Cast Shadow off                    : the core's BAKEGI_LIGHT_NO_SHADOW (no shadow rays).
+  area spread s < 180 deg            : the core's spot_size = s (Cycles' soft-box falloff,
+                                       lights/area_light.h; the same power).
 
 What Cycles 4.0 and later do differently (measured against 4.2, 4.5 and 5.0's own Cycles,
 blender_tests/test_light_units.py; `cycles_version` of a BlenderLight picks the rules):
@@ -96,6 +98,10 @@ class CoreLight:
     size_y: float = 0.0
     flags: int = 0  # bakegi_light_flags, e.g. SPOT_WITHOUT_COSINE
 
+
+# The narrowest area-light spread baked: below it the soft box is a beam that light samples
+# over the area would find too rarely.
+MIN_SPREAD = math.radians(1.0)
 
 # bakegi_light_flags (bakegi.h)
 SPOT_WITHOUT_COSINE = 1
@@ -325,11 +331,13 @@ def _area(light, color, energy, down, warnings) -> Conversion:
     area = area_of_shape(shape, size_x, size_y)
     if not area > 0.0:
         return Conversion(None, [f"area light '{name}': zero size; left out"])
+    spread = 0.0  # Lambertian
     if light.spread < math.pi - 1e-4:
-        warnings.append(
-            f"area light '{name}': spread {math.degrees(light.spread):.0f} deg is approximated "
-            "as 180 deg (a Lambertian emitter)")
-    core = CoreLight(type="AREA", position=_position(light), direction=down,
+        spread = max(float(light.spread), MIN_SPREAD)
+        if light.spread < MIN_SPREAD:
+            warnings.append(f"area light '{name}': spread {math.degrees(light.spread):.2f} deg "
+                            f"is baked as {math.degrees(MIN_SPREAD):.0f} deg")
+    core = CoreLight(type="AREA", position=_position(light), direction=down, spot_size=spread,
                      axis_u=_normalized(axis_x),
                      color=area_radiance(color, energy, area if light.normalize else 1.0,
                                          light.cycles_version),

@@ -149,6 +149,47 @@ TEST(LightsDirect, LightsWithoutShadowsShineThroughTheRoof) {
   }
 }
 
+TEST(LightsDirect, AreaSpreadKeepsThePowerAndConcentratesItOnTheAxis) {
+  // A 0.1 m square light of radiance 10, 1 m over the plane, facing down, spread 60 degrees
+  // (h = 30): on the axis the radiance is L f(0) = L tan h / (tan h - h); off the cone
+  // (tan a > tan h) nothing; over the plane the power is the Lambertian pi L A.
+  SceneDescription d = plane_scene();
+  Light light = test::area_light(BAKEGI_AREA_SQUARE, {0, 0, 1}, {0, 0, -1}, {1, 0, 0}, 0.1f, 0.1f,
+                                 glm::vec3(10.0f));
+  light.spot_size = float(kPi / 3.0);
+  d.lights.push_back(light);
+  const double h = kPi / 6.0, boost = std::tan(h) / (std::tan(h) - h);
+  std::vector<glm::vec2> grid;
+  const int n = 61;
+  const float step = 2.4f / float(n - 1);  // [-1.2, 1.2]^2: the lit disk has radius 0.58 + 0.07
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) grid.push_back({-1.2f + step * i, -1.2f + step * j});
+  }
+  grid.push_back({0.0f, 0.0f});
+  grid.push_back({0.8f, 0.0f});  // tan a = 0.8 > tan 30 + the light's half width
+  const auto values = bake_direct(d, points_on_plane(grid), 64);
+  double power = 0.0;
+  for (int k = 0; k < n * n; ++k) power += double(values[size_t(k)].x) * kPi * step * step;
+  const double lambertian = kPi * 10.0 * 0.01;
+  // On the axis: E / pi = (1 / pi) integral over the light of L f(a) cos^2 / d^2 (the light
+  // parallel to the plane, so both cosines are 1 / d), by the midpoint rule.
+  double on_axis = 0.0;
+  const int m = 200;
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) {
+      const double x = 0.1 * ((i + 0.5) / m - 0.5), y = 0.1 * ((j + 0.5) / m - 0.5);
+      const double d2 = x * x + y * y + 1.0, tan_a = std::sqrt(x * x + y * y);
+      const double f = std::max(std::tan(h) - tan_a, 0.0) / (std::tan(h) - h);
+      on_axis += 10.0 * f / (d2 * d2) * (0.1 / m) * (0.1 / m) / kPi;
+    }
+  }
+  std::printf("power %.5f, Lambertian %.5f; on axis %.4f, expected %.4f (f(0) alone: %.4f)\n",
+              power, lambertian, values[size_t(n * n)].x, on_axis, 10.0 * boost * 0.01 / kPi);
+  EXPECT_NEAR(power / lambertian, 1.0, 0.02);  // the midpoint rule on a 4 cm grid
+  EXPECT_NEAR(values[size_t(n * n)].x / on_axis, 1.0, 0.01);
+  EXPECT_EQ(values[size_t(n * n + 1)].x, 0.0f);
+}
+
 TEST(LightsDirect, SunGivesIrradianceTimesCosine) {
   const float theta = glm::radians(30.0f);
   const glm::vec3 travel(-std::sin(theta), 0.0f, -std::cos(theta));

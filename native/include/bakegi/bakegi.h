@@ -169,7 +169,8 @@ typedef struct bakegi_light_desc {
   float color[3];          /* point, spot: intensity W/sr; sun: irradiance W/m^2 on a surface
                               facing it; area: radiance W/(m^2 sr) */
   float radius;            /* point, spot: radius of the emitting sphere (0 = a true point) */
-  float spot_size;         /* spot: full cone angle, radians in (0, pi] */
+  float spot_size;         /* spot: full cone angle, radians in (0, pi]; area: Cycles' Spread, the
+                              full angle of its soft-box cone in [0, pi] (0 or pi: Lambertian) */
   float spot_blend;        /* spot: softness of the cone edge, [0,1], Cycles' convention */
   float angle;             /* sun: angular diameter, radians in [0, pi) */
   bakegi_area_shape shape; /* area */

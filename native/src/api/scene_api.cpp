@@ -230,6 +230,7 @@ bakegi_status bakegi_scene_add_portal(bakegi_scene* scene, const bakegi_light_de
     bakegi::check_portal(l, index);
     l.color = glm::vec3(0.0f);  // a portal emits nothing
     l.flags = 0;
+    l.spot_size = 0.0f;  // nor has a spread
     scene->description.portals.push_back(l);
   });
 }

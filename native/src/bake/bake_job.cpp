@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include <tbb/task_arena.h>
@@ -516,6 +517,16 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
   const bool shadowless_light =
       std::any_of(scene.description.lights.begin(), scene.description.lights.end(),
                   [](const Light& light) { return (light.flags & BAKEGI_LIGHT_NO_SHADOW) != 0; });
+  const bool spread_light = std::any_of(
+      scene.description.lights.begin(), scene.description.lights.end(), [](const Light& light) {
+        return light.type == BAKEGI_LIGHT_AREA && light.spot_size > 0.0f &&
+               light.spot_size < std::numbers::pi_v<float>;
+      });
+  if (spread_light && method_used == "splatting") {
+    report.warn(
+        "splatting's reflective shadow maps take area lights as Lambertian emitters, also those "
+        "with a spread below 180 degrees (their direct light and the other methods do not)");
+  }
   if (shadowless_light && method_used == "splatting") {
     report.warn(
         "splatting's reflective shadow maps shadow every light, also those with Cast Shadow "

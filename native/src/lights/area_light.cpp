@@ -1,5 +1,6 @@
 #include "lights/area_light.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "lights/spherical_rectangle.h"
@@ -22,6 +23,13 @@ AreaLight::AreaLight(const Light& light)
   half_u_ = 0.5f * light.size_x;
   half_v_ = 0.5f * (uniform ? light.size_x : light.size_y);
   area_ = round_ ? kPi * half_u_ * half_v_ : 4.0f * half_u_ * half_v_;
+  const float half_spread = 0.5f * light.spot_size;
+  if (half_spread > 0.0f && half_spread < 0.5f * kPi - 1e-4f) {
+    tan_half_spread_ = std::tan(half_spread);
+    // tan h - h loses its digits for small h: its series h^3 / 3 there (as Cycles does).
+    normalize_spread_ = half_spread > 0.05f ? 1.0f / (tan_half_spread_ - half_spread)
+                                            : 3.0f / (half_spread * half_spread * half_spread);
+  }
   if (!round_) {
     rectangle_ = SphericalRectangle::Shape(
         glm::dvec3(center_ - axis_u_ * half_u_ - axis_v_ * half_v_),
@@ -34,6 +42,12 @@ glm::vec3 AreaLight::point_at(float u1, float u2) const {
       round_ ? sample_concentric_disk(u1, u2) * glm::vec2(half_u_, half_v_)
              : glm::vec2((2.0f * u1 - 1.0f) * half_u_, (2.0f * u2 - 1.0f) * half_v_);
   return center_ + axis_u_ * local.x + axis_v_ * local.y;
+}
+
+float AreaLight::spread_attenuation(float cos_light) const {
+  if (normalize_spread_ == 0.0f) return 1.0f;
+  const float tan_a = std::sqrt(std::max(0.0f, 1.0f - cos_light * cos_light)) / cos_light;
+  return std::max((tan_half_spread_ - tan_a) * normalize_spread_, 0.0f);
 }
 
 bool AreaLight::sample(const glm::vec3& p, float u1, float u2, LightSample& out) const {
@@ -55,9 +69,11 @@ bool AreaLight::sample(const glm::vec3& p, float u1, float u2, LightSample& out)
   out.direction = to_q / distance;
   const float cos_light = -glm::dot(normal_, out.direction);
   if (cos_light <= 0.0f) return false;
+  const float spread = spread_attenuation(cos_light);
+  if (!(spread > 0.0f)) return false;
   out.distance = distance;
   out.pdf = round_ ? distance * distance / (area_ * cos_light) : 1.0f / solid_angle;
-  out.contribution = radiance_ / out.pdf;
+  out.contribution = radiance_ * (spread / out.pdf);
   return true;
 }
 
@@ -72,8 +88,10 @@ bool AreaLight::intersect(const glm::vec3& origin, const glm::vec3& direction, f
   const float y = glm::dot(offset, axis_v_) / half_v_;
   const bool inside = round_ ? x * x + y * y <= 1.0f : std::abs(x) <= 1.0f && std::abs(y) <= 1.0f;
   if (!inside) return false;
+  const float spread = spread_attenuation(cos_light);
+  if (!(spread > 0.0f)) return false;
   out.distance = t;
-  out.radiance = radiance_;
+  out.radiance = radiance_ * spread;
   out.pdf =
       round_ ? t * t / (area_ * cos_light) : float(1.0 / spherical_rectangle(origin).solid_angle());
   return true;

@@ -3,6 +3,11 @@
 // ellipse diameters, size_x along axis_u and size_y along direction x axis_u. As in Cycles,
 // squares and rectangles are sampled uniformly in solid angle (spherical_rectangle.h),
 // disks and ellipses uniformly by area (the density converted to solid angle).
+//
+// Spread (Cycles' soft-box grid, Blender D10594): with a spread of full angle 2h below pi the
+// radiance towards an angle a off the normal is L f(a), f(a) = max(tan h - tan a, 0) N with
+// N = 1 / (tan h - h), which keeps the light's power (the integral of f cos over the
+// hemisphere is pi, as a Lambertian emitter's); Cycles' area_light_spread_attenuation.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -43,6 +48,11 @@ class AreaLight {
   bool round_;
   float area_;
   glm::vec3 radiance_;
+  // Spread: tan h and N above; N = 0 for a Lambertian emitter (spread 0 or pi).
+  float tan_half_spread_ = 0.0f;
+  float normalize_spread_ = 0.0f;
+  // f(a) of the spread for the cosine of a (1 without spread).
+  float spread_attenuation(float cos_light) const;
   SphericalRectangle::Shape rectangle_;  // squares and rectangles: the frame sampling uses
 };
 

@@ -7,7 +7,8 @@ namespace bakegi {
 
 WorldPortals::WorldPortals(const std::vector<Light>& portals) {
   shapes_.reserve(portals.size());
-  for (const Light& portal : portals) {
+  for (Light portal : portals) {
+    portal.spot_size = 0.0f;  // no spread: every direction through it is sampled alike
     shapes_.emplace_back(portal);
     // A point in the portal's plane (the wall around a window) sees it edge-on: a solid
     // angle of 0, and float rounding would put it on either side.

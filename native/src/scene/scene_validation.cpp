@@ -283,6 +283,9 @@ void check_light(const Light& light, size_t index) {
     if (!(std::isfinite(light.size_x) && light.size_x > 0)) {
       invalid(name + ": size_x must be finite and > 0, got " + num(light.size_x));
     }
+    if (!(light.spot_size >= 0 && light.spot_size <= std::numbers::pi_v<float>)) {
+      invalid(name + ": its spread (spot_size) must be in [0, pi], got " + num(light.spot_size));
+    }
     const bool uses_size_y =
         light.shape == BAKEGI_AREA_RECTANGLE || light.shape == BAKEGI_AREA_ELLIPSE;
     if (uses_size_y && !(std::isfinite(light.size_y) && light.size_y > 0)) {
