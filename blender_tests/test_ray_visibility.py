@@ -56,6 +56,14 @@ class RayVisibility(common.AddonCase):
         self.assertTrue(any("invisible to diffuse rays" in w and extra.name in w
                             for w in report["warnings"]), report["warnings"])
 
+    def test_with_its_only_light_left_out_the_error_says_why(self):
+        self.light.visible_diffuse = False
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bake()
+        message = str(caught.exception)
+        self.assertIn("no light", message)
+        self.assertIn("invisible to diffuse rays", message)
+
     def test_a_world_invisible_to_diffuse_rays_adds_no_light(self):
         expected, _ = self.bake()
         world = bpy.data.worlds.new("Sky")

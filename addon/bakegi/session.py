@@ -432,7 +432,15 @@ class BakeSession:
 
     def _named(self, error):
         names = self.exported.object_names if self.exported is not None else []
-        return BakeGIError(error.status, export_targets.name_objects(error.message, names))
+        message = export_targets.name_objects(error.message, names)
+        if "no light" in message and self.exported is not None:
+            # Say which lights the export left out (ray visibility, render toggles), which
+            # is why the core saw none.
+            dropped = [w for w in self.exported.warnings + self.exported.skipped
+                       if "left out" in w or "adds no light" in w or "disabled in renders" in w]
+            if dropped:
+                message += " (the export: " + "; ".join(dropped[:3]) + ")"
+        return BakeGIError(error.status, message)
 
     def _release_export(self):
         if self.exported is not None:
