@@ -387,6 +387,9 @@ TEST(ApiErrors, BadLightParameters) {
   area.flags = 12u;
   EXPECT_ERROR(add(area), S, "unknown flags 12");
   area.flags = 0u;
+  area.spot_size = 4.0f;  // an area light's spread: at most pi
+  EXPECT_ERROR(add(area), S, "light 2 (area): its spread (spot_size) must be in [0, pi], got 4");
+  area.spot_size = 0.0f;
   area.shape = BAKEGI_AREA_DISK;
   area.axis_u[0] = 0.0f;
   area.axis_u[2] = 2.0f;

@@ -290,7 +290,7 @@ class SceneExporter:
     # lights
     def add_light(self, obj, matrix_world):
         light = obj.data
-        if not getattr(obj, "visible_diffuse", True):
+        if not getattr(obj.original, "visible_diffuse", True):
             # Cycles' diffuse light (direct and indirect) has none of it (measured in 3.4, 4.5).
             self.warnings.append(
                 f"light '{obj.name}' is invisible to diffuse rays (Object Properties > "
@@ -515,8 +515,8 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
                 exporter.add_light(obj, instance.matrix_world)
             if (obj.type in MESH_LIKE or obj.type == "LIGHT") and compat.light_linking_in_use(obj):
                 linked.add(obj.name)
-            if obj.type in MESH_LIKE and not (getattr(obj, "visible_diffuse", True) and
-                                              getattr(obj, "visible_shadow", True)):
+            if obj.type in MESH_LIKE and not (getattr(obj.original, "visible_diffuse", True) and
+                                              getattr(obj.original, "visible_shadow", True)):
                 ray_hidden.add(obj.name)
             if obj.type in MESH_LIKE and not instance.is_instance:
                 difference = render_visibility.modifiers_differ_in_renders(obj.original)
