@@ -110,9 +110,10 @@ class Portals(common.AddonCase):
         # and 0.054 / sqrt 2 (the portal's two seeds), within 1% if the points were
         # independent; 3% allows for rare bright paths the plain bake finds in few points.
         self.assertAlmostEqual(ratio, 1.0, delta=0.03)
-        # Measured: 0.57 without the portal, 0.054 with it (100 times fewer paths for equal
-        # noise); a portal turned the wrong way would change nothing.
-        self.assertLess(noise_guided, 0.25 * noise_plain)
+        # Measured: 0.57 without the portal, 0.054 with it in 3.4 (100 times fewer paths for
+        # equal noise; 0.45 and 0.092 in 5.0, whose default material is brighter); a portal
+        # turned the wrong way changes nothing (measured 1.1 times the noise).
+        self.assertLess(noise_guided, 0.35 * noise_plain)
 
     def test_a_portal_facing_out_of_the_room_changes_nothing(self):
         plain, _ = self.bake(1)
