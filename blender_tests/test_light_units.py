@@ -220,6 +220,33 @@ class LightUnitsAgainstCycles(common.AddonCase):
         print(f"Cycles {SKY_CYCLES_SAMPLES} samples: {seconds:.1f} s")
         self.compare("SKY_TEXTURE", bakes, reference, tolerance=SKY_TOLERANCE)
 
+    def test_a_camera_ray_world_against_cycles(self):
+        """The camera-ray trick: a Mix Shader whose factor is Light Path's Is Camera Ray shows
+        the camera one Background (a bright blue) and lights the scene with another (the
+        scene's sky). Rendered as lighting rays see it (Is Camera Ray 0), against a live Cycles
+        bake; read as the camera sees it (before), the light is the blue one."""
+        import cycles_bake
+        common.new_empty_scene()
+        built = light_units.build_light_scene("WORLD")
+        tree = bpy.context.scene.world.node_tree
+        lighting = tree.nodes["Background"]
+        shown = tree.nodes.new("ShaderNodeBackground")
+        shown.inputs["Color"].default_value = (0.1, 0.3, 1.0, 1.0)
+        shown.inputs["Strength"].default_value = 4.0
+        mix = tree.nodes.new("ShaderNodeMixShader")
+        path = tree.nodes.new("ShaderNodeLightPath")
+        output = next(n for n in tree.nodes if n.type == "OUTPUT_WORLD")
+        tree.links.new(path.outputs["Is Camera Ray"], mix.inputs["Fac"])
+        tree.links.new(lighting.outputs[0], mix.inputs[1])
+        tree.links.new(shown.outputs[0], mix.inputs[2])
+        tree.links.new(mix.outputs[0], output.inputs["Surface"])
+        receivers = [built[name] for name in light_units.RECEIVERS]
+        reference, _ = cycles_bake.cycles_direct(receivers, 4 * SKY_CYCLES_SAMPLES)
+        bakes, reports = self.bake_receivers("WORLD", built)
+        self.assertFalse([w for w in reports[0]["warnings"] if "world" in w],
+                         reports[0]["warnings"])
+        self.compare("camera-ray world", bakes, reference, tolerance=SKY_TOLERANCE)
+
     def test_light_node_tree_against_cycles(self):
         """A light whose Emission node has strength 2.5 and its colour from a Blackbody node
         (3,000 K; how lights were tinted before 4.5's temperature setting), then from an RGB

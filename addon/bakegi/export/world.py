@@ -36,8 +36,9 @@ class WorldLight:
 def world_light(world, warnings) -> WorldLight:
     """The world's light: its Background's colour x strength; the Environment Texture's image
     feeding the colour (an equirectangular image, optionally turned by a Mapping node) x the
-    strength; or, for any other tree on the Background, the tree rendered by Cycles (with a
-    Sky Texture's sun as a sun light). What is not read is said in `warnings`."""
+    strength; or, for any other tree (on the Background, or a mix of shaders), the tree
+    rendered by Cycles (with a Sky Texture's sun as a sun light). What is not read is said in
+    `warnings`."""
     if world is None:
         return WorldLight((0.0, 0.0, 0.0))
     what = f"world '{world.name}'"
@@ -57,9 +58,9 @@ def world_light(world, warnings) -> WorldLight:
         return WorldLight((0.0, 0.0, 0.0))
     node = source.node
     if node.type != "BACKGROUND":
-        warnings.append(f"{what}: a '{node.bl_label}' node is not a Background; the world is "
-                        "read as black")
-        return WorldLight((0.0, 0.0, 0.0))
+        # A mix of Backgrounds (the camera-ray trick: one world for the camera, another for
+        # the light) or an Emission: Cycles renders whatever the tree sends.
+        return _rendered_light(world, what, warnings, WorldLight((0.0, 0.0, 0.0)))
     strength_socket = node.inputs["Strength"]
     strength = float(strength_socket.default_value)
     color_socket = node.inputs["Color"]
@@ -94,9 +95,10 @@ def _rendered_light(world, what, warnings, fallback):
     warning where it cannot be rendered."""
     from . import world_render  # bpy's render operators: only where a tree needs them
 
-    if world_render.world_uses_light_path(world):
-        warnings.append(f"{what}: its node tree reads the Light Path node; the world is baked "
-                        "as the camera sees it")
+    unread = world_render.light_path_outputs_read(world) - set(world_render.LIGHTING_RAY_VALUES)
+    if unread:
+        warnings.append(f"{what}: its node tree reads the Light Path node's "
+                        f"{', '.join(sorted(unread))}; the world is baked as the camera sees it")
     try:
         rgb, suns = world_render.rendered_world(world)
     except Exception as error:  # a world the render refuses must not stop the bake

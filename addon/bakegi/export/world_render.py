@@ -31,10 +31,32 @@ RENDER_SAMPLES = 16
 CAMERA_ROTATION = (1.5707963267948966, 0.0, -1.5707963267948966)
 
 
-def world_uses_light_path(world):
-    """Whether the world's tree reads the Light Path node (a camera-ray trick, which the
-    panoramic render sees as a camera does, not as surfaces lit by the world do)."""
-    return any(node.type == "LIGHT_PATH" for node in world.node_tree.nodes)
+def light_path_outputs_read(world):
+    """The names of the Light Path outputs the world's tree reads (linked somewhere)."""
+    return {socket.name for node in world.node_tree.nodes if node.type == "LIGHT_PATH"
+            for socket in node.outputs if socket.is_linked}
+
+
+# What a world seen by a bake's light reads from the Light Path outputs it can be given:
+# "Is Camera Ray" is 0 for every ray that lights a surface. The other outputs depend on how
+# Cycles evaluates the world for its light samples (shadow rays, depths): not replaced.
+LIGHTING_RAY_VALUES = {"Is Camera Ray": 0.0}
+
+
+def _as_lighting_rays(world):
+    """A copy of `world` whose Light Path outputs in LIGHTING_RAY_VALUES are constants (the
+    caller removes it): the panoramic camera then renders what lighting rays see."""
+    scratch = world.copy()
+    tree = scratch.node_tree
+    for node in [n for n in tree.nodes if n.type == "LIGHT_PATH"]:
+        for socket in node.outputs:
+            if socket.name not in LIGHTING_RAY_VALUES or not socket.is_linked:
+                continue
+            value = tree.nodes.new("ShaderNodeValue")
+            value.outputs[0].default_value = LIGHTING_RAY_VALUES[socket.name]
+            for link in list(socket.links):
+                tree.links.new(value.outputs[0], link.to_socket)
+    return scratch
 
 
 # The last render and the state of the world it was made from: a live relight re-exports the
@@ -103,7 +125,15 @@ def _sky_suns(world):
 
 def render_world_and_suns(world):
     """(the world's equirectangular image, [SkySun]): with one Sky Texture that draws a sun,
-    the image without the disc and the disc as a SkySun; else the image as it is and none."""
+    the image without the disc and the disc as a SkySun; else the image as it is and none.
+    A tree that asks Light Path whether a ray is the camera's is rendered as lighting rays see
+    it (LIGHTING_RAY_VALUES)."""
+    if light_path_outputs_read(world) & set(LIGHTING_RAY_VALUES):
+        scratch = _as_lighting_rays(world)
+        try:
+            return render_world_and_suns(scratch)
+        finally:
+            bpy.data.worlds.remove(scratch)
     skies = _sky_suns(world)
     if len(skies) != 1:
         return render_world(world), []
