@@ -83,6 +83,21 @@ class SmallCornellCase(AddonCase):
         self.objects = cornell_box.build_cornell_box(cornell_box.TEST_SUBDIVISIONS)
 
 
+def node_material(name, kind, socket="Surface"):
+    """A material whose output's `socket` (Surface, Volume) is fed by one new shader node of
+    `kind`, and nothing else; returns (material, node)."""
+    import cornell_box  # scenes/: use_nodes for every version
+    material = bpy.data.materials.new(name)
+    cornell_box.use_nodes(material)
+    nodes = material.node_tree.nodes
+    for node in list(nodes):
+        if node.type != "OUTPUT_MATERIAL":
+            nodes.remove(node)
+    output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
+    shader = nodes.new(kind)
+    material.node_tree.links.new(shader.outputs[0], output.inputs[socket])
+    return material, shader
+
 def reference_folder(version=None):
     """blender_tests/data/<major.minor>/: the Cycles references of this Blender version (Cycles'
     results differ between versions: each version's bakes are compared with its own)."""

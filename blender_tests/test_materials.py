@@ -13,21 +13,8 @@ import unittest  # noqa: E402
 
 import bpy  # noqa: E402
 
-import cornell_box  # noqa: E402
 
-
-def node_material(name, kind):
-    """A material whose output is fed by one new shader node of `kind`; returns (material, node)."""
-    material = bpy.data.materials.new(name)
-    cornell_box.use_nodes(material)
-    nodes = material.node_tree.nodes
-    for node in list(nodes):
-        if node.type != "OUTPUT_MATERIAL":
-            nodes.remove(node)
-    output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
-    shader = nodes.new(kind)
-    material.node_tree.links.new(shader.outputs[0], output.inputs["Surface"])
-    return material, shader
+node_material = common.node_material
 
 
 def phong_exponent(roughness):

@@ -104,15 +104,7 @@ class RayVisibility(common.AddonCase):
         bpy.ops.mesh.primitive_cube_add(size=1.0, location=self.light.location)
         fog = bpy.context.active_object
         fog.name = "Fog"
-        material = bpy.data.materials.new("Fog")
-        cornell_box.use_nodes(material)
-        nodes = material.node_tree.nodes
-        for node in list(nodes):
-            if node.type != "OUTPUT_MATERIAL":
-                nodes.remove(node)
-        output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
-        volume = nodes.new("ShaderNodeVolumePrincipled")
-        material.node_tree.links.new(volume.outputs[0], output.inputs["Volume"])
+        material, _ = common.node_material("Fog", "ShaderNodeVolumePrincipled", socket="Volume")
         fog.data.materials.append(material)
         got, report = self.bake()
         numpy.testing.assert_array_equal(got, expected)
