@@ -385,6 +385,19 @@ def _triple(values, what):
     return (c_float * 3)(*v)
 
 
+def _light_desc(type, position, direction, axis_u, color, radius, spot_size, spot_blend, angle,
+                shape, size_x, size_y, flags):
+    """A bakegi_light_desc, type and shape by name ('POINT', 'DISK'...)."""
+    if type not in LIGHT_TYPES:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown light type {type!r}")
+    if shape not in AREA_SHAPES:
+        raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown area shape {shape!r}")
+    return LightDesc(LIGHT_TYPES[type], _triple(position, "position"),
+                     _triple(direction, "direction"), _triple(axis_u, "axis_u"),
+                     _triple(color, "color"), radius, spot_size, spot_blend, angle,
+                     AREA_SHAPES[shape], size_x, size_y, int(flags))
+
+
 def simplify_mesh(positions, indices, ratio, max_error=1.0):
     """A level of detail (bakegi_mesh_simplify, meshoptimizer's edge collapses): the
     triangles of `indices` ((n, 3) into (v, 3) `positions`) reduced towards `ratio` (0, 1] of
@@ -535,14 +548,8 @@ class Scene(_Handle):
                   shape="SQUARE", size_x=0.0, size_y=0.0, flags=0):
         """Arguments as in bakegi_light_desc; type and shape by name ('POINT', 'DISK'...).
         light_units.CoreLight's fields can be passed with add_light(**vars(core_light))."""
-        if type not in LIGHT_TYPES:
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown light type {type!r}")
-        if shape not in AREA_SHAPES:
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown area shape {shape!r}")
-        desc = LightDesc(LIGHT_TYPES[type], _triple(position, "position"),
-                         _triple(direction, "direction"), _triple(axis_u, "axis_u"),
-                         _triple(color, "color"), radius, spot_size, spot_blend, angle,
-                         AREA_SHAPES[shape], size_x, size_y, int(flags))
+        desc = _light_desc(type, position, direction, axis_u, color, radius, spot_size,
+                           spot_blend, angle, shape, size_x, size_y, flags)
         out = c_uint32()
         _check(load_library().bakegi_scene_add_light(self.handle, byref(desc), byref(out)),
                "bakegi_scene_add_light")
@@ -556,12 +563,8 @@ class Scene(_Handle):
         """A window portal (Cycles' area light with Portal on): the area light's shape, which
         emits nothing and guides the world's light samples through it. Takes a CoreLight's
         fields (add_portal(**vars(core_light)); its colour is ignored)."""
-        if shape not in AREA_SHAPES:
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT", f"unknown area shape {shape!r}")
-        desc = LightDesc(LIGHT_TYPES["AREA"], _triple(position, "position"),
-                         _triple(direction, "direction"), _triple(axis_u, "axis_u"),
-                         (c_float * 3)(), 0.0, 0.0, 0.0, 0.0, AREA_SHAPES[shape], size_x,
-                         size_y, 0)
+        desc = _light_desc("AREA", position, direction, axis_u, (0.0, 0.0, 0.0), 0.0, 0.0, 0.0,
+                           0.0, shape, size_x, size_y, 0)
         _check(load_library().bakegi_scene_add_portal(self.handle, byref(desc)),
                "bakegi_scene_add_portal")
 

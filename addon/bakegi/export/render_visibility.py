@@ -7,6 +7,8 @@ object hidden in the viewport but rendered (a ceiling hidden to look into a room
 the viewport's evaluation, so the bake cannot have it: the report says so, since its light
 and shadow are missing."""
 
+from .targets import some_names
+
 
 def _render_hidden_collections(scene):
     """Collections disabled in renders, with every collection inside them."""
@@ -89,17 +91,14 @@ def warnings_for(context, visibility, kinds):
     if visibility.left_out:
         names = visibility.left_out
         lines.append(f"{len(names)} object(s) disabled in renders are left out of the bake, as "
-                     f"Cycles leaves them out: {', '.join(sorted(names)[:5])}"
-                     f"{' ...' if len(names) > 5 else ''}")
+                     f"Cycles leaves them out: {some_names(names)}")
     # A render's own evaluation (the preview engine: no view layer in its context) has them.
     hidden = hidden_but_rendered(context, kinds) if getattr(context, "view_layer", None) else []
     if hidden:
         lines.append(f"{len(hidden)} object(s) hidden in the viewport but rendered are not in "
                      f"the bake (Cycles would have their light and shadow): "
-                     f"{', '.join(sorted(hidden)[:5])}{' ...' if len(hidden) > 5 else ''}; "
-                     "show them while baking")
+                     f"{some_names(hidden)}; show them while baking")
     return lines
-
 
 
 def modifiers_differ_in_renders(obj):

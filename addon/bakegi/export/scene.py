@@ -35,7 +35,7 @@ from .node_tree import linked_from
 from .mesh_arrays import (check_finite, corner_normals, get_array, invalid_scene,
                           matrix_array, normals_to_world, positions_to_world)
 from .points import display_probes_per_object, target_points
-from .targets import MESH_LIKE, BakeTarget, name_objects, resolve_targets
+from .targets import MESH_LIKE, BakeTarget, name_objects, resolve_targets, some_names
 from . import render_visibility
 from .render_visibility import RenderVisibility
 from .world import world_light
@@ -531,19 +531,16 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
                             (" ..." if len(names) > 5 else "") +
                             " (Cycles bakes the render's geometry; match them to bake it)")
         if volumes:
-            warnings.append(f"left out {', '.join(sorted(volumes)[:5])}"
-                            f"{' ...' if len(volumes) > 5 else ''}: their materials are a Volume "
+            warnings.append(f"left out {some_names(volumes)}: their materials are a Volume "
                             "without a Surface; the bake has no participating media, and Cycles "
                             "lets light through their boundary")
         if ray_hidden:
             warnings.append(f"ray visibility is ignored (Diffuse or Shadow off on "
-                            f"{', '.join(sorted(ray_hidden)[:5])}"
-                            f"{' ...' if len(ray_hidden) > 5 else ''}): they reflect light and "
-                            "cast shadows in the bake, where Cycles lets those rays through them")
+                            f"{some_names(ray_hidden)}): they reflect light and cast shadows in "
+                            "the bake, where Cycles lets those rays through them")
         if linked:
-            warnings.append(f"light linking is ignored (set on {', '.join(sorted(linked)[:5])}"
-                            f"{' ...' if len(linked) > 5 else ''}): their light reaches every "
-                            "object in the bake")
+            warnings.append(f"light linking is ignored (set on {some_names(linked)}): their "
+                            "light reaches every object in the bake")
         if compat.eevee_raytracing_on(context.scene):
             warnings.append("EEVEE's Raytracing is on (Render Properties): EEVEE then adds its "
                             "own indirect light and spreads the shown bake to other surfaces "

@@ -37,6 +37,12 @@ def name_objects(message, object_names):
     return re.sub(r"\bobject (\d+)", name, message)
 
 
+def some_names(names, shown=5):
+    """The first `shown` of `names` in order, joined for a report line ("A, B, C ...")."""
+    names = sorted(names)
+    return ", ".join(names[:shown]) + (" ..." if len(names) > shown else "")
+
+
 # ---- which objects ----------------------------------------------------------------------
 
 

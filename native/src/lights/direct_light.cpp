@@ -88,8 +88,7 @@ float DirectLight::portal_share(const glm::vec3& x) const {
   return environment_ ? 0.5f : 1.0f;
 }
 
-float DirectLight::world_pdf(const glm::vec3& x, const glm::vec3& direction) const {
-  const float share = portal_share(x);
+float DirectLight::world_pdf(const glm::vec3& x, const glm::vec3& direction, float share) const {
   float pdf = share > 0.0f ? share * portals_.pdf(x, direction) : 0.0f;
   if (environment_) pdf += (1.0f - share) * environment_->pdf(direction);
   return pdf;
@@ -108,7 +107,7 @@ bool DirectLight::sample_world_through_portals(const glm::vec3& x, float share, 
   }
   // The density of the mixture of both strategies, so that either one's sample is weighted
   // against the BSDF's rays as one light.
-  const float pdf = world_pdf(x, direction);
+  const float pdf = world_pdf(x, direction, share);
   if (!(pdf > 0.0f)) return false;
   const glm::vec3 radiance = environment_ ? environment_->radiance(direction) : world_radiance_;
   out.direction = direction;
@@ -221,9 +220,10 @@ glm::vec3 DirectLight::emission_along(const glm::vec3& position, const glm::vec3
     }
   }
   if (world == World::kExcluded) return radiance;
-  if (portal_share(position) > 0.0f) {
+  const float share = portal_share(position);
+  if (share > 0.0f) {
     const glm::vec3 sky = environment_ ? environment_->radiance(direction) : world_radiance_;
-    const float light_pdf = world_pdf(position, direction);
+    const float light_pdf = world_pdf(position, direction, share);
     return radiance + sky * (light_pdf > 0.0f ? power_heuristic(bsdf_pdf, light_pdf) : 1.0f);
   }
   if (environment_) {

@@ -122,9 +122,10 @@ class DirectLight {
   // sees none, 1/2 with a world image (the image's sampler keeps the sun and the rest),
   // 1 with a constant world (bounced rays find the sky outside the portals).
   float portal_share(const glm::vec3& x) const;
-  // The solid-angle density of the world's light sample at x for the unit direction; 0
-  // where the world is not light-sampled (a constant world without portals).
-  float world_pdf(const glm::vec3& x, const glm::vec3& direction) const;
+  // The solid-angle density of the world's light sample at x (share = portal_share(x)) for
+  // the unit direction; 0 where the world is not light-sampled (a constant world unseen by
+  // portals).
+  float world_pdf(const glm::vec3& x, const glm::vec3& direction, float share) const;
   // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
   bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
 

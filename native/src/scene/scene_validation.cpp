@@ -218,9 +218,10 @@ void check_mesh(const Mesh& mesh, size_t index) {
   }
 }
 
-void check_light(const Light& light, size_t index) {
-  const std::string name =
-      "light " + std::to_string(index) + " (" + light_type_name(light.type) + ")";
+namespace {
+
+// check_light with the light's name in every message ("light 2 (area)", "portal 0").
+void check_named_light(const Light& light, size_t index, const std::string& name) {
   switch (light.type) {
     case BAKEGI_LIGHT_POINT:
     case BAKEGI_LIGHT_SPOT:
@@ -294,6 +295,13 @@ void check_light(const Light& light, size_t index) {
   }
 }
 
+}  // namespace
+
+void check_light(const Light& light, size_t index) {
+  check_named_light(light, index,
+                    "light " + std::to_string(index) + " (" + light_type_name(light.type) + ")");
+}
+
 void check_portal(const Light& portal, size_t index) {
   const std::string name = "portal " + std::to_string(index);
   if (portal.type != BAKEGI_LIGHT_AREA) {
@@ -305,15 +313,7 @@ void check_portal(const Light& portal, size_t index) {
   Light shape = portal;
   shape.color = glm::vec3(0.0f);
   shape.flags = 0;
-  try {
-    check_light(shape, index);
-  } catch (const Error& e) {
-    // check_light names it "light N (area)"; say what it is.
-    std::string what = e.what();
-    const std::string prefix = "light " + std::to_string(index) + " (area)";
-    if (what.rfind(prefix, 0) == 0) what = name + what.substr(prefix.size());
-    throw Error(e.status(), what);
-  }
+  check_named_light(shape, index, name);
 }
 
 bakegi_light_type light_type_from(uint32_t raw, size_t index) {
