@@ -101,6 +101,21 @@ texture.interpolation = "Closest"
 material.node_tree.links.new(texture.outputs["Color"],
                              material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
 bpy.context.active_object.data.materials.append(material)
+# A third box, lit from the side (+x) by a spot light with Cast Shadow off aimed 45 degrees
+# down at it: the floor behind the box (-x) gets its light as the floor beside it does.
+bpy.ops.mesh.primitive_cube_add(size=0.4, location=(1.5, 2.5, 0.2))
+spot = bpy.data.objects.new("Unshadowed", bpy.data.lights.new("Unshadowed", "SPOT"))
+spot.data.energy = 25.0
+spot.data.spot_size = 1.5707963267948966
+spot.data.spot_blend = 0.0
+spot.data.shadow_soft_size = 0.0
+if hasattr(spot.data, "cycles") and hasattr(spot.data.cycles, "cast_shadow"):
+    spot.data.cycles.cast_shadow = False  # Blender 3.x
+else:
+    spot.data.use_shadow = False  # 4.0 on
+spot.location = (2.0, 2.5, 0.5)
+spot.rotation_euler = (0.0, 0.7853981633974483, 0.0)  # its -Z towards (-1, 0, -1)
+scene.collection.objects.link(spot)
 # A sun shining towards +x, 45 degrees from the zenith (a sun points along its local -Z).
 lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
 lamp.data.energy = 3.0
@@ -122,6 +137,8 @@ print("web", bakegi.export_web({site!r}), flush=True)
 # would light the first or shade the second).
 # The tile's red and blue halves at the middle of each texel. The points are in the page's
 # frame, glTF's: Blender's (x, y, z) is (x, z, -y) there.
+# Behind the third box from the unshadowed spot, and beside the box (Blender (1.15, 2.5, 0) and
+# (1.5, 1.95, 0)), both in the sun and in the spot's cone.
 # The area light's shadowed and lit floor points, both in the sun (Blender (1.15, -1.5, 0) and
 # (2.5, -1.5, 0)); low and weak, it adds under a tenth of the sun's light at the first box's
 # shadow.
@@ -133,7 +150,8 @@ json.dump({{"sky": 0.02, "sky_floor": [-2.25, 0.0, -2.25],
            "shadowed": [0.8, 0.0, 0.0], "open": [-1.5, 0.0, 0.0],
            "red": [-1.7, 0.01, -1.5], "blue": [-1.3, 0.01, -1.5],
            "area_shadowed": [1.15, 0.0, 1.5], "area_lit": [2.5, 0.0, 1.5],
-           "wall_lit": [-2.0, 0.0, 1.5], "wall_shadowed": [-1.45, 0.0, 1.5]}}, open({points!r}, "w"))
+           "wall_lit": [-2.0, 0.0, 1.5], "wall_shadowed": [-1.45, 0.0, 1.5],
+           "unshadowed_behind": [1.15, 0.0, -2.5], "unshadowed_beside": [1.5, 0.0, -1.95]}}, open({points!r}, "w"))
 """
 
 

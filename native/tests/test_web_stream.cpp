@@ -216,5 +216,51 @@ TEST(WebExport, WritesAGltfWithItsBufferAndTheGrid) {
   std::filesystem::remove_all(folder);
 }
 
+// What the page needs to draw the lamps as the bake does: Cast Shadow off on a lamp and on an
+// area light, and a note where an area light's Spread is narrower than the page can draw.
+TEST(WebExport, SaysWhichLightsCastNoShadowAndNotesANarrowSpread) {
+  const test::ScenePtr scene = test::new_box_scene();  // its point light casts shadows
+  bakegi_light_desc spot = test::point_light(0.5f, 0.5f, 0.9f, 1.0f);
+  spot.type = BAKEGI_LIGHT_SPOT;
+  spot.direction[2] = -1.0f;
+  spot.spot_size = 1.0f;
+  spot.flags = BAKEGI_LIGHT_NO_SHADOW;
+  ASSERT_EQ(bakegi_scene_add_light(scene.get(), &spot, nullptr), BAKEGI_OK) << bakegi_last_error();
+  bakegi_light_desc area{};
+  area.type = BAKEGI_LIGHT_AREA;
+  area.position[0] = area.position[1] = 0.5f;
+  area.position[2] = 0.99f;
+  area.direction[2] = -1.0f;
+  area.axis_u[0] = 1.0f;
+  area.color[0] = area.color[1] = area.color[2] = 1.0f;
+  area.shape = BAKEGI_AREA_SQUARE;
+  area.size_x = 0.2f;
+  area.spot_size = std::numbers::pi_v<float>;  // Lambertian
+  ASSERT_EQ(bakegi_scene_add_light(scene.get(), &area, nullptr), BAKEGI_OK) << bakegi_last_error();
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / "bakegi_web_export_lights_test";
+  const auto export_json = [&] {
+    std::filesystem::remove_all(folder);
+    EXPECT_EQ(bakegi_web_export(scene.get(), nullptr, folder.string().c_str(), nullptr), BAKEGI_OK)
+        << bakegi_last_error();
+    std::ifstream json_file(folder / "scene.gltf");
+    return std::string((std::istreambuf_iterator<char>(json_file)), {});
+  };
+  std::string json = export_json();
+  EXPECT_EQ(json.find("\"type\":\"point\",\"extras\""), std::string::npos);  // the point casts
+  EXPECT_NE(json.find("\"extras\":{\"cast_shadow\":false},\"type\":\"spot\""), std::string::npos);
+  EXPECT_NE(json.find("\"cast_shadow\":true}]"), std::string::npos);  // the area light
+  EXPECT_EQ(json.find("Spread"), std::string::npos);
+
+  area.spot_size = 1.0f;
+  area.flags = BAKEGI_LIGHT_NO_SHADOW;
+  ASSERT_EQ(bakegi_scene_clear_lights(scene.get()), BAKEGI_OK);
+  ASSERT_EQ(bakegi_scene_add_light(scene.get(), &area, nullptr), BAKEGI_OK) << bakegi_last_error();
+  json = export_json();
+  EXPECT_NE(json.find("\"cast_shadow\":false}]"), std::string::npos);
+  EXPECT_NE(json.find("an area light's Spread is under 180 degrees"), std::string::npos);
+  std::filesystem::remove_all(folder);
+}
+
 }  // namespace
 }  // namespace bakegi

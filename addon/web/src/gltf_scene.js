@@ -128,10 +128,13 @@ export function makeLights(gltf) {
       light.target.position.set(0, 0, -1);
       holder.add(light.target);
     }
-    castShadows(light, holder, bounds);
+    // Cast Shadow off in Blender: nothing blocks this lamp's light (the exporter's extras).
+    if (l.extras?.cast_shadow !== false) castShadows(light, holder, bounds);
     lights.push(holder);
   }
-  const areas = gltf.extras?.bakegi?.area_lights ?? [];
+  // The shadow-casting area lights first: area light i's shading reads proxy i's shadow map.
+  const areas = [...(gltf.extras?.bakegi?.area_lights ?? [])]
+    .sort((a, b) => areaCastsShadow(b) - areaCastsShadow(a));
   if (areas.length) RectAreaLightUniformsLib.init();
   const proxies = [];
   const shadowed = bounds ? shadowedAreaLightCount(gltf) : 0;
@@ -150,7 +153,7 @@ export function makeLights(gltf) {
     // Its shadows: a point light of no intensity at its centre (a hair in front, off the
     // ceiling it hangs from) casts the shadow map the area light's shading reads
     // (areaLightShadows): hard shadows from the centre, where Blender's are soft.
-    if (proxies.length >= shadowed) continue;
+    if (proxies.length >= shadowed || !areaCastsShadow(a)) continue;
     const proxy = new THREE.PointLight(0xffffff, 0);
     proxy.position.fromArray(a.position).addScaledVector(z, -1e-3 * Math.max(a.size_x, a.size_y, 1e-3));
     castShadows(proxy, proxy, bounds);
@@ -165,9 +168,13 @@ export function makeLights(gltf) {
 // shadow map (six passes a frame) and a texture unit in every material's shader (WebGL2
 // guarantees 16); the rest light the page unshadowed.
 const MAX_SHADOWED_AREA_LIGHTS = 4;
+function areaCastsShadow(area) {
+  return area.cast_shadow !== false && Math.max(...area.radiance) > 0;
+}
+
 export function shadowedAreaLightCount(gltf) {
   const areas = gltf.extras?.bakegi?.area_lights ?? [];
-  const lit = areas.filter((a) => Math.max(...a.radiance) > 0).length;
+  const lit = areas.filter(areaCastsShadow).length;
   return Math.min(lit, MAX_SHADOWED_AREA_LIGHTS);
 }
 

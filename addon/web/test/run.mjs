@@ -246,6 +246,16 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
       check(Math.abs(behind - open) <= 6 && beside > open + 15,
         `the area light's direct light is shadowed: behind the box ${behind.toFixed(1)}, the sun alone ${open.toFixed(1)}, beside the box ${beside.toFixed(1)} (of 255)`);
     }
+    if (points.unshadowed_behind && points.unshadowed_beside) {
+      // Behind the third box from a spot light with Cast Shadow off, the floor gets the spot's
+      // light (0.74 of what the floor beside it gets, by distance and angle) besides the sun's;
+      // a shadow map would leave it the sun's alone.
+      const [behind] = await pixelAt(page, points.unshadowed_behind);
+      const [beside] = await pixelAt(page, points.unshadowed_beside);
+      results.unshadowed = { behind, beside, sun_alone: open };
+      check(behind > open + 15 && beside > open + 15,
+        `a light with Cast Shadow off casts no shadow: behind the box ${behind.toFixed(1)}, beside it ${beside.toFixed(1)}, the sun alone ${open.toFixed(1)} (of 255)`);
+    }
     if (points.red && points.blue) {
       // The tile's texture: each half reads its own colour, twice the other's at least.
       const [, , red] = await pixelAt(page, points.red);

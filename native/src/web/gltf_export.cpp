@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <tuple>
 
@@ -115,6 +116,16 @@ struct Primitive {
   std::vector<uint32_t> triangles;  // of the mesh
 };
 
+bool casts_shadow(const Light& light) {
+  return (light.flags & BAKEGI_LIGHT_NO_SHADOW) == 0;
+}
+
+// Cycles' Spread narrower than a Lambertian emitter's (0 and pi are both Lambertian: bakegi.h).
+bool has_narrow_spread(const Light& light) {
+  return light.type == BAKEGI_LIGHT_AREA && light.spot_size > 0.0f &&
+         light.spot_size < std::numbers::pi_v<float> - 2e-4f;
+}
+
 // How the page draws the light its lamps do not carry, said on the page (its status line) and
 // by Export for Web (its warnings): the world's and emitters' direct light needs visibility
 // the page lacks, so it comes from the grid when the grid carries it (soft), else only its
@@ -132,6 +143,11 @@ std::vector<std::string> lighting_notes(const SceneDescription& scene, bool from
                                 "light comes from the grid, soft and without sharp shadows"
                               : "the world (sky) lights this scene: the web page shows its light "
                                 "once bounced (the grid), not its direct light");
+  }
+  if (std::any_of(scene.lights.begin(), scene.lights.end(), has_narrow_spread)) {
+    notes.push_back(
+        "an area light's Spread is under 180 degrees: the web page spreads its light over the "
+        "whole hemisphere (brighter beside it than in Blender), as three.js' area lights do");
   }
   if (std::any_of(scene.materials.begin(), scene.materials.end(),
                   [](const Material& m) { return m.is_emissive(); })) {
@@ -324,10 +340,13 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
                           ? light.size_x
                           : light.size_y) +
           ",\"shape\":" + std::to_string(int(light.shape)) + ",\"radiance\":" + vec3(light.color) +
-          "}");
+          ",\"spread\":" + json_number(light.spot_size) +
+          ",\"cast_shadow\":" + (casts_shadow(light) ? "true" : "false") + "}");
       continue;
     }
     std::string description = "{\"color\":" + vec3(color) + ",\"intensity\":" + json_number(peak);
+    // glTF's lights cast shadows (three.js' shadow maps on the page); Cast Shadow off says not.
+    if (!casts_shadow(light)) description += ",\"extras\":{\"cast_shadow\":false}";
     if (light.type == BAKEGI_LIGHT_POINT) {
       description += ",\"type\":\"point\"}";
       node += "\"translation\":" + vec3(to_gltf(light.position));
