@@ -91,6 +91,50 @@ class RenderVisibility(common.SmallCornellCase):
         _, report = self.bake()
         self.assertFalse([w for w in report["warnings"] if "viewport's modifiers" in w])
 
+    def add_particles(self, obj, kind):
+        """A particle system of `kind` ('EMITTER' or 'HAIR') on obj, 10 particles."""
+        bpy.context.view_layer.objects.active = obj
+        bpy.ops.object.particle_system_add()
+        settings = obj.particle_systems[-1].settings
+        settings.type = kind
+        settings.count = 10
+        return settings
+
+    def test_an_instancer_rendered_without_its_mesh_is_left_out(self):
+        """An object with particles (or Instancing) and Show Instancer > Render off: Cycles
+        renders its particles or instances but not its mesh, whatever the viewport shows."""
+        expected, _ = self.bake()
+        blocker = self.add_blocker()
+        self.add_particles(blocker, "EMITTER").render_type = "NONE"
+        blocker.show_instancer_for_render = False
+        got, report = self.bake()
+        numpy.testing.assert_array_equal(got, expected)
+        self.assertTrue(any("Show Instancer" in w and "Stand-in" in w
+                            for w in report["warnings"]), report["warnings"])
+        blocker.show_instancer_for_render = True
+        got, report = self.bake()
+        self.assertGreater(abs(got.sum() / expected.sum() - 1.0), 0.2)
+        self.assertFalse([w for w in report["warnings"] if "Show Instancer" in w])
+
+    def test_hair_strands_and_curves_objects_are_named(self):
+        """Geometry Cycles renders that the bake has no form for: particle hair drawn as
+        strands, and hair curves objects (3.3 on)."""
+        blocker = self.add_blocker()
+        self.add_particles(blocker, "HAIR").render_type = "PATH"
+        if hasattr(bpy.data, "hair_curves"):
+            curves = bpy.data.objects.new("Strands", bpy.data.hair_curves.new("Strands"))
+            bpy.context.scene.collection.objects.link(curves)
+        _, report = self.bake()
+        lines = [w for w in report["warnings"] if w.startswith("not in the bake")]
+        self.assertEqual(len(lines), 1, report["warnings"])
+        self.assertIn("'Stand-in' (strands", lines[0])
+        if hasattr(bpy.data, "hair_curves"):
+            self.assertIn("'Strands' (hair curves)", lines[0])
+            curves.hide_render = True
+        blocker.modifiers[-1].show_render = False
+        _, report = self.bake()
+        self.assertFalse([w for w in report["warnings"] if w.startswith("not in the bake")],
+                         report["warnings"])
 
 if __name__ == "__main__":
     common.run_tests(__name__)

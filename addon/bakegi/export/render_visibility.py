@@ -32,6 +32,7 @@ class RenderVisibility:
     def __init__(self, scene):
         self.hidden_collections = _render_hidden_collections(scene)
         self.left_out = []  # names of objects left out as disabled in renders
+        self.instancers_left_out = []  # names of instancers renders show without themselves
         self._answers = {}  # object name -> renders (users_collection scans every collection)
 
     def _object_renders(self, obj):
@@ -57,13 +58,45 @@ class RenderVisibility:
         return True
 
     def leave_out(self, instance):
-        """renders(instance), noting the object when it does not."""
-        if self.renders(instance):
-            return False
-        name = getattr(instance.object, "original", instance.object).name
-        if name not in self.left_out:
-            self.left_out.append(name)
-        return True
+        """Whether the bake leaves a depsgraph object instance out as renders do (disabled in
+        renders, or an instancer that renders without its own mesh), noting the object."""
+        original = getattr(instance.object, "original", instance.object)
+        if not self.renders(instance):
+            _note(self.left_out, original.name)
+            return True
+        if not instance.is_instance and instancer_hidden_in_renders(original):
+            _note(self.instancers_left_out, original.name)
+            return True
+        return False
+
+
+def _note(names, name):
+    if name not in names:
+        names.append(name)
+
+
+def instancer_hidden_in_renders(obj):
+    """Whether renders show an object's instances or particles but not its own geometry: an
+    object with particle systems or Instancing (Vertices, Faces) hides itself in renders where
+    Show Instancer > Render is off (Blender's BKE_object_visibility), whatever the viewport's
+    switch, which the export's viewport evaluation follows."""
+    if getattr(obj, "show_instancer_for_render", True):
+        return False
+    return bool(getattr(obj, "particle_systems", ())) or \
+        getattr(obj, "instance_type", "NONE") in ("VERTS", "FACES")
+
+
+def rendered_strands(obj):
+    """Names of an object's particle systems that renders draw as strands (hair, or emitter
+    particles rendered as Path): Cycles renders them as curves; the bake has meshes only."""
+    names = []
+    for modifier in getattr(obj, "modifiers", ()):
+        if modifier.type != "PARTICLE_SYSTEM" or not modifier.show_render:
+            continue
+        system = modifier.particle_system
+        if system.settings is not None and system.settings.render_type == "PATH":
+            names.append(system.name)
+    return names
 
 
 def hidden_but_rendered(context, kinds):
@@ -92,6 +125,12 @@ def warnings_for(context, visibility, kinds):
         names = visibility.left_out
         lines.append(f"{len(names)} object(s) disabled in renders are left out of the bake, as "
                      f"Cycles leaves them out: {some_names(names)}")
+    if visibility.instancers_left_out:
+        names = visibility.instancers_left_out
+        lines.append(f"{len(names)} instancer(s) that renders show without their own mesh "
+                     f"(Object > Instancing > Show Instancer > Render off) are left out of the "
+                     f"bake, as Cycles leaves them out; what they instance is baked: "
+                     f"{some_names(names)}")
     # A render's own evaluation (the preview engine: no view layer in its context) has them.
     hidden = hidden_but_rendered(context, kinds) if getattr(context, "view_layer", None) else []
     if hidden:

@@ -484,6 +484,10 @@ def _check_lightmap_options(options):
                           f"padding must be 0..64 texels, not {options.padding!r}")
 
 
+# Object kinds Cycles renders that the export does not turn into triangles.
+NOT_BAKED_KINDS = {"CURVES": "hair curves", "POINTCLOUD": "point cloud", "VOLUME": "volume"}
+
+
 def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_maps, start,
             defer_texels=False, display_probes=False):
     if depsgraph is None:
@@ -496,6 +500,7 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
     exported_lightmaps = None
     try:
         linked, ray_hidden, volumes, render_geometry = set(), set(), set(), {}
+        not_baked = set()  # geometry Cycles renders that the bake has no form for
         visibility = RenderVisibility(context.scene)
         target_names = {o.name for o in targets}
         for instance in depsgraph.object_instances:
@@ -509,6 +514,12 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
                     volumes.add(obj.name)
                     continue
                 exporter.add_instance(obj, instance.matrix_world, instance.is_instance)
+                if not instance.is_instance:
+                    not_baked.update(f"'{obj.name}' (strands '{name}')"
+                                     for name in render_visibility.rendered_strands(obj.original))
+            elif obj.type in NOT_BAKED_KINDS:
+                if not visibility.leave_out(instance):
+                    not_baked.add(f"'{obj.name}' ({NOT_BAKED_KINDS[obj.type]})")
             elif obj.type == "LIGHT":
                 if visibility.leave_out(instance):
                     continue
@@ -522,14 +533,18 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
                 difference = render_visibility.modifiers_differ_in_renders(obj.original)
                 if difference:
                     render_geometry[obj.name] = difference
-        warnings.extend(render_visibility.warnings_for(context, visibility,
-                                                       set(MESH_LIKE) | {"LIGHT"}))
+        warnings.extend(render_visibility.warnings_for(
+            context, visibility, set(MESH_LIKE) | set(NOT_BAKED_KINDS) | {"LIGHT"}))
         if render_geometry:
             names = sorted(render_geometry)
             warnings.append("the bake uses the viewport's modifiers, and renders differ: " +
                             "; ".join(f"'{n}' {render_geometry[n]}" for n in names[:5]) +
                             (" ..." if len(names) > 5 else "") +
                             " (Cycles bakes the render's geometry; match them to bake it)")
+        if not_baked:
+            warnings.append(f"not in the bake: {some_names(not_baked)}: Cycles renders them, "
+                            "the bake has meshes only, so the light they block, reflect or "
+                            "scatter is missing (convert them to meshes to bake with them)")
         if volumes:
             warnings.append(f"left out {some_names(volumes)}: their materials are a Volume "
                             "without a Surface; the bake has no participating media, and Cycles "
