@@ -135,6 +135,21 @@ class Materials(unittest.TestCase):
             self.assertTrue(any(words in w and "blocks light" in w for w in warnings),
                             f"{material.name}: {warnings}")
 
+    def test_coat_and_sheen_are_named(self):
+        """A Principled coat or sheen (4.x: Coat Weight, Sheen Weight; 3.x: Clearcoat, Sheen)
+        is not in the core's material: the export says so, and not for the defaults."""
+        plain, _ = node_material("plain", "ShaderNodeBsdfPrincipled")
+        self.assertFalse([w for w in self.materials.read_material(plain).warnings
+                          if "not modelled" in w])
+        for layer, names in (("coat", ("Coat Weight", "Clearcoat")),
+                             ("sheen", ("Sheen Weight", "Sheen"))):
+            material, node = node_material(layer, "ShaderNodeBsdfPrincipled")
+            socket = node.inputs.get(names[0]) or node.inputs[names[1]]
+            socket.default_value = 0.5
+            warnings = self.materials.read_material(material).warnings
+            self.assertTrue(any(f"its {layer}" in w and "not modelled" in w for w in warnings),
+                            warnings)
+
     def test_volumes_are_named_and_volume_only_materials_marked(self):
         surface, _ = node_material("smoky", "ShaderNodeBsdfDiffuse")
         output = next(n for n in surface.node_tree.nodes if n.type == "OUTPUT_MATERIAL")

@@ -294,6 +294,19 @@ def _warn_light_passing(node, transmission, info, what):
                              f"leaves) is read as opaque; {_PASSING_LIGHT_ADVICE}")
 
 
+def _warn_unmodelled_layers(node, info, what):
+    """Names the Principled layers the core's one diffuse and one glossy lobe leave out: a
+    coat (Coat Weight in 4.x, Clearcoat in 3.x) and sheen. Cycles reflects them on top of the
+    base (and a coat dims the base under it); the bake reflects the base alone."""
+    for names, layer in ((("Coat Weight", "Clearcoat"), "coat"),
+                         (("Sheen Weight", "Sheen"), "sheen")):
+        socket = input_socket(node, *names)
+        if socket is not None and (socket.is_linked or float(socket.default_value) > 0.0):
+            info.warnings.append(f"{what}: its {layer} ('{socket.name}') is not modelled: the "
+                                 f"bake reflects the layers under it alone (a few percent of "
+                                 f"the light it sends on)")
+
+
 def _read_principled(node, info, what):
     """A Principled BSDF: diffuse base x (1 - metallic) x (1 - transmission) (x (1 - F_avg)
     in 4.x), a glossy lobe of metal colour and dielectric F_avg, and its emission."""
@@ -303,6 +316,7 @@ def _read_principled(node, info, what):
                                 what)
     dielectric = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
     _warn_light_passing(node, transmission, info, what)
+    _warn_unmodelled_layers(node, info, what)
     roughness = _float_input(node, ("Roughness",), 0.5, info, what)
     f_avg = fresnel_hemispherical_average(_principled_f0(node, info, what))
     if texture is not None and metallic > 0.0:
