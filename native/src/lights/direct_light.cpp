@@ -47,45 +47,24 @@ DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
   }
 }
 
-bool DirectLight::lamp_casts_shadow(size_t lamp) const {
-  if (lamp < point_lights_.size()) return point_lights_[lamp].casts_shadow();
-  lamp -= point_lights_.size();
-  if (lamp < area_lights_.size()) return area_lights_[lamp].casts_shadow();
-  lamp -= area_lights_.size();
-  return lamp < sun_lights_.size() && sun_lights_[lamp].casts_shadow();
-}
-
-bool DirectLight::sample_lamp(size_t lamp, const glm::vec3& position, float u1, float u2,
-                              LightSample& out) const {
-  out.casts_shadow = lamp_casts_shadow(lamp);
-  if (lamp < point_lights_.size()) return point_lights_[lamp].sample(position, u1, u2, out);
-  lamp -= point_lights_.size();
-  if (lamp < area_lights_.size()) return area_lights_[lamp].sample(position, u1, u2, out);
-  lamp -= area_lights_.size();
-  return lamp < sun_lights_.size() && sun_lights_[lamp].sample(u1, u2, out);
-}
-
 template <typename Visit>
 void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng, World world,
                                         Visit&& visit) const {
   LightSample s;
-  const size_t lamps = lamp_count();
-  for (size_t k = 0; k < lamps; ++k) {
+  for (const PointLight& light : point_lights_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
-    const bool sampled = sample_lamp(k, x.position, u1, u2, s);
-    if (shadow_cache_) {
-      // Where the pilot found this lamp blocked, a sample is kept with probability q and
-      // weighed 1/q. Its number comes from outside the quasi-random prefix, drawn for every
-      // lamp, so that the prefix keeps its uses.
-      const float keep = rng.next_float_outside_prefix();
-      if (!sampled) continue;
-      const float kept = shadow_cache_->kept_probability(k, x.position, x.geometric_normal);
-      if (keep >= kept) continue;
-      s.contribution /= kept;
-    } else if (!sampled) {
-      continue;
-    }
-    visit(s);
+    s.casts_shadow = light.casts_shadow();
+    if (light.sample(x.position, u1, u2, s)) visit(s);
+  }
+  for (const AreaLight& light : area_lights_) {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    s.casts_shadow = light.casts_shadow();
+    if (light.sample(x.position, u1, u2, s)) visit(s);
+  }
+  for (const SunLight& light : sun_lights_) {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    s.casts_shadow = light.casts_shadow();
+    if (light.sample(u1, u2, s)) visit(s);
   }
   s.casts_shadow = true;  // emissive triangles and the world
   if (!emissive_triangles_.empty()) {

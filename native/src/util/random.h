@@ -41,10 +41,6 @@ class RandomStream {
 
   // Uniform in [0, 1): 24 bits, so 1 is never returned.
   float next_float() { return unit_float(next_uint()); }
-  // Uniform in [0, 1) from PCG32 alone: the prefix stays for the draws that follow, so an
-  // occasional extra decision (LampShadowCache's) does not shift the quasi-random numbers
-  // of the sample's later dimensions onto other uses.
-  float next_float_outside_prefix() { return unit_float(pcg_.next_uint()); }
 
  private:
   Pcg32 pcg_;
