@@ -143,6 +143,7 @@ void BakeJob::start() {
   error_probes_ = settings.get_int("error_probes");
   denoise_ = settings.get_int("denoise") != 0;
   irradiance_cache_ = method_ == "pathtrace" && settings.get_float("irradiance_cache") > 0.0;
+  shadow_cache_setting_ = method_ == "pathtrace" && settings.get_int("shadow_cache") != 0;
   error_probe_samples_ = settings.get_int("error_probe_samples");
   memory_budget_bytes_ = size_t(settings.get_int("memory_budget_mb")) << 20;
   fallback_ = settings.get_int("fallback") != 0;
@@ -484,7 +485,20 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
 
   context_.set_stage("solving", 0.1, 0.6);
   stage_start = std::chrono::steady_clock::now();
-  direct_ = std::make_unique<const DirectLight>(scene, *tracer_);
+  {
+    auto direct = std::make_unique<DirectLight>(scene, *tracer_);
+    if (shadow_cache_setting_ && direct->lamp_count() > 0) {
+      // The lamps' blocked places, so that the path tracer skips most shadow rays there.
+      uint64_t pilot_rays = 0;
+      const auto pilot_start = std::chrono::steady_clock::now();
+      shadow_cache_ = std::make_unique<const LampShadowCache>(
+          LampShadowCache::build(scene, *direct, pilot_rays));
+      report.add_seconds("shadow_cache", seconds_since(pilot_start));
+      report.add_count("shadow_cache_rays", pilot_rays);
+      direct->set_shadow_cache(shadow_cache_.get());
+    }
+    direct_ = std::move(direct);
+  }
   const SolveInputs inputs{scene, *tracer_, *direct_, settings_, &points_, solver_memory()};
   SolverRun run;
   std::string method_used = method_;

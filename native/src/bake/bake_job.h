@@ -18,6 +18,7 @@
 #include "field/indirect_field.h"
 #include "grid/grid_gather.h"
 #include "grid/irradiance_vector_grid.h"
+#include "lights/lamp_shadow_cache.h"
 #include "scene/bake_points.h"
 #include "scene/scene.h"
 #include "settings/settings.h"
@@ -145,11 +146,13 @@ class BakeJob {
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<const RayTracer> tracer_;
   std::unique_ptr<const DirectLight> direct_;
+  std::unique_ptr<const LampShadowCache> shadow_cache_;  // read by direct_
   std::string method_;
   int threads_ = 0;
   int64_t error_probes_ = 0;
   bool denoise_ = false;
-  bool irradiance_cache_ = false;  // the path tracer's irradiance_cache > 0
+  bool irradiance_cache_ = false;      // the path tracer's irradiance_cache > 0
+  bool shadow_cache_setting_ = false;  // setting shadow_cache (the path tracer)
   int64_t error_probe_samples_ = 0;
   size_t memory_budget_bytes_ = 0;
   // A solver that cannot model the scene within the memory budget hands the bake to the path

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "util/random.h"
@@ -19,6 +20,16 @@ float scene_ray_epsilon(const Scene& scene) {
   const glm::vec3 magnitude = glm::max(glm::abs(scene.bounds_min), glm::abs(scene.bounds_max));
   const float scale = std::max({scene.extent(), max_component(magnitude), 1e-3f});
   return kRelativeRayEpsilon * scale;
+}
+
+// A uniform number in [0, 1) from a light sample's two numbers and its lamp: independent of
+// them as a good hash is, so a decision on it keeps the estimate unbiased.
+float keep_number(float u1, float u2, size_t lamp) {
+  uint32_t a, b;
+  std::memcpy(&a, &u1, sizeof a);
+  std::memcpy(&b, &u2, sizeof b);
+  const uint64_t h = mix64((uint64_t(a) << 32 | b) ^ mix64(uint64_t(lamp) + 0x9E3779B97F4A7C15ull));
+  return float(h >> 40) * (1.0f / 16777216.0f);
 }
 
 }  // namespace
@@ -47,24 +58,44 @@ DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
   }
 }
 
+bool DirectLight::lamp_casts_shadow(size_t lamp) const {
+  if (lamp < point_lights_.size()) return point_lights_[lamp].casts_shadow();
+  lamp -= point_lights_.size();
+  if (lamp < area_lights_.size()) return area_lights_[lamp].casts_shadow();
+  lamp -= area_lights_.size();
+  return lamp < sun_lights_.size() && sun_lights_[lamp].casts_shadow();
+}
+
+bool DirectLight::sample_lamp(size_t lamp, const glm::vec3& position, float u1, float u2,
+                              LightSample& out) const {
+  out.casts_shadow = lamp_casts_shadow(lamp);
+  if (lamp < point_lights_.size()) return point_lights_[lamp].sample(position, u1, u2, out);
+  lamp -= point_lights_.size();
+  if (lamp < area_lights_.size()) return area_lights_[lamp].sample(position, u1, u2, out);
+  lamp -= area_lights_.size();
+  return lamp < sun_lights_.size() && sun_lights_[lamp].sample(u1, u2, out);
+}
+
 template <typename Visit>
 void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng, World world,
                                         Visit&& visit) const {
   LightSample s;
-  for (const PointLight& light : point_lights_) {
+  const size_t lamps = lamp_count();
+  for (size_t k = 0; k < lamps; ++k) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
-    s.casts_shadow = light.casts_shadow();
-    if (light.sample(x.position, u1, u2, s)) visit(s);
-  }
-  for (const AreaLight& light : area_lights_) {
-    const float u1 = rng.next_float(), u2 = rng.next_float();
-    s.casts_shadow = light.casts_shadow();
-    if (light.sample(x.position, u1, u2, s)) visit(s);
-  }
-  for (const SunLight& light : sun_lights_) {
-    const float u1 = rng.next_float(), u2 = rng.next_float();
-    s.casts_shadow = light.casts_shadow();
-    if (light.sample(u1, u2, s)) visit(s);
+    if (!sample_lamp(k, x.position, u1, u2, s)) continue;
+    if (shadow_cache_) {
+      // Where the pilot found this lamp blocked, a sample is kept with probability q and
+      // weighed 1/q. The decision hashes the sample's own numbers instead of drawing one, so
+      // that every other number of the path, and the bake wherever nothing is skipped, stay
+      // as they are without the cache.
+      const float kept = shadow_cache_->kept_probability(k, x.position, x.geometric_normal);
+      if (kept < 1.0f) {
+        if (keep_number(u1, u2, k) >= kept) continue;
+        s.contribution /= kept;
+      }
+    }
+    visit(s);
   }
   s.casts_shadow = true;  // emissive triangles and the world
   if (!emissive_triangles_.empty()) {

@@ -21,6 +21,7 @@
 #include "lights/area_light.h"
 #include "lights/emissive_triangles.h"
 #include "lights/environment_light.h"
+#include "lights/lamp_shadow_cache.h"
 #include "lights/point_light.h"
 #include "lights/sun_light.h"
 #include "lights/surface_point.h"
@@ -88,6 +89,20 @@ class DirectLight {
   glm::vec3 irradiance_sample_terms(const SurfacePoint& x, RandomStream& rng, uint64_t& rays,
                                     const IrradianceTermVisitor& visit) const;
 
+  // The lamps (point and spot, area, sun lights, in that order) one by one, for the pilot
+  // of LampShadowCache.
+  size_t lamp_count() const {
+    return point_lights_.size() + area_lights_.size() + sun_lights_.size();
+  }
+  bool lamp_casts_shadow(size_t lamp) const;
+  bool sample_lamp(size_t lamp, const glm::vec3& position, float u1, float u2,
+                   LightSample& out) const;
+  // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
+  bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
+  // Skips most lamp samples where the cache found the lamp blocked (lamp_shadow_cache.h);
+  // null: every sample traced. The cache must outlive this object.
+  void set_shadow_cache(const LampShadowCache* cache) { shadow_cache_ = cache; }
+
   const Scene& scene() const { return scene_; }
   const RayTracer& tracer() const { return tracer_; }
   // The world's radiance, the same from every direction (W/(m² sr)); with a world image its
@@ -126,8 +141,6 @@ class DirectLight {
   // the unit direction; 0 where the world is not light-sampled (a constant world unseen by
   // portals).
   float world_pdf(const glm::vec3& x, const glm::vec3& direction, float share) const;
-  // Traces the shadow ray of a light sample (counted in `rays`); true when nothing blocks it.
-  bool unoccluded(const SurfacePoint& x, const LightSample& s, uint64_t& rays) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;
@@ -139,6 +152,7 @@ class DirectLight {
   glm::vec3 world_radiance_;
   const EnvironmentLight* environment_;  // the scene's, or null: the world is world_radiance_
   WorldPortals portals_;
+  const LampShadowCache* shadow_cache_ = nullptr;
 };
 
 }  // namespace bakegi

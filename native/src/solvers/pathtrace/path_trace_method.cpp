@@ -22,6 +22,13 @@ const std::vector<SettingSpec>& PathTraceSolver::setting_specs() {
                      "(0.2-0.3 measured best, docs/benchmarks.md 0g); with target_error the "
                      "records sample in rounds; declines (warning) where over half the points "
                      "would be records; 0 = off"),
+      integer_setting("shadow_cache", 1, 0, 1, SettingRole::kLighting,
+                      "1: a pilot of shadow rays finds where each lamp is blocked (a grid of "
+                      "cells over the scene, lights/lamp_shadow_cache.h), and there a lamp's "
+                      "shadow ray is traced only for 1 light sample in 8, weighed 8x: unbiased, "
+                      "about a fifth fewer rays and a tenth less time where the sun or a lamp "
+                      "is blocked from most places (docs/benchmarks.md 0m); 0: every shadow "
+                      "ray traced"),
   };
   return specs;
 }
