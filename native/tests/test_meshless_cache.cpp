@@ -146,13 +146,14 @@ TEST(MeshlessCache, KeyCoversSettingsAndPlacementPointsButNotLightsOrRelightSett
   for (const std::string& key : schema.keys_with_role(SettingRole::kExecution)) {
     ignored.push_back(key);
   }
-  // The keys before the settings had a schema, and target_error and irradiance_cache
-  // (settings of the path tracer a method may hand its bake to, like samples).
+  // The keys before the settings had a schema, and target_error, irradiance_cache and
+  // shadow_cache (settings of the path tracer a method may hand its bake to, like samples).
   std::vector<std::string> sorted = ignored;
   std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(sorted, (std::vector<std::string>{"bounces", "cache_dir", "cache_max_mb", "denoise",
-                                              "direct_samples", "irradiance_cache", "samples",
-                                              "sender_cutoff", "target_error", "threads"}));
+  EXPECT_EQ(sorted,
+            (std::vector<std::string>{"bounces", "cache_dir", "cache_max_mb", "denoise",
+                                      "direct_samples", "irradiance_cache", "samples",
+                                      "sender_cutoff", "shadow_cache", "target_error", "threads"}));
   std::map<std::string, SettingValue> settings = {{"levels", int64_t(3)}, {"epsilon", 0.01}};
   const CacheKey key =
       precomputation_key(meshless::kPrecomputationCacheVersion, scene, settings, ignored, &points);

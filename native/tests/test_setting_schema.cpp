@@ -86,10 +86,11 @@ TEST(SettingSchema, RolesGiveTheKeysARelightMayChange) {
   EXPECT_EQ(changeable("antiradiance"),
             sorted({"iterations", "tolerance", "scheme", "direct_samples", "seed", "samples",
                     "target_error", "threads", "cache_dir", "residual", "residual_fraction",
-                    "denoise", "cache_max_mb", "irradiance_cache"}));
-  EXPECT_EQ(changeable("meshless"),
-            sorted({"direct_samples", "sender_cutoff", "bounces", "cache_dir", "samples",
-                    "target_error", "threads", "denoise", "cache_max_mb", "irradiance_cache"}));
+                    "denoise", "cache_max_mb", "irradiance_cache", "shadow_cache"}));
+  EXPECT_EQ(
+      changeable("meshless"),
+      sorted({"direct_samples", "sender_cutoff", "bounces", "cache_dir", "samples", "target_error",
+              "threads", "denoise", "cache_max_mb", "irradiance_cache", "shadow_cache"}));
 }
 
 TEST(SettingSchema, MethodsThatHandBakesToThePathTracerReadItsSettings) {
