@@ -35,9 +35,8 @@ class LampShadowCache {
 
   // The pilot: `points` surface points (0: 2^16, or 2^18 / lamps with more than 4 lamps, at
   // least 2^14: 0.01-0.02 s on the suite), one shadow ray from each to each judged lamp of
-  // `direct` that casts shadows,
-  // on a grid of `cells_per_side` cells along the scene's longest side (times 6 normal
-  // directions). Counts its shadow rays into `rays`.
+  // `direct` that casts shadows, on a grid of `cells_per_side` cells along the scene's
+  // longest side (times 6 normal directions). Counts its shadow rays into `rays`.
   static LampShadowCache build(const Scene& scene, const DirectLight& direct, uint64_t& rays,
                                size_t points = 0, int cells_per_side = 16);
 
@@ -49,7 +48,7 @@ class LampShadowCache {
     return cell >= 0 && blocked_[lamp][size_t(cell)] ? kKeptWhereBlocked : 1.0f;
   }
 
-  // Of the cells the pilot judged, the share where each lamp is blocked (for the report).
+  // Of the cells the pilot judged, the share where each lamp is blocked (tests, studies).
   std::vector<float> blocked_shares() const;
 
  private:
