@@ -11,14 +11,14 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/bake_points.h"
 #include "lights/direct_light.h"
+#include "scene/bake_points.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "scene/scene_validation.h"
+#include "settings/settings.h"
 #include "solvers/solver.h"
 #include "util/job_context.h"
-#include "settings/settings.h"
 
 namespace bakegi::test {
 
@@ -42,6 +42,17 @@ inline void add_quad(SceneDescription& d, glm::vec3 center, glm::vec3 u, glm::ve
   mesh.indices = {0, 1, 2, 0, 2, 3};
   mesh.material = material;
   d.meshes.push_back(std::move(mesh));
+}
+
+// The room [-2, 2] x [-2, 2] x [0, 3] without its +x wall (where the tests cut a window or a
+// hole): floor, ceiling and the other three walls, of `material`.
+inline void add_room_without_plus_x_wall(SceneDescription& d, uint32_t material) {
+  const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  add_quad(d, {0, 0, 0}, x, y, 2, 2, material);         // floor
+  add_quad(d, {0, 0, 3}, y, x, 2, 2, material);         // ceiling
+  add_quad(d, {-2, 0, 1.5f}, y, z, 2, 1.5f, material);  // -x wall
+  add_quad(d, {0, -2, 1.5f}, z, x, 1.5f, 2, material);  // -y wall
+  add_quad(d, {0, 2, 1.5f}, x, z, 2, 1.5f, material);   // +y wall
 }
 
 // add_quad with UVs: the quad's corner centre - half_u u - half_v v gets uv_lo and the

@@ -31,12 +31,8 @@ Light window_portal() {
 SceneDescription room_with_window(bool with_portal) {
   SceneDescription d;
   const uint32_t grey = test::add_material(d, glm::vec3(0.6f));
-  const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
-  test::add_quad(d, {0, 0, 0}, x, y, 2, 2, grey);         // floor
-  test::add_quad(d, {0, 0, 3}, y, x, 2, 2, grey);         // ceiling
-  test::add_quad(d, {-2, 0, 1.5f}, y, z, 2, 1.5f, grey);  // -x wall
-  test::add_quad(d, {0, -2, 1.5f}, z, x, 1.5f, 2, grey);  // -y wall
-  test::add_quad(d, {0, 2, 1.5f}, x, z, 2, 1.5f, grey);   // +y wall
+  const glm::vec3 y(0, 1, 0), z(0, 0, 1);
+  test::add_room_without_plus_x_wall(d, grey);
   // The +x wall around the window.
   test::add_quad(d, {2, 0, 0.5f}, z, y, 0.5f, 2, grey);
   test::add_quad(d, {2, 0, 2.5f}, z, y, 0.5f, 2, grey);
