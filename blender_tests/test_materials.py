@@ -116,24 +116,104 @@ class Materials(unittest.TestCase):
         image = bpy.data.images.new(name, 4, 4, float_buffer=True)
         return image
 
-    def test_surfaces_that_let_light_through_warn(self):
-        """Glass, transparent and cut-out surfaces block light in the bake: each warns, an
-        opaque Principled does not."""
+    def test_surfaces_that_let_light_through_are_read(self):
+        """Glass, transparent and cut-out surfaces become the core's see-through materials:
+        the share passing straight on (transmission), the share present (opacity, or an alpha
+        texture), and the reflectances of a surface a ray stopped at (what Cycles reflects of
+        all the light meeting it, divided by the share that stops)."""
+        m = self.materials
         opaque, _ = node_material("opaque", "ShaderNodeBsdfPrincipled")
-        self.assertFalse([w for w in self.materials.read_material(opaque).warnings
-                          if "light through" in w or "opaque" in w])
+        info = m.read_material(opaque)
+        self.assertFalse(info.lets_light_pass())
+        self.assertFalse([w for w in info.warnings if "thin glass" in w or "opaque" in w])
+
+        # A Principled window (transmission 1, roughness 0): F_avg reflected, the rest passes.
         window, node = node_material("window", "ShaderNodeBsdfPrincipled")
         (node.inputs.get("Transmission Weight") or node.inputs["Transmission"]).default_value = 1.0
+        node.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        node.inputs["Roughness"].default_value = 0.0
+        info = m.read_material(window)
+        f_avg = m.fresnel_hemispherical_average(m._principled_f0(node, info, "window"))
+        self.assertGreater(f_avg, 0.05)
+        self.assertLess(f_avg, 0.15)
+        self.assertAlmostEqual(info.transmission, 1.0 - f_avg, places=6)
+        self.assertEqual(info.opacity, 1.0)
+        self.assertEqual(tuple(info.albedo), (0.0, 0.0, 0.0))
+        for g in info.glossy:  # F_avg / (1 - transmission): a mirror where a ray stops
+            self.assertAlmostEqual(g, 1.0, places=5)
+        self.assertTrue(any("thin glass" in w for w in info.warnings), info.warnings)
+
+        # Glass BSDF (IOR 1.5): the same split; Transparent BSDF: everything passes.
+        glass, node = node_material("glass", "ShaderNodeBsdfGlass")
+        node.inputs["IOR"].default_value = 1.5
+        node.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        info = m.read_material(glass)
+        f_avg = m.fresnel_hemispherical_average(0.04)
+        self.assertAlmostEqual(info.transmission, 1.0 - f_avg, places=6)
+        self.assertAlmostEqual(max(info.glossy), 1.0, places=5)
+        self.assertTrue(any("Glass BSDF" in w and "thin glass" in w for w in info.warnings))
+        clear, node = node_material("clear", "ShaderNodeBsdfTransparent")
+        node.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        info = m.read_material(clear)
+        self.assertEqual(info.transmission, 1.0)
+        self.assertEqual(tuple(info.albedo), (0.0, 0.0, 0.0))
+
+        # A constant alpha: the share present; the albedo is the base colour's.
+        veil, node = node_material("veil", "ShaderNodeBsdfPrincipled")
+        node.inputs["Alpha"].default_value = 0.25
+        info = m.read_material(veil)
+        self.assertAlmostEqual(info.opacity, 0.25, places=6)
+        self.assertEqual(info.transmission, 0.0)
+        self.assertIsNone(info.opacity_texture)
+
+        # A leaf: an image's alpha into Alpha; and the old cut-out mix (Transparent | diffuse,
+        # by the image's alpha): both an opacity texture of the image's alpha channel.
+        mask = bpy.data.images.new("leaf_mask", 4, 4, alpha=True)
         leaf, node = node_material("leaf", "ShaderNodeBsdfPrincipled")
         image = leaf.node_tree.nodes.new("ShaderNodeTexImage")
+        image.image = mask
         leaf.node_tree.links.new(image.outputs["Alpha"], node.inputs["Alpha"])
-        glass, _ = node_material("glass", "ShaderNodeBsdfGlass")
-        clear, _ = node_material("clear", "ShaderNodeBsdfTransparent")
-        for material, words in ((window, "transmission 1"), (leaf, "alpha"),
-                                (glass, "Glass BSDF"), (clear, "Transparent BSDF")):
-            warnings = self.materials.read_material(material).warnings
-            self.assertTrue(any(words in w and "blocks light" in w for w in warnings),
-                            f"{material.name}: {warnings}")
+        info = m.read_material(leaf)
+        self.assertEqual(info.opacity_texture.image, mask)
+        self.assertEqual(info.opacity_texture.channel, "alpha")
+        self.assertFalse([w for w in info.warnings if "opaque" in w], info.warnings)
+
+        cut, mix = node_material("cut", "ShaderNodeMixShader")
+        nodes, links = cut.node_tree.nodes, cut.node_tree.links
+        transparent = nodes.new("ShaderNodeBsdfTransparent")
+        diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+        diffuse.inputs["Color"].default_value = (0.6, 0.2, 0.1, 1.0)
+        image = nodes.new("ShaderNodeTexImage")
+        image.image = mask
+        links.new(image.outputs["Alpha"], mix.inputs[0])
+        links.new(transparent.outputs[0], mix.inputs[1])
+        links.new(diffuse.outputs[0], mix.inputs[2])
+        info = m.read_material(cut)
+        self.assertEqual(info.opacity_texture.image, mask)
+        self.assertEqual(info.transmission, 0.0)
+        for a, e in zip(info.albedo, (0.6, 0.2, 0.1)):
+            self.assertAlmostEqual(a, e, places=5)
+
+        # Half transparent, half white diffuse (Fac 0.5): half passes; where a ray stops, white.
+        half, mix = node_material("half", "ShaderNodeMixShader")
+        nodes, links = half.node_tree.nodes, half.node_tree.links
+        transparent = nodes.new("ShaderNodeBsdfTransparent")
+        diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+        diffuse.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        links.new(transparent.outputs[0], mix.inputs[1])
+        links.new(diffuse.outputs[0], mix.inputs[2])
+        info = m.read_material(half)
+        self.assertAlmostEqual(info.transmission, 0.5, places=6)
+        for a in info.albedo:
+            self.assertAlmostEqual(a, 1.0, places=5)
+
+        # Alpha from a node the export does not evaluate: opaque, and said so.
+        odd, node = node_material("odd", "ShaderNodeBsdfPrincipled")
+        value = odd.node_tree.nodes.new("ShaderNodeMath")
+        odd.node_tree.links.new(value.outputs[0], node.inputs["Alpha"])
+        info = m.read_material(odd)
+        self.assertFalse(info.lets_light_pass())
+        self.assertTrue(any("read as opaque" in w for w in info.warnings), info.warnings)
 
     def test_coat_and_sheen_are_named(self):
         """A Principled coat or sheen (4.x: Coat Weight, Sheen Weight; 3.x: Clearcoat, Sheen)

@@ -42,6 +42,7 @@ ScenePtr new_full_scene() {
   uint32_t glowing_id = 0;
   EXPECT_EQ(bakegi_scene_add_material(scene.get(), &glowing, &glowing_id), BAKEGI_OK);
   EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), glowing_id, 0), BAKEGI_OK);
+  EXPECT_EQ(bakegi_scene_set_material_passing(scene.get(), glowing_id, 0.625f, 0, 0.3f), BAKEGI_OK);
 
   const BoxMesh box;
   std::vector<float> normals(9 * 12), uvs(6 * 12);
@@ -147,7 +148,14 @@ TEST(SceneFile, RoundTripIsExact) {
     EXPECT_EQ(a.materials[i].emission_texture, b.materials[i].emission_texture);
     EXPECT_EQ(a.materials[i].glossy, b.materials[i].glossy);
     EXPECT_TRUE(same_bits(a.materials[i].glossy_exponent, b.materials[i].glossy_exponent));
+    EXPECT_TRUE(same_bits(a.materials[i].opacity, b.materials[i].opacity));
+    EXPECT_EQ(a.materials[i].opacity_texture, b.materials[i].opacity_texture);
+    EXPECT_TRUE(same_bits(a.materials[i].transmission, b.materials[i].transmission));
   }
+  EXPECT_FALSE(b.materials[0].lets_light_pass());
+  EXPECT_EQ(b.materials[1].opacity, 0.625f);
+  EXPECT_EQ(b.materials[1].opacity_texture, 0u);
+  EXPECT_EQ(b.materials[1].transmission, 0.3f);
   EXPECT_TRUE(b.materials[1].has_glossy());
   EXPECT_FALSE(b.materials[1].emission_two_sided);
   EXPECT_EQ(b.materials[0].emission_texture, BAKEGI_NO_TEXTURE);
@@ -279,9 +287,9 @@ void reseal(std::vector<uint8_t>& bytes) {
 TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   ScenePtr scene = new_box_scene();
   const std::vector<uint8_t> bytes = encode_scene_file(scene->description, nullptr);
-  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 52), then MESH: 16-byte
+  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 64), then MESH: 16-byte
   // section header, u32 mesh count, then object_id, material, vertex count.
-  const size_t vertex_count_at = 24 + 20 + 72 + 16 + 4 + 8;
+  const size_t vertex_count_at = 24 + 20 + 84 + 16 + 4 + 8;
   ASSERT_EQ(bytes[vertex_count_at], 8u);  // the box has 8 vertices
   std::vector<uint8_t> forged = bytes;
   for (int i = 0; i < 4; ++i) forged[vertex_count_at + i] = 0xFF;  // 4 billion vertices
@@ -311,10 +319,41 @@ TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   }
 }
 
+// The current encoding as version 7 wrote it: material records end before the opacity and
+// transmission (52 bytes instead of 64), resealed.
+std::vector<uint8_t> without_passing_fields(const std::vector<uint8_t>& newest) {
+  auto get_u64 = [&](size_t at) {
+    uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value |= uint64_t(newest[at + i]) << (8 * i);
+    return value;
+  };
+  EXPECT_EQ(newest[8], 8u);
+  const size_t materials_at = 24 + 16 + size_t(get_u64(24 + 8));  // after the textures
+  uint32_t count = 0;
+  for (int i = 0; i < 4; ++i) count |= uint32_t(newest[materials_at + 16 + i]) << (8 * i);
+  EXPECT_EQ(get_u64(materials_at + 8), 4u + 64u * count);
+  const size_t first = materials_at + 16 + 4;
+  std::vector<uint8_t> old(newest.begin(), newest.begin() + std::ptrdiff_t(first));
+  for (size_t m = 0; m < count; ++m) {
+    const auto record = newest.begin() + std::ptrdiff_t(first + 64 * m);
+    old.insert(old.end(), record, record + 52);
+  }
+  old.insert(old.end(), newest.begin() + std::ptrdiff_t(first + 64 * count), newest.end());
+  auto put_u64 = [&](size_t where, uint64_t value) {
+    for (int i = 0; i < 8; ++i) old[where + i] = uint8_t(value >> (8 * i));
+  };
+  old[8] = 7;
+  put_u64(materials_at + 8, 4 + 52 * count);
+  put_u64(16, old.size() - 24 - 8);
+  reseal(old);
+  return old;
+}
+
 // The current encoding (no portals) as a file of `version` (below 6) holds it: the world
 // section without the world image and the portal count (its radiance alone, 12 bytes instead
-// of 68), resealed.
-std::vector<uint8_t> with_old_world(const std::vector<uint8_t>& current, uint32_t version) {
+// of 68), and materials without the version 8 fields, resealed.
+std::vector<uint8_t> with_old_world(const std::vector<uint8_t>& newest, uint32_t version) {
+  const std::vector<uint8_t> current = without_passing_fields(newest);
   auto get_u64 = [&](size_t at) {
     uint64_t value = 0;
     for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);
@@ -335,7 +374,7 @@ std::vector<uint8_t> with_old_world(const std::vector<uint8_t>& current, uint32_
   return old;
 }
 
-// Rewrites the current encoding (version 4) of a scene with one material as an older build
+// Rewrites the encoding of version 7 of a scene with one material as an older build
 // wrote it: version 2 materials end before the emission texture (48 bytes instead of 52),
 // version 1 ones before the glossy lobe too (32 bytes).
 std::vector<uint8_t> as_version(const std::vector<uint8_t>& newest, uint32_t version) {
@@ -362,7 +401,8 @@ std::vector<uint8_t> as_version(const std::vector<uint8_t>& newest, uint32_t ver
   return old;
 }
 
-// One emissive material with a glossy lobe and an emission texture, on the box.
+// One emissive, half see-through material with a glossy lobe and an emission texture, on the
+// box.
 ScenePtr new_textured_emitter_scene() {
   ScenePtr scene = new_scene();
   const float texel[3] = {0.25f, 0.5f, 1.0f};
@@ -373,6 +413,8 @@ ScenePtr new_textured_emitter_scene() {
   material.glossy_exponent = 20.0f;
   EXPECT_EQ(bakegi_scene_add_material(scene.get(), &material, nullptr), BAKEGI_OK);
   EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), 0, 0), BAKEGI_OK);
+  EXPECT_EQ(bakegi_scene_set_material_passing(scene.get(), 0, 0.5f, BAKEGI_NO_TEXTURE, 0.0f),
+            BAKEGI_OK);
   const BoxMesh box;
   const bakegi_mesh_desc mesh = box.desc();
   EXPECT_EQ(bakegi_scene_add_mesh(scene.get(), &mesh, nullptr), BAKEGI_OK);
@@ -407,6 +449,12 @@ TEST(SceneFile, OlderVersionsAreStillRead) {
 
   // The current version keeps it.
   EXPECT_EQ(decode_scene_file(v3, "v3").scene.materials[0].emission_texture, 0u);
+  EXPECT_EQ(decode_scene_file(v3, "v3").scene.materials[0].opacity, 0.5f);
+
+  // Version 7: no see-through surfaces; its materials are opaque.
+  const SceneFile v7 = decode_scene_file(without_passing_fields(v3), "v7");
+  EXPECT_EQ(v7.scene.materials[0].emission_texture, 0u);
+  EXPECT_FALSE(v7.scene.materials[0].lets_light_pass());
 
   std::vector<uint8_t> future = v3;
   future[8] = uint8_t(kSceneFileVersion + 1);
@@ -425,7 +473,8 @@ TEST(SceneFile, OlderVersionsAreStillRead) {
 // A version 6 file (the world section ends after the image's rotation) reads without portals.
 TEST(SceneFile, Version6HasNoPortals) {
   ScenePtr scene = new_textured_emitter_scene();
-  const std::vector<uint8_t> current = encode_scene_file(scene->description, nullptr);
+  const std::vector<uint8_t> current =
+      without_passing_fields(encode_scene_file(scene->description, nullptr));
   auto get_u64 = [&](size_t at) {
     uint64_t value = 0;
     for (int i = 0; i < 8; ++i) value |= uint64_t(current[at + i]) << (8 * i);

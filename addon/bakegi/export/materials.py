@@ -13,6 +13,12 @@ texture), from the node tree:
   - Glossy BSDF (and Blender 3.x's Anisotropic BSDF): a glossy lobe of its color;
   - Emission shader: an emitter with black albedo, color x strength;
   - Mix / Add Shader: mixed best-effort, with a warning;
+  - see-through surfaces (the core's bakegi_scene_set_material_passing): a Principled BSDF's
+    Alpha (a constant, or an Image Texture's Alpha or Color output) and the old cut-out
+    setup, a Mix Shader of a Transparent BSDF and a surface whose Fac is an image's alpha,
+    become an opacity; transmission (Principled), Glass, Refraction and Transparent BSDFs a
+    share of light that passes straight on (thin glass: no refraction, caustics or tint);
+    the reflectances are then those of a surface a ray stopped at (divided by 1 - that share);
   - an Image Texture linked (directly or through reroutes) into a base color or an emission
     color (the Emission shader's Color, the Principled BSDF's Emission / Emission Color) is
     sampled, with the UV map of its vector input (default: the mesh's active render UV
@@ -51,6 +57,9 @@ class TextureRef:
 
     image: object
     uv_map: str = ""
+    # What an opacity texture reads of the image: "alpha" (its alpha channel, as an Image
+    # Texture's Alpha output) or "luminance" (its colour, as a Color output read as a float).
+    channel: str = "rgb"
 
 
 @dataclass
@@ -71,6 +80,14 @@ class MaterialInfo:
     # A Volume and no Surface (fog, a light shaft's box): Cycles lets light through its
     # boundary; the bake has no participating media, so objects made of it are left out.
     volume_only: bool = False
+    # See-through surfaces (bakegi_scene_set_material_passing): the share of the surface that
+    # is there (times opacity_texture), and of that the share passing straight through.
+    opacity: float = 1.0
+    opacity_texture: Optional[TextureRef] = None
+    transmission: float = 0.0
+
+    def lets_light_pass(self):
+        return self.opacity < 1.0 or self.opacity_texture is not None or self.transmission > 0.0
 
 
 # ---- colour -----------------------------------------------------------------------------
@@ -115,6 +132,30 @@ def image_linear_rgb(image, warnings):
         warnings.append(f"image '{image.name}' has non-finite pixels; they are read as 0")
         rgb = np.nan_to_num(rgb, nan=0.0, posinf=0.0, neginf=0.0)
     return rgb
+
+
+def image_opacity(image, channel, warnings):
+    """(height, width) float32 in [0, 1] of a Blender image, row 0 at the bottom: its alpha
+    channel (1 where it has none), or the luminance of its linear colour."""
+    if channel == "alpha":
+        width, height = int(image.size[0]), int(image.size[1])
+        channels = int(image.channels)
+        if width == 0 or height == 0 or channels == 0:
+            warnings.append(f"image '{image.name}' has no pixels (missing file?); its alpha is "
+                            "read as opaque")
+            return None
+        if channels not in (2, 4):
+            return np.ones((height, width), np.float32)
+        flat = np.empty(width * height * channels, np.float32)
+        image.pixels.foreach_get(flat)
+        alpha = flat.reshape(height, width, channels)[:, :, channels - 1]
+    else:
+        rgb = image_linear_rgb(image, warnings)
+        if rgb is None:
+            return None
+        alpha = rgb @ np.asarray(LUMINANCE, np.float32)
+    alpha = np.nan_to_num(alpha, nan=1.0, posinf=1.0, neginf=0.0)
+    return np.ascontiguousarray(np.clip(alpha, 0.0, 1.0), dtype=np.float32)
 
 
 def _float_input(node, names, fallback, info, what):
@@ -176,11 +217,11 @@ def _scaled(c, s):
 
 def sampled_uv_map(info):
     """The UV map the core samples a material's textures with ("" = the active render UV
-    map), or None if it has no texture. One per material: the emission texture's wins."""
-    if info.emission_texture is not None:
-        return info.emission_texture.uv_map
-    if info.texture is not None:
-        return info.texture.uv_map
+    map), or None if it has no texture. One per material: the emission texture's wins, then
+    the base color's, then the opacity's."""
+    for texture in (info.emission_texture, info.texture, info.opacity_texture):
+        if texture is not None:
+            return texture.uv_map
     return None
 
 
@@ -269,6 +310,11 @@ class _Shader:
     albedo_factor: float = 1.0
     glossy: Optional[tuple] = None  # (reflectance rgb, exponent)
     emission_texture: Optional[TextureRef] = None  # multiplies emission
+    # See-through (MaterialInfo): albedo and glossy above are shares of the light meeting the
+    # present surface; `transmission` the share of it passing straight on.
+    opacity: float = 1.0
+    opacity_texture: Optional[TextureRef] = None
+    transmission: float = 0.0
 
 
 def _read_emission(socket, strength, info, what):
@@ -278,20 +324,33 @@ def _read_emission(socket, strength, info, what):
     return light_units.emission_radiance(color, strength), texture
 
 
-_PASSING_LIGHT_ADVICE = ("the bake does not simulate light passing through a surface, so it "
-                         "blocks light like an opaque one (glass in a window darkens the room "
-                         "behind it); hide such objects while baking")
+LUMINANCE = (0.2126, 0.7152, 0.0722)
+_THIN_GLASS_NOTE = ("is baked as thin glass: light passes straight through it (no refraction, "
+                    "caustics or tint), right for window panes, approximate for solid glass")
 
 
-def _warn_light_passing(node, transmission, info, what):
-    """Warns where a Principled BSDF lets light through in Cycles (transmission, alpha): the
-    core's surfaces are opaque, so a window pane or a cut-out leaf blocks light instead."""
-    if transmission > 0.0:
-        info.warnings.append(f"{what}: transmission {transmission:g}: {_PASSING_LIGHT_ADVICE}")
-    alpha = input_socket(node, "Alpha")
-    if alpha is not None and (alpha.is_linked or float(alpha.default_value) < 1.0):
-        info.warnings.append(f"{what}: its alpha (transparency or a cut-out mask such as "
-                             f"leaves) is read as opaque; {_PASSING_LIGHT_ADVICE}")
+def _luminance(c):
+    return sum(w * float(x) for w, x in zip(LUMINANCE, c))
+
+
+def _opacity_source(socket, info, what):
+    """(constant opacity, TextureRef or None) behind an alpha-like float socket: its value,
+    or an Image Texture's Alpha (its alpha channel) or Color output (read as a float, which
+    Blender does by luminance). Anything else linked is read as opaque, with a warning."""
+    source = linked_from(socket)
+    if source is None:
+        return min(max(float(socket.default_value), 0.0), 1.0), None
+    node = source.node
+    if node.type == "TEX_IMAGE" and node.image is not None and source.name in ("Alpha", "Color"):
+        _texture_sampling(node, info, what)
+        if source.name == "Alpha" and getattr(node.image, "alpha_mode", "") == "NONE":
+            return 1.0, None  # Cycles reads such an image's alpha as 1
+        channel = "alpha" if source.name == "Alpha" else "luminance"
+        return 1.0, TextureRef(node.image, _texture_uv_map(node, info, what), channel)
+    info.warnings.append(f"{what}: the '{node.name}' node feeding '{socket.name}' of "
+                         f"'{socket.node.name}' is not evaluated: the surface is read as "
+                         "opaque (a cut-out or transparency made so blocks light in the bake)")
+    return 1.0, None
 
 
 def _warn_unmodelled_layers(node, info, what):
@@ -314,8 +373,8 @@ def _read_principled(node, info, what):
     metallic = _float_input(node, ("Metallic",), 0.0, info, what)
     transmission = _float_input(node, ("Transmission Weight", "Transmission"), 0.0, info,
                                 what)
-    dielectric = max(0.0, 1.0 - metallic) * max(0.0, 1.0 - transmission)
-    _warn_light_passing(node, transmission, info, what)
+    transmission = min(max(transmission, 0.0), 1.0)
+    dielectric = max(0.0, 1.0 - metallic) * (1.0 - transmission)
     _warn_unmodelled_layers(node, info, what)
     roughness = _float_input(node, ("Roughness",), 0.5, info, what)
     f_avg = fresnel_hemispherical_average(_principled_f0(node, info, what))
@@ -323,7 +382,13 @@ def _read_principled(node, info, what):
         info.warnings.append(f"{what}: a textured metallic color is read as the base "
                              "color's default value for the glossy lobe")
     metal_color = color_value(input_socket(node, "Base Color")) if texture is not None else base
-    glossy = _glossy_lobe([metallic * c + dielectric * f_avg for c in metal_color],
+    # Glass (transmission) reflects F_avg too and passes the rest, tinted by the base colour,
+    # which the core cannot tint: it passes the tint's luminance.
+    glass = max(0.0, 1.0 - metallic) * transmission
+    passing = glass * (1.0 - f_avg) * min(max(_luminance(metal_color), 0.0), 1.0)
+    if glass > 0.0:
+        info.warnings.append(f"{what}: transmission {transmission:g} {_THIN_GLASS_NOTE}")
+    glossy = _glossy_lobe([metallic * c + (dielectric + glass) * f_avg for c in metal_color],
                           roughness)
     # Cycles 4.x's Principled v2 layers the specular over the diffuse base (which loses
     # what the coat reflects); 3.x's v1 adds it on top, leaving the diffuse untouched, so
@@ -335,8 +400,60 @@ def _read_principled(node, info, what):
     if em_socket is not None:
         strength = _float_input(node, ("Emission Strength",), 1.0, info, what)
         emission, emission_texture = _read_emission(em_socket, strength, info, what)
+    opacity, opacity_texture = 1.0, None
+    alpha = input_socket(node, "Alpha")
+    if alpha is not None:
+        opacity, opacity_texture = _opacity_source(alpha, info, what)
     return _Shader(_scaled(base, factor), texture, emission, color_socket, factor, glossy,
-                   emission_texture)
+                   emission_texture, opacity, opacity_texture, passing)
+
+
+def _read_glass(node, info, what):
+    """Glass, Refraction and Transparent BSDFs as thin surfaces: the share of light passing
+    straight on is the colour's luminance (times 1 - F_avg for Glass, which reflects F_avg
+    as a glossy lobe); nothing else is reflected."""
+    color, texture, _ = _read_color(node.inputs["Color"], info, what)
+    if texture is not None:
+        info.warnings.append(f"{what}: a textured '{node.name}' colour is read as its default")
+        color = color_value(node.inputs["Color"])
+    share = min(max(_luminance(color), 0.0), 1.0)
+    if node.type == "BSDF_TRANSPARENT":
+        return _Shader(transmission=share)
+    info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) {_THIN_GLASS_NOTE}")
+    if node.type == "BSDF_REFRACTION":
+        return _Shader(transmission=share)
+    ior = _float_input(node, ("IOR",), 1.45, info, what)
+    r = (ior - 1.0) / (ior + 1.0) if ior > 0.0 else 0.0
+    f_avg = fresnel_hemispherical_average(r * r)
+    roughness = _float_input(node, ("Roughness",), 0.0, info, what)
+    return _Shader(glossy=_glossy_lobe((f_avg, f_avg, f_avg), roughness),
+                   transmission=share * (1.0 - f_avg))
+
+
+def _cut_out_mix(node, info, what, depth):
+    """The classic cut-out: a Mix Shader whose Fac comes from an image (its alpha, or its
+    colour) and whose first shader is a white Transparent BSDF: the second shader where the
+    image says so. None where the mix is not of that form."""
+    fac = node.inputs[0]
+    shaders = [s for s in node.inputs if s.type == "SHADER"]
+    if not fac.is_linked or len(shaders) != 2:
+        return None
+    first = linked_from(shaders[0])
+    if first is None or first.node.type != "BSDF_TRANSPARENT":
+        return None
+    if _luminance(color_value(first.node.inputs["Color"])) < 0.999:
+        return None
+    opacity, texture = _opacity_source(fac, info, what)
+    if texture is None:
+        return None
+    second = linked_from(shaders[1])
+    shader = _read_shader(second, info, what, depth + 1) if second is not None else _Shader()
+    shader.opacity *= opacity
+    if shader.opacity_texture is not None:
+        info.warnings.append(f"{what}: '{node.name}' cuts out a surface that has its own alpha "
+                             "texture: only the mix's is read")
+    shader.opacity_texture = texture
+    return shader
 
 
 def _read_shader(socket_out, info, what, depth=0):
@@ -362,6 +479,12 @@ def _read_shader(socket_out, info, what, depth=0):
         strength = _float_input(node, ("Strength",), 1.0, info, what)
         emission, emission_texture = _read_emission(node.inputs["Color"], strength, info, what)
         return _Shader(emission=emission, emission_texture=emission_texture)
+    if kind in ("BSDF_GLASS", "BSDF_REFRACTION", "BSDF_TRANSPARENT"):
+        return _read_glass(node, info, what)
+    if kind == "MIX_SHADER":
+        cut_out = _cut_out_mix(node, info, what, depth)
+        if cut_out is not None:
+            return cut_out
     if kind in ("MIX_SHADER", "ADD_SHADER"):
         shader_inputs = [s for s in node.inputs if s.type == "SHADER"]
         parts = []
@@ -378,25 +501,30 @@ def _read_shader(socket_out, info, what, depth=0):
                              "weighted sum of its shaders")
         albedo = [0.0, 0.0, 0.0]
         emission = [0.0, 0.0, 0.0]
+        passing = 0.0
         for w, part in zip(weights, parts):
+            # A part's reflectances are of its present surface; the mix's of the whole.
             for k in range(3):
-                albedo[k] += w * part.albedo[k]
+                albedo[k] += w * part.opacity * part.albedo[k]
                 emission[k] += w * part.emission[k]
+            passing += w * (1.0 - part.opacity * (1.0 - part.transmission))
+            if part.opacity_texture is not None:
+                info.warnings.append(f"{what}: an alpha texture inside '{node.name}' is read "
+                                     "as opaque")
         albedo = tuple(min(a, 1.0) for a in albedo)
         glossy = _mixed_glossy(weights, parts)
+        passing = min(max(passing, 0.0), 1.0)
         emission_texture = _mixed_emission_texture(weights, parts, info, what)
         # Keep the texture of the part that weighs most, scaled by its weight.
         best = max(range(len(parts)), key=lambda i: weights[i] * max(parts[i].albedo),
                    default=None)
         if best is not None and parts[best].texture is not None:
-            w = weights[best]
+            w = weights[best] * parts[best].opacity
             return _Shader(_scaled(parts[best].albedo, w), parts[best].texture, tuple(emission),
                            parts[best].color_socket, parts[best].albedo_factor * w, glossy,
-                           emission_texture)
-        return _Shader(albedo, None, tuple(emission), None, 1.0, glossy, emission_texture)
-    if kind in ("BSDF_GLASS", "BSDF_REFRACTION", "BSDF_TRANSPARENT"):
-        info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) lets light through in "
-                             f"Cycles; {_PASSING_LIGHT_ADVICE}")
+                           emission_texture, transmission=passing)
+        return _Shader(albedo, None, tuple(emission), None, 1.0, glossy, emission_texture,
+                       transmission=passing)
     # Any other shader: its colour input's default value, as diffuse.
     color = input_socket(node, "Color", "Base Color")
     info.warnings.append(f"{what}: '{node.name}' ({node.bl_label}) is approximated as a diffuse "
@@ -432,6 +560,7 @@ def _mixed_glossy(weights, parts):
         if part.glossy is None:
             continue
         rgb, exponent = part.glossy
+        w *= part.opacity
         for k in range(3):
             reflectance[k] += w * rgb[k]
         strength = w * max(rgb)
@@ -440,6 +569,25 @@ def _mixed_glossy(weights, parts):
     if weight_sum <= 0.0:
         return None
     return tuple(min(c, 1.0) for c in reflectance), exponent_sum / weight_sum
+
+
+def _stopped_surface(shader):
+    """The core reflects light only where a ray stops at a surface (1 - transmission of its
+    present part): its reflectances are divided by that share, so that what a surface reflects
+    of all the light meeting it stays what Cycles reflects."""
+    t = min(max(float(shader.transmission), 0.0), 1.0)
+    if t <= 0.0:
+        return
+    if t >= 0.9999:  # every ray passes: nothing is ever reflected
+        shader.albedo, shader.glossy, shader.albedo_factor = (0.0, 0.0, 0.0), None, 0.0
+        shader.texture = shader.color_socket = None
+        return
+    k = 1.0 / (1.0 - t)
+    shader.albedo = _scaled(shader.albedo, k)
+    shader.albedo_factor *= k
+    if shader.glossy is not None:
+        rgb, exponent = shader.glossy
+        shader.glossy = (tuple(min(c * k, 1.0) for c in rgb), exponent)
 
 
 def read_material(material):
@@ -474,6 +622,10 @@ def read_material(material):
         info.albedo = (0.0, 0.0, 0.0)  # Cycles renders an unconnected surface black
         return info
     shader = _read_shader(surface, info, what)
+    _stopped_surface(shader)
+    info.opacity = min(max(float(shader.opacity), 0.0), 1.0)
+    info.opacity_texture = shader.opacity_texture
+    info.transmission = min(max(float(shader.transmission), 0.0), 1.0)
     albedo, texture, emission = shader.albedo, shader.texture, shader.emission
     color_socket, factor, glossy = shader.color_socket, shader.albedo_factor, shader.glossy
     info.albedo = tuple(min(max(float(a), 0.0), 1.0) for a in albedo)
@@ -491,6 +643,11 @@ def read_material(material):
     info.texture = texture
     info.emission = tuple(max(float(e), 0.0) for e in emission)
     info.emission_texture = shader.emission_texture if max(info.emission) > 0.0 else None
+    if (info.opacity_texture is not None
+            and info.opacity_texture.uv_map != sampled_uv_map(info)):
+        info.warnings.append(
+            f"{what}: its alpha texture uses another UV map than its other textures; it is "
+            "sampled with theirs")
     if (info.texture is not None and info.emission_texture is not None
             and info.texture.uv_map != info.emission_texture.uv_map):
         info.warnings.append(

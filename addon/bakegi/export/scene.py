@@ -99,6 +99,7 @@ class SceneExporter:
         self.material_infos = {}  # original material name_full -> MaterialInfo
         self.texture_ids = {}  # (image name_full) -> core texture id
         self.emission_texture_ids = {}  # image name_full -> (core texture id, emission scale)
+        self.opacity_texture_ids = {}  # (image name_full, channel) -> core texture id or None
         self.local_meshes = {}
         self.triangles = 0
         self.meshes = 0
@@ -117,7 +118,19 @@ class SceneExporter:
     def texture_count(self):
         ids = {v for v in self.texture_ids.values() if v is not None}
         ids.update(v[0] for v in self.emission_texture_ids.values() if v[0] is not None)
+        ids.update(v for v in self.opacity_texture_ids.values() if v is not None)
         return len(ids)
+
+    def _opacity_texture(self, ref):
+        """Core texture id (or None: no pixels) whose red channel is the image's alpha or its
+        colour's luminance (TextureRef.channel), for a see-through material."""
+        key = (ref.image.name_full, ref.channel)
+        if key not in self.opacity_texture_ids:
+            values = materials.image_opacity(ref.image, ref.channel, self.warnings)
+            self.opacity_texture_ids[key] = (
+                None if values is None
+                else self.scene.add_texture(np.repeat(values[:, :, None], 3, axis=2)))
+        return self.opacity_texture_ids[key]
 
     def _emission_texture(self, image):
         """(core texture id or None, scale) of an image that multiplies emission. The core's
@@ -169,6 +182,14 @@ class SceneExporter:
                 info.albedo, tuple(scale * e for e in info.emission), texture,
                 emission_two_sided=True, glossy=info.glossy,
                 glossy_exponent=info.glossy_exponent, emission_texture=emission_texture)
+            if info.lets_light_pass():
+                opacity_texture = None
+                if info.opacity_texture is not None:
+                    opacity_texture = self._opacity_texture(info.opacity_texture)
+                    if opacity_texture is None:  # no pixels (warned): opaque where present
+                        info.opacity_texture = None
+                self.scene.set_material_passing(self.material_ids[key], info.opacity,
+                                                opacity_texture, info.transmission)
             if original is not None:
                 self.material_infos[key] = info
         info = self.material_infos[key] if key is not None else materials.MaterialInfo()

@@ -129,6 +129,23 @@ BAKEGI_API bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene
                                                                     uint32_t material,
                                                                     uint32_t texture);
 
+/* See-through surfaces: window glass, cut-out leaves, a net curtain. Where a ray meets a
+ * triangle of material `material`, the surface is present with probability opacity x the
+ * opacity texture's red channel at the triangle's UVs (texture: BAKEGI_NO_TEXTURE for none),
+ * and of a present surface a share `transmission` lets rays pass straight on (thin glass: no
+ * refraction, no tint). A ray passes with probability 1 - present x (1 - transmission), in
+ * every ray the core traces (lamp and sky shadow rays, paths, visibility); otherwise it stops
+ * at the surface, which then reflects and emits as the material says: so albedo and glossy
+ * are the reflectances of a surface a ray stopped at (a glass pane that reflects 8% of the
+ * light it meets, passing 92%: glossy 1, transmission 0.92). Defaults: opacity 1, no
+ * texture, transmission 0 (opaque). Only the path tracer and the direct-light method are
+ * measured with such surfaces; the other methods' transport treats them as opaque in parts
+ * (a warning says so). Errors (INVALID_ARGUMENT): NULL scene, a material or texture index
+ * not yet added, opacity or transmission outside [0,1] or not finite. */
+BAKEGI_API bakegi_status bakegi_scene_set_material_passing(bakegi_scene* scene, uint32_t material,
+                                                           float opacity, uint32_t opacity_texture,
+                                                           float transmission);
+
 /* A triangle mesh in world space. Per-corner data has 3 entries per triangle, in the
  * order of indices. Optional arrays may be NULL. */
 typedef struct bakegi_mesh_desc {

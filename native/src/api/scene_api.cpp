@@ -136,6 +136,33 @@ bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene* scene, ui
   });
 }
 
+bakegi_status bakegi_scene_set_material_passing(bakegi_scene* scene, uint32_t material,
+                                                float opacity, uint32_t opacity_texture,
+                                                float transmission) {
+  return guarded(__func__, [&] {
+    require(scene, "scene");
+    std::vector<bakegi::Material>& materials = scene->description.materials;
+    if (material >= materials.size()) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "material index " + std::to_string(material) +
+                                                     " is not below the material count " +
+                                                     std::to_string(materials.size()));
+    }
+    const size_t textures = scene->description.textures.size();
+    if (opacity_texture != BAKEGI_NO_TEXTURE && opacity_texture >= textures) {
+      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                  "material " + std::to_string(material) + ": opacity texture index " +
+                      std::to_string(opacity_texture) + " is not below the texture count " +
+                      std::to_string(textures) + " (add the texture first)");
+    }
+    bakegi::Material m = materials[material];
+    m.opacity = opacity;
+    m.opacity_texture = opacity_texture;
+    m.transmission = transmission;
+    bakegi::check_material(m, material);
+    materials[material] = m;
+  });
+}
+
 bakegi_status bakegi_scene_add_mesh(bakegi_scene* scene, const bakegi_mesh_desc* mesh,
                                     uint32_t* out_mesh) {
   return guarded(__func__, [&] {

@@ -552,6 +552,13 @@ std::unique_ptr<IndirectField> BakeJob::solve_full(Report& report) {
         "image's mean colour, not the image (its direct light and the other methods "
         "use the image)");
   }
+  if (tracer_->has_passing_surfaces() && method_used != "pathtrace" && method_used != "direct") {
+    // Their rays pass glass and cut-outs, but their transport between surfaces (antiradiance's
+    // links, meshless' basis, splatting's shadow maps) does not everywhere.
+    report.warn(method_used +
+                ": light through see-through surfaces (glass, cut-outs) is modelled only along "
+                "its rays, not in all of its transport: bake such scenes with the path tracer");
+  }
   report.add_seconds("solve", seconds_since(stage_start));
 
   std::shared_ptr<const Precomputation> kept = std::move(run.precomputation);

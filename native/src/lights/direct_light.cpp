@@ -32,6 +32,11 @@ float keep_number(float u1, float u2, size_t lamp) {
   return float(h >> 40) * (1.0f / 16777216.0f);
 }
 
+// A shadow ray's seed (Ray::seed) from the numbers its light sample was drawn with.
+uint32_t shadow_seed(float u1, float u2, size_t salt) {
+  return uint32_t(keep_number(u1, u2, salt) * 16777216.0f);
+}
+
 }  // namespace
 
 DirectLight::DirectLight(const Scene& scene, const RayTracer& tracer)
@@ -95,12 +100,16 @@ void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng
         s.contribution /= kept;
       }
     }
+    s.seed = shadow_seed(u1, u2, k);
     visit(s);
   }
   s.casts_shadow = true;  // emissive triangles and the world
   if (!emissive_triangles_.empty()) {
     const float u0 = rng.next_float(), u1 = rng.next_float(), u2 = rng.next_float();
-    if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) visit(s);
+    if (emissive_triangles_.sample(x.position, u0, u1, u2, s)) {
+      s.seed = shadow_seed(u1 + u0, u2, lamps);
+      visit(s);
+    }
   }
   // Last, so that scenes without a world image draw the same numbers as before.
   if (world == World::kExcluded) return;
@@ -110,7 +119,10 @@ void DirectLight::for_each_light_sample(const SurfacePoint& x, RandomStream& rng
     if (sample_world_through_portals(x.position, share, rng, s)) visit(s);
   } else if (environment_) {
     const float u1 = rng.next_float(), u2 = rng.next_float();
-    if (environment_->sample(u1, u2, s)) visit(s);
+    if (environment_->sample(u1, u2, s)) {
+      s.seed = shadow_seed(u1, u2, lamps + 1);
+      visit(s);
+    }
   }
 }
 
@@ -153,7 +165,7 @@ bool DirectLight::unoccluded(const SurfacePoint& x, const LightSample& s, uint64
   // Light geometry is seen from the surface point itself; only the shadow ray starts off
   // the surface, aimed at the sampled point, so the offset adds no bias to 1/d^2.
   const glm::vec3 origin = ray_origin(x);
-  Ray shadow{origin, s.direction, 0.0f, 1e30f};
+  Ray shadow{origin, s.direction, 0.0f, 1e30f, s.seed};
   if (std::isfinite(s.distance)) {
     const glm::vec3 to_light = x.position + s.direction * s.distance - origin;
     const float distance = glm::length(to_light);

@@ -15,6 +15,7 @@ struct LightSample {
   glm::vec3 contribution{0.0f};
   float pdf = 0.0f;          // solid-angle density of the strategy, 0 for delta lights (no MIS)
   bool casts_shadow = true;  // false: no shadow ray (a light with BAKEGI_LIGHT_NO_SHADOW)
+  uint32_t seed = 0;         // the shadow ray's Ray::seed: from the sample's random numbers
 };
 
 // A ray that crossed a light shape which is not a triangle of the BVH.

@@ -16,6 +16,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "scene/passing_surfaces.h"
 #include "scene/scene.h"
 #include "util/error.h"
 
@@ -35,7 +36,7 @@ RTCRay to_rtc_ray(const Ray& ray) {
   r.tfar = ray.tfar;
   r.time = 0.0f;
   r.mask = std::numeric_limits<unsigned>::max();
-  r.id = 0;
+  r.id = ray.seed;
   r.flags = 0;
   return r;
 }
@@ -74,6 +75,35 @@ struct RayTracer::Impl {
 
   std::atomic<int64_t> memory{0};
   std::atomic<int64_t> peak_memory{0};
+
+  // Geometry 0 holds the opaque triangles, geometry 1 (only where there are any) the passing
+  // ones; a hit's primitive is turned back into a Scene::triangles index through these.
+  std::unique_ptr<const PassingSurfaces> passing;
+  std::vector<uint32_t> opaque_triangles;  // empty: geometry 0 is every triangle, in order
+
+  uint32_t triangle_of(unsigned geometry, unsigned primitive) const {
+    if (geometry == 1) return passing->triangle_indices()[primitive];
+    return opaque_triangles.empty() ? primitive : opaque_triangles[primitive];
+  }
+
+  // Embree's filter for geometry 1: a hit the ray passes is rejected, so traversal goes on.
+  static void pass_filter(const RTCFilterFunctionNArguments* args) {
+    const auto* surfaces = static_cast<const PassingSurfaces*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+      if (args->valid[i] != -1) continue;
+      RTCRayN* ray = args->ray;
+      RTCHitN* hit = args->hit;
+      const unsigned n = args->N;
+      const glm::vec3 origin(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i),
+                             RTCRayN_org_z(ray, n, i));
+      const glm::vec3 direction(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i),
+                                RTCRayN_dir_z(ray, n, i));
+      if (surfaces->passes(RTCHitN_primID(hit, n, i), RTCHitN_u(hit, n, i), RTCHitN_v(hit, n, i),
+                           RTCRayN_id(ray, n, i), origin, direction)) {
+        args->valid[i] = 0;
+      }
+    }
+  }
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -148,7 +178,29 @@ RayTracer::RayTracer(const Scene& scene, const RayTracerOptions& options)
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
   rtcSetSceneProgressMonitorFunction(impl_->scene, &Impl::on_progress, impl_.get());
 
-  const size_t count = scene.triangles.size();
+  impl_->passing = std::make_unique<const PassingSurfaces>(scene);
+  if (impl_->passing->empty()) {
+    attach_triangles(scene, nullptr, false);
+  } else {
+    std::vector<bool> passes(scene.triangles.size(), false);
+    for (uint32_t t : impl_->passing->triangle_indices()) passes[t] = true;
+    for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+      if (!passes[t]) impl_->opaque_triangles.push_back(t);
+    }
+    attach_triangles(scene, &impl_->opaque_triangles, false);
+    attach_triangles(scene, &impl_->passing->triangle_indices(), true);
+  }
+  rtcCommitScene(impl_->scene);
+  impl_->throw_if_failed("BVH build");
+}
+
+RayTracer::~RayTracer() = default;
+
+void RayTracer::attach_triangles(const Scene& scene, const std::vector<uint32_t>* subset,
+                                 bool passing) {
+  const size_t count = subset ? subset->size() : scene.triangles.size();
+  // A scene all of glass has no opaque geometry: Embree refuses empty buffers.
+  if (count == 0) return;
   RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   impl_->throw_if_failed("geometry creation");
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -161,25 +213,31 @@ RayTracer::RayTracer(const Scene& scene, const RayTracerOptions& options)
     throw Error(BAKEGI_ERROR_RAY_TRACER, "Embree returned no geometry buffer");
   }
   for (size_t t = 0; t < count; ++t) {
+    const Triangle& triangle = scene.triangles[subset ? (*subset)[t] : t];
     for (int c = 0; c < 3; ++c) {
-      const glm::vec3& p = scene.triangles[t].p[c];
+      const glm::vec3& p = triangle.p[c];
       vertices[9 * t + 3 * c + 0] = p.x;
       vertices[9 * t + 3 * c + 1] = p.y;
       vertices[9 * t + 3 * c + 2] = p.z;
       indices[3 * t + c] = unsigned(3 * t + c);
     }
   }
+  if (passing) {
+    rtcSetGeometryUserData(geometry, const_cast<PassingSurfaces*>(impl_->passing.get()));
+    rtcSetGeometryIntersectFilterFunction(geometry, &Impl::pass_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, &Impl::pass_filter);
+  }
   rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
   rtcCommitGeometry(geometry);
-  // Geometry ids equal attach order; the only geometry is 0, its primitives the triangles.
-  rtcAttachGeometry(impl_->scene, geometry);
+  // Fixed ids: 0 the opaque triangles, 1 the passing ones (Impl::triangle_of).
+  rtcAttachGeometryByID(impl_->scene, geometry, passing ? 1u : 0u);
   rtcReleaseGeometry(geometry);
   impl_->throw_if_failed("geometry setup");
-  rtcCommitScene(impl_->scene);
-  impl_->throw_if_failed("BVH build");
 }
 
-RayTracer::~RayTracer() = default;
+bool RayTracer::has_passing_surfaces() const {
+  return !impl_->passing->empty();
+}
 
 Hit RayTracer::intersect(const Ray& ray) const {
   if (log_) log_->push_back({ray, false});
@@ -198,7 +256,7 @@ Hit RayTracer::intersect(const Ray& ray) const {
   if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.hit = true;
   hit.t = rayhit.ray.tfar;
-  hit.triangle = rayhit.hit.primID;
+  hit.triangle = impl_->triangle_of(rayhit.hit.geomID, rayhit.hit.primID);
   hit.b1 = rayhit.hit.u;
   hit.b2 = rayhit.hit.v;
   return hit;
@@ -222,50 +280,50 @@ void RayTracer::intersect_many(const Ray* rays, Hit* hits, size_t count) const {
   // 16-wide packets, packets in parallel: the throughput Embree offers on this machine.
   constexpr size_t kWidth = 16;
   const size_t packets = (count + kWidth - 1) / kWidth;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 16),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      for (size_t packet = range.begin(); packet != range.end(); ++packet) {
-                        const size_t first = packet * kWidth;
-                        const size_t n = std::min(kWidth, count - first);
-                        alignas(64) int valid[kWidth];
-                        RTCRayHit16 rayhit;
-                        for (size_t i = 0; i < kWidth; ++i) {
-                          valid[i] = i < n ? -1 : 0;
-                          const Ray& ray = rays[first + (i < n ? i : 0)];
-                          rayhit.ray.org_x[i] = ray.origin.x;
-                          rayhit.ray.org_y[i] = ray.origin.y;
-                          rayhit.ray.org_z[i] = ray.origin.z;
-                          rayhit.ray.dir_x[i] = ray.direction.x;
-                          rayhit.ray.dir_y[i] = ray.direction.y;
-                          rayhit.ray.dir_z[i] = ray.direction.z;
-                          rayhit.ray.tnear[i] = ray.tnear;
-                          rayhit.ray.tfar[i] = ray.tfar;
-                          rayhit.ray.time[i] = 0.0f;
-                          rayhit.ray.mask[i] = std::numeric_limits<unsigned>::max();
-                          rayhit.ray.id[i] = unsigned(i);
-                          rayhit.ray.flags[i] = 0;
-                          rayhit.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-                          rayhit.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-                        }
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, packets, 16), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t packet = range.begin(); packet != range.end(); ++packet) {
+          const size_t first = packet * kWidth;
+          const size_t n = std::min(kWidth, count - first);
+          alignas(64) int valid[kWidth];
+          RTCRayHit16 rayhit;
+          for (size_t i = 0; i < kWidth; ++i) {
+            valid[i] = i < n ? -1 : 0;
+            const Ray& ray = rays[first + (i < n ? i : 0)];
+            rayhit.ray.org_x[i] = ray.origin.x;
+            rayhit.ray.org_y[i] = ray.origin.y;
+            rayhit.ray.org_z[i] = ray.origin.z;
+            rayhit.ray.dir_x[i] = ray.direction.x;
+            rayhit.ray.dir_y[i] = ray.direction.y;
+            rayhit.ray.dir_z[i] = ray.direction.z;
+            rayhit.ray.tnear[i] = ray.tnear;
+            rayhit.ray.tfar[i] = ray.tfar;
+            rayhit.ray.time[i] = 0.0f;
+            rayhit.ray.mask[i] = std::numeric_limits<unsigned>::max();
+            rayhit.ray.id[i] = ray.seed;
+            rayhit.ray.flags[i] = 0;
+            rayhit.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+            rayhit.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+          }
 #if BAKEGI_EMBREE_MAJOR >= 4
-                        rtcIntersect16(valid, impl_->scene, &rayhit);
+          rtcIntersect16(valid, impl_->scene, &rayhit);
 #else
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       rtcIntersect16(valid, impl_->scene, &context, &rayhit);
 #endif
-                        for (size_t i = 0; i < n; ++i) {
-                          Hit& hit = hits[first + i];
-                          hit = Hit{};
-                          if (rayhit.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
-                          hit.hit = true;
-                          hit.t = rayhit.ray.tfar[i];
-                          hit.triangle = rayhit.hit.primID[i];
-                          hit.b1 = rayhit.hit.u[i];
-                          hit.b2 = rayhit.hit.v[i];
-                        }
-                      }
-                    });
+          for (size_t i = 0; i < n; ++i) {
+            Hit& hit = hits[first + i];
+            hit = Hit{};
+            if (rayhit.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+            hit.hit = true;
+            hit.t = rayhit.ray.tfar[i];
+            hit.triangle = impl_->triangle_of(rayhit.hit.geomID[i], rayhit.hit.primID[i]);
+            hit.b1 = rayhit.hit.u[i];
+            hit.b2 = rayhit.hit.v[i];
+          }
+        }
+      });
 }
 
 size_t RayTracer::memory_bytes() const {

@@ -19,6 +19,10 @@ struct Ray {
   glm::vec3 direction;  // need not be normalized; t is in units of |direction|
   float tnear = 0.0f;
   float tfar = 1e30f;
+  // Tells apart rays that share origin and direction where they meet see-through surfaces
+  // (scene/passing_surfaces.h): a sample's own random numbers, hashed; 0 where it does not
+  // matter.
+  uint32_t seed = 0;
 };
 
 struct Hit {
@@ -58,6 +62,9 @@ class RayTracer {
 
   // Bytes Embree holds for this scene (counted by its memory monitor).
   size_t memory_bytes() const;
+  // Whether some triangles let rays pass (glass, cut-outs): then every ray passes each of
+  // them with its material's probability, and a hit is the first surface a ray stopped at.
+  bool has_passing_surfaces() const;
 
   // Appends every ray intersect() and occluded() trace to `log`, in order (null: off), so
   // that native/bench can time Embree alone on the path tracer's own rays. Not
@@ -65,6 +72,10 @@ class RayTracer {
   void record_rays(std::vector<RecordedRay>* log) { log_ = log; }
 
  private:
+  // Makes and attaches one triangle geometry: `subset` of scene.triangles (null: all), with
+  // the pass filter where `passing`.
+  void attach_triangles(const Scene& scene, const std::vector<uint32_t>* subset, bool passing);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<RecordedRay>* log_ = nullptr;

@@ -90,6 +90,9 @@ void write_scene(Writer& w, const SceneDescription& scene) {
     w.vec3(m.glossy);
     w.f32(m.glossy_exponent);
     w.u32(m.emission_texture);
+    w.f32(m.opacity);
+    w.u32(m.opacity_texture);
+    w.f32(m.transmission);
   }
   w.end_section(at);
 
@@ -164,7 +167,8 @@ void read_textures(Reader& r, SceneDescription& scene) {
 void read_materials(Reader& r, SceneDescription& scene, uint32_t version) {
   const uint32_t count = r.u32();
   const bool has_glossy = version >= 2, has_emission_texture = version >= 3;
-  const uint64_t bytes = has_emission_texture ? 52 : has_glossy ? 48 : 32;
+  const bool has_passing = version >= 8;
+  const uint64_t bytes = has_passing ? 64 : has_emission_texture ? 52 : has_glossy ? 48 : 32;
   r.array(scene.materials, count, bytes, "materials", [&] {
     Material m;
     m.albedo = r.vec3();
@@ -178,6 +182,11 @@ void read_materials(Reader& r, SceneDescription& scene, uint32_t version) {
       m.glossy_exponent = r.f32();
     }
     if (has_emission_texture) m.emission_texture = r.u32();
+    if (has_passing) {
+      m.opacity = r.f32();
+      m.opacity_texture = r.u32();
+      m.transmission = r.f32();
+    }
     return m;
   });
 }

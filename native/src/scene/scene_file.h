@@ -28,7 +28,7 @@ namespace bakegi {
 // the world's image (texture index, scale, rotation after the world's radiance), version 7
 // the window portals (a count and light records after the rotation). Older files are still
 // read: version 1 materials are diffuse, and neither has emission textures.
-inline constexpr uint32_t kSceneFileVersion = 7;
+inline constexpr uint32_t kSceneFileVersion = 8;
 inline constexpr uint32_t kOldestSceneFileVersion = 1;
 
 struct SceneFile {

@@ -161,6 +161,13 @@ void check_material(const Material& material, size_t index) {
     invalid(name + ": glossy exponent must be finite and in [0, " + num(kMaxGlossyExponent) +
             "], got " + num(n));
   }
+  if (!std::isfinite(material.opacity) || material.opacity < 0 || material.opacity > 1) {
+    invalid(name + ": opacity must be in [0,1], got " + num(material.opacity));
+  }
+  if (!std::isfinite(material.transmission) || material.transmission < 0 ||
+      material.transmission > 1) {
+    invalid(name + ": transmission must be in [0,1], got " + num(material.transmission));
+  }
 }
 
 void check_mesh(const Mesh& mesh, size_t index) {
@@ -389,6 +396,12 @@ void check_scene_parts(const SceneDescription& description) {
         material.emission_texture >= description.textures.size()) {
       invalid("material " + std::to_string(i) + ": emission texture index " +
               std::to_string(material.emission_texture) + " out of range (" +
+              std::to_string(description.textures.size()) + " textures)");
+    }
+    if (material.opacity_texture != BAKEGI_NO_TEXTURE &&
+        material.opacity_texture >= description.textures.size()) {
+      invalid("material " + std::to_string(i) + ": opacity texture index " +
+              std::to_string(material.opacity_texture) + " out of range (" +
               std::to_string(description.textures.size()) + " textures)");
     }
   }
