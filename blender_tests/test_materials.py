@@ -12,6 +12,7 @@ import common  # noqa: E402
 import unittest  # noqa: E402
 
 import bpy  # noqa: E402
+import numpy  # noqa: E402
 
 
 node_material = common.node_material
@@ -176,6 +177,29 @@ class Materials(unittest.TestCase):
         info = m.read_material(leaf)
         self.assertEqual(info.opacity_texture.image, mask)
         self.assertEqual(info.opacity_texture.channel, "alpha")
+        self.assertFalse([w for w in info.warnings if "opaque" in w], info.warnings)
+
+        # glTF's alpha cut-off as Blender 4.x imports it: Alpha = 1 - (alpha < 0.5), two Math
+        # nodes; the export applies them to the image's alpha, texel by texel.
+        clip, node = node_material("clip", "ShaderNodeBsdfPrincipled")
+        nodes, links = clip.node_tree.nodes, clip.node_tree.links
+        image = nodes.new("ShaderNodeTexImage")
+        image.image = mask
+        less, one_minus = nodes.new("ShaderNodeMath"), nodes.new("ShaderNodeMath")
+        less.operation, one_minus.operation = "LESS_THAN", "SUBTRACT"
+        less.inputs[1].default_value, one_minus.inputs[0].default_value = 0.5, 1.0
+        links.new(image.outputs["Alpha"], less.inputs[0])
+        links.new(less.outputs[0], one_minus.inputs[1])
+        links.new(one_minus.outputs[0], node.inputs["Alpha"])
+        info = m.read_material(clip)
+        self.assertEqual(info.opacity_texture.math,
+                         (("LESS_THAN", 0.5, 0, False), ("SUBTRACT", 1.0, 1, False)))
+        alpha = numpy.linspace(0.0, 1.0, 16, dtype=numpy.float32).reshape(4, 4)
+        pixels = numpy.ones((4, 4, 4), numpy.float32)
+        pixels[:, :, 3] = alpha
+        mask.pixels.foreach_set(pixels.ravel())
+        opacity = m.image_opacity(mask, "alpha", [], info.opacity_texture.math)
+        numpy.testing.assert_array_equal(opacity, (alpha >= 0.5).astype(numpy.float32))
         self.assertFalse([w for w in info.warnings if "opaque" in w], info.warnings)
 
         cut, mix = node_material("cut", "ShaderNodeMixShader")

@@ -60,6 +60,10 @@ class TextureRef:
     # What an opacity texture reads of the image: "alpha" (its alpha channel, as an Image
     # Texture's Alpha output) or "luminance" (its colour, as a Color output read as a float).
     channel: str = "rgb"
+    # Math nodes between the image and the Alpha socket (glTF's alpha cut-off in Blender
+    # 4.x's importer: 1 - (alpha < 0.5)): (operation, constant, which input the value feeds,
+    # clamp), in the order they apply (ALPHA_MATH).
+    math: tuple = ()
 
 
 @dataclass
@@ -134,9 +138,10 @@ def image_linear_rgb(image, warnings):
     return rgb
 
 
-def image_opacity(image, channel, warnings):
+def image_opacity(image, channel, warnings, math=()):
     """(height, width) float32 in [0, 1] of a Blender image, row 0 at the bottom: its alpha
-    channel (1 where it has none), or the luminance of its linear colour."""
+    channel (1 where it has none), or the luminance of its linear colour; then `math`
+    (TextureRef.math) applied."""
     if channel == "alpha":
         width, height = int(image.size[0]), int(image.size[1])
         channels = int(image.channels)
@@ -155,6 +160,9 @@ def image_opacity(image, channel, warnings):
             return None
         alpha = rgb @ np.asarray(LUMINANCE, np.float32)
     alpha = np.nan_to_num(alpha, nan=1.0, posinf=1.0, neginf=0.0)
+    alpha = np.ascontiguousarray(np.clip(alpha, 0.0, 1.0), dtype=np.float32)
+    if math:
+        alpha = np.nan_to_num(apply_alpha_math(alpha, math), nan=1.0, posinf=1.0, neginf=0.0)
     return np.ascontiguousarray(np.clip(alpha, 0.0, 1.0), dtype=np.float32)
 
 
@@ -333,20 +341,72 @@ def _luminance(c):
     return sum(w * float(x) for w, x in zip(LUMINANCE, c))
 
 
+# The Math node operations an alpha may pass through on its way from an image, as Cycles
+# computes them: f(value, constant, index of the input the value feeds).
+ALPHA_MATH = {
+    "ADD": lambda x, c, i: x + c,
+    "SUBTRACT": lambda x, c, i: x - c if i == 0 else c - x,
+    "MULTIPLY": lambda x, c, i: x * c,
+    "DIVIDE": lambda x, c, i: (x / c if c != 0.0 else x * 0.0) if i == 0
+    else np.divide(c, x, out=np.zeros_like(x), where=x != 0.0),
+    "MINIMUM": lambda x, c, i: np.minimum(x, c),
+    "MAXIMUM": lambda x, c, i: np.maximum(x, c),
+    "LESS_THAN": lambda x, c, i: ((x < c) if i == 0 else (c < x)).astype(np.float32),
+    "GREATER_THAN": lambda x, c, i: ((x > c) if i == 0 else (c > x)).astype(np.float32),
+    "ROUND": lambda x, c, i: np.floor(x + 0.5),
+}
+_UNARY_MATH = {"ROUND"}
+
+
+def apply_alpha_math(values, math):
+    """An opacity texture's values through TextureRef.math, texel by texel (Cycles applies it
+    after filtering: a cut-off's edge is then soft over one texel here, hard there)."""
+    for operation, constant, index, clamp in math:
+        values = ALPHA_MATH[operation](values, np.float32(constant), index)
+        if clamp:
+            values = np.clip(values, 0.0, 1.0)
+    return values.astype(np.float32)
+
+
+def _alpha_math_chain(source):
+    """(operations from the image outwards, the socket the chain starts from) for Math nodes
+    of ALPHA_MATH, each fed by one linked value and constants; (None, None) otherwise."""
+    chain = []
+    while source is not None and source.node.type == "MATH" and len(chain) < 8:
+        node = source.node
+        operation = node.operation
+        if operation not in ALPHA_MATH:
+            return None, None
+        used = node.inputs[:1] if operation in _UNARY_MATH else node.inputs[:2]
+        linked = [i for i, s in enumerate(used) if s.is_linked]
+        if len(linked) != 1:
+            return None, None
+        index = linked[0]
+        constant = 0.0 if operation in _UNARY_MATH else float(used[1 - index].default_value)
+        chain.append((operation, constant, index, bool(node.use_clamp)))
+        source = linked_from(node.inputs[index])
+    return tuple(reversed(chain)), source
+
+
 def _opacity_source(socket, info, what):
     """(constant opacity, TextureRef or None) behind an alpha-like float socket: its value,
     or an Image Texture's Alpha (its alpha channel) or Color output (read as a float, which
-    Blender does by luminance). Anything else linked is read as opaque, with a warning."""
+    Blender does by luminance), possibly through Math nodes (ALPHA_MATH). Anything else
+    linked is read as opaque, with a warning."""
     source = linked_from(socket)
     if source is None:
         return min(max(float(socket.default_value), 0.0), 1.0), None
-    node = source.node
-    if node.type == "TEX_IMAGE" and node.image is not None and source.name in ("Alpha", "Color"):
+    math, image_source = _alpha_math_chain(source)
+    node = image_source.node if image_source is not None else source.node
+    if (image_source is not None and node.type == "TEX_IMAGE" and node.image is not None
+            and image_source.name in ("Alpha", "Color")):
         _texture_sampling(node, info, what)
-        if source.name == "Alpha" and getattr(node.image, "alpha_mode", "") == "NONE":
-            return 1.0, None  # Cycles reads such an image's alpha as 1
-        channel = "alpha" if source.name == "Alpha" else "luminance"
-        return 1.0, TextureRef(node.image, _texture_uv_map(node, info, what), channel)
+        if image_source.name == "Alpha" and getattr(node.image, "alpha_mode", "") == "NONE":
+            if not math:
+                return 1.0, None  # Cycles reads such an image's alpha as 1
+        channel = "alpha" if image_source.name == "Alpha" else "luminance"
+        return 1.0, TextureRef(node.image, _texture_uv_map(node, info, what), channel, math)
+    node = source.node
     info.warnings.append(f"{what}: the '{node.name}' node feeding '{socket.name}' of "
                          f"'{socket.node.name}' is not evaluated: the surface is read as "
                          "opaque (a cut-out or transparency made so blocks light in the bake)")

@@ -99,7 +99,7 @@ class SceneExporter:
         self.material_infos = {}  # original material name_full -> MaterialInfo
         self.texture_ids = {}  # (image name_full) -> core texture id
         self.emission_texture_ids = {}  # image name_full -> (core texture id, emission scale)
-        self.opacity_texture_ids = {}  # (image name_full, channel) -> core texture id or None
+        self.opacity_texture_ids = {}  # (image name_full, channel, math) -> texture id or None
         self.local_meshes = {}
         self.triangles = 0
         self.meshes = 0
@@ -124,9 +124,9 @@ class SceneExporter:
     def _opacity_texture(self, ref):
         """Core texture id (or None: no pixels) whose red channel is the image's alpha or its
         colour's luminance (TextureRef.channel), for a see-through material."""
-        key = (ref.image.name_full, ref.channel)
+        key = (ref.image.name_full, ref.channel, ref.math)
         if key not in self.opacity_texture_ids:
-            values = materials.image_opacity(ref.image, ref.channel, self.warnings)
+            values = materials.image_opacity(ref.image, ref.channel, self.warnings, ref.math)
             self.opacity_texture_ids[key] = (
                 None if values is None
                 else self.scene.add_texture(np.repeat(values[:, :, None], 3, axis=2)))
