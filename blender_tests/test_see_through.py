@@ -1,9 +1,11 @@
-"""See-through surfaces in the bake, against Cycles where Cycles renders them so too: a blocker
-over the floor made half transparent (Principled Alpha 0.5) or cut out by an image's alpha
-(a checker of holes) casts the shadow Cycles' transparent shadows cast; a glass blocker
-(Principled Transmission 1) passes its share of the light, where Cycles' shadow rays stop at
-glass (its light through glass comes only as caustics), so there the check is the model's own
-number, 1 - F_avg."""
+"""See-through surfaces in the bake, against Cycles: a blocker over the floor made half
+transparent (Principled Alpha 0.5) or cut out by an image's alpha (a checker of holes) casts
+the shadow Cycles' transparent shadows cast; a glass blocker (Principled Transmission 1) passes
+1 - F_avg of a lamp's light (Cycles' shadow rays stop at glass: a lamp behind glass reaches
+it only as a caustic, so there the check is the model's own number); and a room lit by a
+uniform sky through a glass window pane (a 1 cm slab) gets the light Cycles' paths bring in
+through it (Cycles with Filter Glossy off: its default, 1, blurs the pane after a diffuse
+bounce and halves that light)."""
 
 import os
 import sys
@@ -21,7 +23,9 @@ import metrics  # noqa: E402
 # (test_ray_visibility); bakegi's "direct" method at 2,048 samples, two seeds.
 CYCLES_SAMPLES = 1024
 BAKEGI_SAMPLES = 2048
-RECEIVERS = ("Floor", "Wall")  # the blocker's own light is not compared
+RECEIVERS = ("Floor", "Wall")
+# The glass window room: total light (direct + indirect), both renderers, two seeds each.
+GLASS_SAMPLES = 2048  # the blocker's own light is not compared
 
 
 def principled_material(name):
@@ -55,6 +59,43 @@ def add_planar_uvs(obj):
         co = mesh.vertices[loop.vertex_index].co
         layer.data[loop.index].uv = ((co.x - min(xs)) / (max(xs) - min(xs)),
                                      (co.y - min(ys)) / (max(ys) - min(ys)))
+
+
+def glass_window_room(pane):
+    """A closed grey room [-2, 2] x [-2, 2] x [0, 3] under a uniform white sky, with a 2 x 1.5 m
+    window in its +x wall, glazed with a 1 cm slab of clear Principled glass (`pane`) or open.
+    Returns the floor (8 x 8 quads)."""
+    import cornell_box
+    cornell_box.clear_scene()
+    scene = bpy.context.scene
+    collection = scene.collection
+    grey = cornell_box.diffuse_material("Grey", (0.6, 0.6, 0.6))
+    v, f = [], []
+    cornell_box.grid_faces((-2, -2, 0), (4, 0, 0), (0, 4, 0), 8, 8, v, f)
+    floor = cornell_box.mesh_object("Floor", v, f, grey, collection)
+    v, f = [], []
+    cornell_box.grid_faces((-2, 2, 3), (4, 0, 0), (0, -4, 0), 4, 4, v, f)  # ceiling
+    cornell_box.grid_faces((-2, -2, 0), (0, 4, 0), (0, 0, 3), 4, 3, v, f)  # -x wall
+    cornell_box.grid_faces((-2, -2, 0), (0, 0, 3), (4, 0, 0), 3, 4, v, f)  # -y wall
+    cornell_box.grid_faces((-2, 2, 0), (4, 0, 0), (0, 0, 3), 4, 3, v, f)  # +y wall
+    cornell_box.mesh_object("Walls", v, f, grey, collection)
+    v, f = [], []
+    cornell_box.grid_faces((2, -2, 0), (0, 0, 3), (0, 4, 0), 6, 8, v, f)  # +x wall
+    v, f = cornell_box.without_faces(v, f, lambda c: abs(c[1]) < 1.0 and 1.0 < c[2] < 2.5)
+    cornell_box.mesh_object("WindowWall", v, f, grey, collection)
+    cornell_box.set_black_world(scene, color=(1.0, 1.0, 1.0), strength=1.0)
+    if pane:
+        bpy.ops.mesh.primitive_cube_add(size=1.0, location=(2.025, 0.0, 1.75))
+        glass = bpy.context.active_object
+        glass.name = "Pane"
+        glass.scale = (0.01, 2.1, 1.6)
+        bpy.ops.object.transform_apply(scale=True)
+        material, node = principled_material("Glass")
+        (node.inputs.get("Transmission Weight") or node.inputs["Transmission"]).default_value = 1.0
+        node.inputs["Roughness"].default_value = 0.0
+        node.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        glass.data.materials.append(material)
+    return floor
 
 
 class SeeThrough(common.AddonCase):
@@ -145,6 +186,39 @@ class SeeThrough(common.AddonCase):
         self.assertAlmostEqual(ratio, 1.0 - f_avg, delta=0.01)
         self.assertTrue(any("Pane" in w and "thin glass" in w for w in report["warnings"]),
                         report["warnings"])
+
+    def test_a_glass_window_against_cycles(self):
+        import cycles_bake
+        means = {}
+        for pane in (False, True):
+            floor = glass_window_room(pane)
+            baked = []
+            for seed in (0, 1):
+                total = 0.0
+                for method in ("direct", "pathtrace"):
+                    self.bakegi.bake(method=method, samples=GLASS_SAMPLES, seed=seed,
+                                     target="CORNER", objects=[floor], estimate_error=False)
+                    total = total + common.read_color_attribute([floor], domain="CORNER")
+                baked.append(total)
+            bpy.context.scene.cycles.blur_glossy = 0.0
+            cycles = [cycles_bake.bake_diffuse([floor], {"DIRECT", "INDIRECT"}, GLASS_SAMPLES,
+                                               seed=seed)[0] for seed in (0, 1)]
+            mean, reference = 0.5 * (baked[0] + baked[1]), 0.5 * (cycles[0] + cycles[1])
+            error = metrics.relative_rmse(mean, reference)
+            noise = metrics.noise_from_halves(baked[0], baked[1])
+            cycles_noise = metrics.noise_from_halves(cycles[0], cycles[1])
+            lum = metrics.REC709_LUMINANCE
+            means[pane] = (float((mean @ lum).mean()), float((reference @ lum).mean()))
+            print(f"window {'glazed' if pane else 'open'}: floor mean bakegi {means[pane][0]:.4f}, "
+                  f"Cycles {means[pane][1]:.4f}; error {100 * error:.2f}% (bakegi's noise "
+                  f"{100 * noise:.2f}%, Cycles' {100 * cycles_noise:.2f}%)")
+            # Both estimates' noise adds: the error is checked against three times it.
+            self.assertLessEqual(error, 3.0 * (noise ** 2 + cycles_noise ** 2) ** 0.5 + 0.01)
+            self.assertAlmostEqual(means[pane][0] / means[pane][1], 1.0, delta=0.04)
+        # The pane passes about (1 - F_avg)^2 of the sky's light, in both.
+        print(f"glazed / open: bakegi {means[True][0] / means[False][0]:.3f}, Cycles "
+              f"{means[True][1] / means[False][1]:.3f}")
+        self.assertGreater(means[True][0] / means[False][0], 0.75)
 
 
 if __name__ == "__main__":
