@@ -143,6 +143,7 @@ class Materials(unittest.TestCase):
         for g in info.glossy:  # F_avg / (1 - transmission): a mirror where a ray stops
             self.assertAlmostEqual(g, 1.0, places=5)
         self.assertTrue(any("thin glass" in w for w in info.warnings), info.warnings)
+        self.assertAlmostEqual(info.transmission_ior, 1.5, places=3)  # F0 0.04
 
         # Glass BSDF (IOR 1.5): the same split; Transparent BSDF: everything passes.
         glass, node = node_material("glass", "ShaderNodeBsdfGlass")
@@ -153,10 +154,12 @@ class Materials(unittest.TestCase):
         self.assertAlmostEqual(info.transmission, 1.0 - f_avg, places=6)
         self.assertAlmostEqual(max(info.glossy), 1.0, places=5)
         self.assertTrue(any("Glass BSDF" in w and "thin glass" in w for w in info.warnings))
+        self.assertAlmostEqual(info.transmission_ior, 1.5, places=6)
         clear, node = node_material("clear", "ShaderNodeBsdfTransparent")
         node.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
         info = m.read_material(clear)
         self.assertEqual(info.transmission, 1.0)
+        self.assertEqual(info.transmission_ior, 0.0)  # no Fresnel: the same at every angle
         self.assertEqual(tuple(info.albedo), (0.0, 0.0, 0.0))
 
         # A constant alpha: the share present; the albedo is the base colour's.

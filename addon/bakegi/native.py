@@ -125,7 +125,8 @@ _SIGNATURES = {
                                          POINTER(c_uint32)]),
     "bakegi_scene_add_material": (c_int, [_P, POINTER(MaterialDesc), POINTER(c_uint32)]),
     "bakegi_scene_set_material_emission_texture": (c_int, [_P, c_uint32, c_uint32]),
-    "bakegi_scene_set_material_passing": (c_int, [_P, c_uint32, c_float, c_uint32, c_float]),
+    "bakegi_scene_set_material_passing": (c_int, [_P, c_uint32, c_float, c_uint32, c_float,
+                                                  c_float]),
     "bakegi_scene_add_mesh": (c_int, [_P, POINTER(MeshDesc), POINTER(c_uint32)]),
     "bakegi_scene_add_light": (c_int, [_P, POINTER(LightDesc), POINTER(c_uint32)]),
     "bakegi_scene_set_world": (c_int, [_P, POINTER(c_float)]),
@@ -518,13 +519,15 @@ class Scene(_Handle):
             "bakegi_scene_set_material_emission_texture")
 
     def set_material_passing(self, material, opacity=1.0, opacity_texture=None,
-                             transmission=0.0):
+                             transmission=0.0, transmission_ior=0.0):
         """See-through surfaces: rays pass with probability 1 - opacity x texture (red channel)
-        x (1 - transmission); albedo and glossy are then those of a surface a ray stopped at."""
+        x (1 - transmission); albedo and glossy are then those of a surface a ray stopped at.
+        transmission_ior > 0: glass, passing less at grazing angles (its average stays
+        transmission)."""
         _check(load_library().bakegi_scene_set_material_passing(
             self.handle, int(material), float(opacity),
             NO_TEXTURE if opacity_texture is None else int(opacity_texture),
-            float(transmission)), "bakegi_scene_set_material_passing")
+            float(transmission), float(transmission_ior)), "bakegi_scene_set_material_passing")
 
     def add_mesh(self, positions, indices, corner_normals=None, corner_uvs=None,
                  triangle_materials=None, material=0, object_id=0):

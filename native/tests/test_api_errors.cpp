@@ -199,6 +199,27 @@ TEST(ApiErrors, EmissionTextureReferences) {
                "material 0: emission texture index 4 out of range (1 textures)");
 }
 
+TEST(ApiErrors, SeeThroughMaterials) {
+  const auto A = BAKEGI_ERROR_INVALID_ARGUMENT;
+  const uint32_t none = BAKEGI_NO_TEXTURE;
+  ScenePtr scene = new_box_scene();  // material 0, no textures
+  EXPECT_ERROR(bakegi_scene_set_material_passing(nullptr, 0, 1, none, 0, 0), A, "scene is NULL");
+  EXPECT_ERROR(bakegi_scene_set_material_passing(scene.get(), 1, 1, none, 0, 0), A,
+               "material index 1 is not below the material count 1");
+  EXPECT_ERROR(bakegi_scene_set_material_passing(scene.get(), 0, 1, 0, 0, 0), A,
+               "material 0: opacity texture index 0 is not below the texture count 0");
+  EXPECT_ERROR(bakegi_scene_set_material_passing(scene.get(), 0, 1.5f, none, 0, 0),
+               BAKEGI_ERROR_INVALID_SCENE, "material 0: opacity must be in [0,1], got 1.5");
+  EXPECT_ERROR(bakegi_scene_set_material_passing(scene.get(), 0, 1, none, NAN, 0),
+               BAKEGI_ERROR_INVALID_SCENE, "material 0: transmission must be in [0,1]");
+  EXPECT_ERROR(bakegi_scene_set_material_passing(scene.get(), 0, 1, none, 0.9f, 0.5f),
+               BAKEGI_ERROR_INVALID_SCENE,
+               "material 0: transmission IOR must be 0 (no Fresnel) or in [1, 10], got 0.5");
+  EXPECT_FALSE(scene->description.materials[0].lets_light_pass());  // unchanged
+  EXPECT_EQ(bakegi_scene_set_material_passing(scene.get(), 0, 1, none, 0.9f, 1.5f), BAKEGI_OK);
+  EXPECT_EQ(scene->description.materials[0].transmission, 0.9f);
+}
+
 TEST(ApiErrors, BadMaterialsAndTextures) {
   ScenePtr scene = new_scene();
   bakegi_material_desc m = grey_material(1.5f);

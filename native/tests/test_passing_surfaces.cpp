@@ -9,6 +9,7 @@
 
 #include "light_transport_fixtures.h"
 #include "lights/direct_light.h"
+#include "scene/fresnel.h"
 #include "util/random.h"
 
 namespace bakegi {
@@ -76,6 +77,34 @@ TEST(PassingSurfaces, RaysPassWithTheMaterialsProbability) {
     EXPECT_EQ(counts.pane + counts.floor, n);
     expect_share(counts.floor, n, c.pass, "closest hits that passed the pane");
     expect_share(n - counts.blocked, n, c.pass, "shadow rays that passed the pane");
+  }
+}
+
+TEST(PassingSurfaces, GlassPassesLessAtGrazingAnglesAsFresnelSays) {
+  // Glass of index 1.5 passing its cosine-weighted average 1 - F_avg = 0.9082: at angle theta
+  // it passes (1 - F(theta)) / (1 - F_avg) of that, 0.96 at normal incidence, 0.70 at 75
+  // degrees; shadow rays through the pane's middle from 0.5 m away.
+  const float average = fresnel_hemispherical_average(1.5f);
+  EXPECT_NEAR(average, 0.0918f, 5e-4f);
+  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.5f), 0.04f, 1e-6f);
+  const Scene scene = build_scene(floor_under_pane([&](SceneDescription&, Material& m) {
+    m.transmission = 1.0f - average;
+    m.transmission_ior = 1.5f;
+  }));
+  const RayTracer tracer(scene);
+  const int n = 20000;
+  for (const float degrees : {0.0f, 45.0f, 75.0f}) {
+    const float theta = degrees * 3.14159265f / 180.0f;
+    const glm::vec3 toward(-std::sin(theta), 0.0f, -std::cos(theta));
+    Pcg32 rng(11, 3);
+    int passed = 0;
+    for (int k = 0; k < n; ++k) {
+      const glm::vec3 at(-0.5f + rng.next_float(), -0.5f + rng.next_float(), 1.0f);
+      const Ray ray{at - 0.5f * toward, toward, 0.0f, 0.6f, uint32_t(k)};
+      passed += tracer.occluded(ray) ? 0 : 1;
+    }
+    const double expected = 1.0 - fresnel_dielectric(std::cos(theta), 1.5f);
+    expect_share(passed, n, expected, "share passed at this angle");
   }
 }
 

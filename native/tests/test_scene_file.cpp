@@ -42,7 +42,8 @@ ScenePtr new_full_scene() {
   uint32_t glowing_id = 0;
   EXPECT_EQ(bakegi_scene_add_material(scene.get(), &glowing, &glowing_id), BAKEGI_OK);
   EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), glowing_id, 0), BAKEGI_OK);
-  EXPECT_EQ(bakegi_scene_set_material_passing(scene.get(), glowing_id, 0.625f, 0, 0.3f), BAKEGI_OK);
+  EXPECT_EQ(bakegi_scene_set_material_passing(scene.get(), glowing_id, 0.625f, 0, 0.3f, 1.5f),
+            BAKEGI_OK);
 
   const BoxMesh box;
   std::vector<float> normals(9 * 12), uvs(6 * 12);
@@ -151,11 +152,13 @@ TEST(SceneFile, RoundTripIsExact) {
     EXPECT_TRUE(same_bits(a.materials[i].opacity, b.materials[i].opacity));
     EXPECT_EQ(a.materials[i].opacity_texture, b.materials[i].opacity_texture);
     EXPECT_TRUE(same_bits(a.materials[i].transmission, b.materials[i].transmission));
+    EXPECT_TRUE(same_bits(a.materials[i].transmission_ior, b.materials[i].transmission_ior));
   }
   EXPECT_FALSE(b.materials[0].lets_light_pass());
   EXPECT_EQ(b.materials[1].opacity, 0.625f);
   EXPECT_EQ(b.materials[1].opacity_texture, 0u);
   EXPECT_EQ(b.materials[1].transmission, 0.3f);
+  EXPECT_EQ(b.materials[1].transmission_ior, 1.5f);
   EXPECT_TRUE(b.materials[1].has_glossy());
   EXPECT_FALSE(b.materials[1].emission_two_sided);
   EXPECT_EQ(b.materials[0].emission_texture, BAKEGI_NO_TEXTURE);
@@ -287,9 +290,9 @@ void reseal(std::vector<uint8_t>& bytes) {
 TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
   ScenePtr scene = new_box_scene();
   const std::vector<uint8_t> bytes = encode_scene_file(scene->description, nullptr);
-  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 64), then MESH: 16-byte
+  // Header 24, TEXR section (16 + 4), MATL section (16 + 4 + 68), then MESH: 16-byte
   // section header, u32 mesh count, then object_id, material, vertex count.
-  const size_t vertex_count_at = 24 + 20 + 84 + 16 + 4 + 8;
+  const size_t vertex_count_at = 24 + 20 + 88 + 16 + 4 + 8;
   ASSERT_EQ(bytes[vertex_count_at], 8u);  // the box has 8 vertices
   std::vector<uint8_t> forged = bytes;
   for (int i = 0; i < 4; ++i) forged[vertex_count_at + i] = 0xFF;  // 4 billion vertices
@@ -320,7 +323,7 @@ TEST(SceneFile, ForgedHugeCountsAreRejectedBeforeAllocating) {
 }
 
 // The current encoding as version 7 wrote it: material records end before the opacity and
-// transmission (52 bytes instead of 64), resealed.
+// transmission (52 bytes instead of 68), resealed.
 std::vector<uint8_t> without_passing_fields(const std::vector<uint8_t>& newest) {
   auto get_u64 = [&](size_t at) {
     uint64_t value = 0;
@@ -331,14 +334,14 @@ std::vector<uint8_t> without_passing_fields(const std::vector<uint8_t>& newest) 
   const size_t materials_at = 24 + 16 + size_t(get_u64(24 + 8));  // after the textures
   uint32_t count = 0;
   for (int i = 0; i < 4; ++i) count |= uint32_t(newest[materials_at + 16 + i]) << (8 * i);
-  EXPECT_EQ(get_u64(materials_at + 8), 4u + 64u * count);
+  EXPECT_EQ(get_u64(materials_at + 8), 4u + 68u * count);
   const size_t first = materials_at + 16 + 4;
   std::vector<uint8_t> old(newest.begin(), newest.begin() + std::ptrdiff_t(first));
   for (size_t m = 0; m < count; ++m) {
-    const auto record = newest.begin() + std::ptrdiff_t(first + 64 * m);
+    const auto record = newest.begin() + std::ptrdiff_t(first + 68 * m);
     old.insert(old.end(), record, record + 52);
   }
-  old.insert(old.end(), newest.begin() + std::ptrdiff_t(first + 64 * count), newest.end());
+  old.insert(old.end(), newest.begin() + std::ptrdiff_t(first + 68 * count), newest.end());
   auto put_u64 = [&](size_t where, uint64_t value) {
     for (int i = 0; i < 8; ++i) old[where + i] = uint8_t(value >> (8 * i));
   };
@@ -413,7 +416,7 @@ ScenePtr new_textured_emitter_scene() {
   material.glossy_exponent = 20.0f;
   EXPECT_EQ(bakegi_scene_add_material(scene.get(), &material, nullptr), BAKEGI_OK);
   EXPECT_EQ(bakegi_scene_set_material_emission_texture(scene.get(), 0, 0), BAKEGI_OK);
-  EXPECT_EQ(bakegi_scene_set_material_passing(scene.get(), 0, 0.5f, BAKEGI_NO_TEXTURE, 0.0f),
+  EXPECT_EQ(bakegi_scene_set_material_passing(scene.get(), 0, 0.5f, BAKEGI_NO_TEXTURE, 0.0f, 0.0f),
             BAKEGI_OK);
   const BoxMesh box;
   const bakegi_mesh_desc mesh = box.desc();

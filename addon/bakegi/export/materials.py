@@ -89,6 +89,9 @@ class MaterialInfo:
     opacity: float = 1.0
     opacity_texture: Optional[TextureRef] = None
     transmission: float = 0.0
+    # Glass: its index of refraction, so that the core passes less at grazing angles
+    # (Fresnel), `transmission` being the average; 0 = the same share at every angle.
+    transmission_ior: float = 0.0
 
     def lets_light_pass(self):
         return self.opacity < 1.0 or self.opacity_texture is not None or self.transmission > 0.0
@@ -323,6 +326,7 @@ class _Shader:
     opacity: float = 1.0
     opacity_texture: Optional[TextureRef] = None
     transmission: float = 0.0
+    transmission_ior: float = 0.0
 
 
 def _read_emission(socket, strength, info, what):
@@ -464,8 +468,10 @@ def _read_principled(node, info, what):
     alpha = input_socket(node, "Alpha")
     if alpha is not None:
         opacity, opacity_texture = _opacity_source(alpha, info, what)
+    f0 = _principled_f0(node, info, what)
     return _Shader(_scaled(base, factor), texture, emission, color_socket, factor, glossy,
-                   emission_texture, opacity, opacity_texture, passing)
+                   emission_texture, opacity, opacity_texture, passing,
+                   _ior_of_f0(f0) if passing > 0.0 else 0.0)
 
 
 def _read_glass(node, info, what):
@@ -487,7 +493,13 @@ def _read_glass(node, info, what):
     f_avg = fresnel_hemispherical_average(r * r)
     roughness = _float_input(node, ("Roughness",), 0.0, info, what)
     return _Shader(glossy=_glossy_lobe((f_avg, f_avg, f_avg), roughness),
-                   transmission=share * (1.0 - f_avg))
+                   transmission=share * (1.0 - f_avg), transmission_ior=max(ior, 1.0))
+
+
+def _ior_of_f0(f0):
+    """The index of refraction whose normal-incidence reflectance is f0 (1: none)."""
+    root = math.sqrt(min(max(float(f0), 0.0), 0.9))
+    return min((1.0 + root) / (1.0 - root), 10.0)
 
 
 def _cut_out_mix(node, info, what, depth):
@@ -686,6 +698,7 @@ def read_material(material):
     info.opacity = min(max(float(shader.opacity), 0.0), 1.0)
     info.opacity_texture = shader.opacity_texture
     info.transmission = min(max(float(shader.transmission), 0.0), 1.0)
+    info.transmission_ior = float(shader.transmission_ior) if info.transmission > 0.0 else 0.0
     albedo, texture, emission = shader.albedo, shader.texture, shader.emission
     color_socket, factor, glossy = shader.color_socket, shader.albedo_factor, shader.glossy
     info.albedo = tuple(min(max(float(a), 0.0), 1.0) for a in albedo)

@@ -189,7 +189,8 @@ class SceneExporter:
                     if opacity_texture is None:  # no pixels (warned): opaque where present
                         info.opacity_texture = None
                 self.scene.set_material_passing(self.material_ids[key], info.opacity,
-                                                opacity_texture, info.transmission)
+                                                opacity_texture, info.transmission,
+                                                info.transmission_ior)
             if original is not None:
                 self.material_infos[key] = info
         info = self.material_infos[key] if key is not None else materials.MaterialInfo()

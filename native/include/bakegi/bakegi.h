@@ -137,14 +137,19 @@ BAKEGI_API bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene
  * every ray the core traces (lamp and sky shadow rays, paths, visibility); otherwise it stops
  * at the surface, which then reflects and emits as the material says: so albedo and glossy
  * are the reflectances of a surface a ray stopped at (a glass pane that reflects 8% of the
- * light it meets, passing 92%: glossy 1, transmission 0.92). Defaults: opacity 1, no
- * texture, transmission 0 (opaque). Only the path tracer and the direct-light method are
+ * light it meets, passing 92%: glossy 1, transmission 0.92). transmission_ior > 0 (in
+ * [1, 10]) makes the share passing depend on the angle of incidence theta as glass of that
+ * index does, transmission x (1 - F(theta)) / (1 - F_avg), F the dielectric Fresnel
+ * reflectance and F_avg its cosine-weighted average, so that `transmission` stays the
+ * average; 0 = the same share at every angle. Defaults: opacity 1, no texture,
+ * transmission 0 (opaque). Only the path tracer and the direct-light method are
  * measured with such surfaces; the other methods' transport treats them as opaque in parts
  * (a warning says so). Errors (INVALID_ARGUMENT): NULL scene, a material or texture index
  * not yet added, opacity or transmission outside [0,1] or not finite. */
 BAKEGI_API bakegi_status bakegi_scene_set_material_passing(bakegi_scene* scene, uint32_t material,
                                                            float opacity, uint32_t opacity_texture,
-                                                           float transmission);
+                                                           float transmission,
+                                                           float transmission_ior);
 
 /* A triangle mesh in world space. Per-corner data has 3 entries per triangle, in the
  * order of indices. Optional arrays may be NULL. */

@@ -138,7 +138,7 @@ bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene* scene, ui
 
 bakegi_status bakegi_scene_set_material_passing(bakegi_scene* scene, uint32_t material,
                                                 float opacity, uint32_t opacity_texture,
-                                                float transmission) {
+                                                float transmission, float transmission_ior) {
   return guarded(__func__, [&] {
     require(scene, "scene");
     std::vector<bakegi::Material>& materials = scene->description.materials;
@@ -158,6 +158,7 @@ bakegi_status bakegi_scene_set_material_passing(bakegi_scene* scene, uint32_t ma
     m.opacity = opacity;
     m.opacity_texture = opacity_texture;
     m.transmission = transmission;
+    m.transmission_ior = transmission_ior;
     bakegi::check_material(m, material);
     materials[material] = m;
   });

@@ -1,7 +1,10 @@
 #include "scene/passing_surfaces.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
+#include "scene/fresnel.h"
 #include "util/pcg32.h"
 
 namespace bakegi {
@@ -28,6 +31,10 @@ float pass_number(uint32_t index, uint32_t seed, const glm::vec3& o, const glm::
 
 PassingSurfaces::PassingSurfaces(const Scene& scene)
     : materials_(scene.description.materials), textures_(scene.description.textures) {
+  for (const Material& m : materials_) {
+    fresnel_averages_.push_back(
+        m.transmission_ior > 0.0f ? fresnel_hemispherical_average(m.transmission_ior) : 0.0f);
+  }
   for (size_t t = 0; t < scene.triangles.size(); ++t) {
     if (!scene.material_of(scene.triangles[t]).lets_light_pass()) continue;
     indices_.push_back(uint32_t(t));
@@ -38,7 +45,20 @@ PassingSurfaces::PassingSurfaces(const Scene& scene)
 bool PassingSurfaces::passes(uint32_t index, float b1, float b2, uint32_t seed,
                              const glm::vec3& origin, const glm::vec3& direction) const {
   const Triangle& t = triangles_[index];
-  const float probability = pass_probability_at(materials_[t.material], textures_, t, b1, b2);
+  const Material& material = materials_[t.material];
+  float probability;
+  if (material.transmission_ior > 0.0f) {
+    // Glass: the share passing at this angle, transmission x (1 - F) / (1 - F_avg).
+    const float cosine = std::abs(glm::dot(direction, t.face_normal)) / glm::length(direction);
+    const float reflected = fresnel_dielectric(cosine, material.transmission_ior);
+    const float average = fresnel_averages_[t.material];
+    Material at_angle = material;
+    at_angle.transmission = std::clamp(
+        material.transmission * (1.0f - reflected) / std::max(1.0f - average, 1e-6f), 0.0f, 1.0f);
+    probability = pass_probability_at(at_angle, textures_, t, b1, b2);
+  } else {
+    probability = pass_probability_at(material, textures_, t, b1, b2);
+  }
   if (probability <= 0.0f) return false;
   if (probability >= 1.0f) return true;
   return pass_number(index, seed, origin, direction) < probability;

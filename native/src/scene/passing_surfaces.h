@@ -31,7 +31,8 @@ class PassingSurfaces {
   std::vector<uint32_t> indices_;
   std::vector<Triangle> triangles_;  // copies: the tracer may outlive the scene it was built on
   std::vector<Material> materials_;
-  std::vector<Texture> textures_;  // share their texels with the scene's
+  std::vector<float> fresnel_averages_;  // per material, where it has a transmission IOR
+  std::vector<Texture> textures_;        // share their texels with the scene's
 };
 
 }  // namespace bakegi

@@ -54,6 +54,9 @@ struct Material {
   float opacity = 1.0f;
   uint32_t opacity_texture = BAKEGI_NO_TEXTURE;
   float transmission = 0.0f;
+  // > 0: glass of this index of refraction, whose share passing varies with the angle as
+  // Fresnel says; `transmission` is then its cosine-weighted average (scene/fresnel.h).
+  float transmission_ior = 0.0f;
 
   bool lets_light_pass() const {
     return opacity < 1.0f || opacity_texture != BAKEGI_NO_TEXTURE || transmission > 0.0f;

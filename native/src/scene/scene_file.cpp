@@ -93,6 +93,7 @@ void write_scene(Writer& w, const SceneDescription& scene) {
     w.f32(m.opacity);
     w.u32(m.opacity_texture);
     w.f32(m.transmission);
+    w.f32(m.transmission_ior);
   }
   w.end_section(at);
 
@@ -168,7 +169,7 @@ void read_materials(Reader& r, SceneDescription& scene, uint32_t version) {
   const uint32_t count = r.u32();
   const bool has_glossy = version >= 2, has_emission_texture = version >= 3;
   const bool has_passing = version >= 8;
-  const uint64_t bytes = has_passing ? 64 : has_emission_texture ? 52 : has_glossy ? 48 : 32;
+  const uint64_t bytes = has_passing ? 68 : has_emission_texture ? 52 : has_glossy ? 48 : 32;
   r.array(scene.materials, count, bytes, "materials", [&] {
     Material m;
     m.albedo = r.vec3();
@@ -186,6 +187,7 @@ void read_materials(Reader& r, SceneDescription& scene, uint32_t version) {
       m.opacity = r.f32();
       m.opacity_texture = r.u32();
       m.transmission = r.f32();
+      m.transmission_ior = r.f32();
     }
     return m;
   });

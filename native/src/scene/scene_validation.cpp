@@ -168,6 +168,10 @@ void check_material(const Material& material, size_t index) {
       material.transmission > 1) {
     invalid(name + ": transmission must be in [0,1], got " + num(material.transmission));
   }
+  const float ior = material.transmission_ior;
+  if (!std::isfinite(ior) || (ior != 0.0f && (ior < 1.0f || ior > 10.0f))) {
+    invalid(name + ": transmission IOR must be 0 (no Fresnel) or in [1, 10], got " + num(ior));
+  }
 }
 
 void check_mesh(const Mesh& mesh, size_t index) {
