@@ -115,24 +115,35 @@ bakegi_status bakegi_scene_add_material(bakegi_scene* scene, const bakegi_materi
   });
 }
 
+namespace {
+
+// Material `material` of the scene, for setting a texture of `kind` (BAKEGI_NO_TEXTURE or an
+// index below the texture count) on it; throws INVALID_ARGUMENT naming what is wrong.
+bakegi::Material& material_with_texture(bakegi_scene* scene, uint32_t material, uint32_t texture,
+                                        const char* kind) {
+  require(scene, "scene");
+  std::vector<bakegi::Material>& materials = scene->description.materials;
+  if (material >= materials.size()) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "material index " + std::to_string(material) +
+                                                   " is not below the material count " +
+                                                   std::to_string(materials.size()));
+  }
+  const size_t textures = scene->description.textures.size();
+  if (texture != BAKEGI_NO_TEXTURE && texture >= textures) {
+    throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
+                "material " + std::to_string(material) + ": " + kind + " texture index " +
+                    std::to_string(texture) + " is not below the texture count " +
+                    std::to_string(textures) + " (add the texture first)");
+  }
+  return materials[material];
+}
+
+}  // namespace
+
 bakegi_status bakegi_scene_set_material_emission_texture(bakegi_scene* scene, uint32_t material,
                                                          uint32_t texture) {
   return guarded(__func__, [&] {
-    require(scene, "scene");
-    std::vector<bakegi::Material>& materials = scene->description.materials;
-    if (material >= materials.size()) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "material index " + std::to_string(material) +
-                                                     " is not below the material count " +
-                                                     std::to_string(materials.size()));
-    }
-    const size_t textures = scene->description.textures.size();
-    if (texture != BAKEGI_NO_TEXTURE && texture >= textures) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "material " + std::to_string(material) + ": emission texture index " +
-                      std::to_string(texture) + " is not below the texture count " +
-                      std::to_string(textures) + " (add the texture first)");
-    }
-    materials[material].emission_texture = texture;
+    material_with_texture(scene, material, texture, "emission").emission_texture = texture;
   });
 }
 
@@ -140,27 +151,14 @@ bakegi_status bakegi_scene_set_material_passing(bakegi_scene* scene, uint32_t ma
                                                 float opacity, uint32_t opacity_texture,
                                                 float transmission, float transmission_ior) {
   return guarded(__func__, [&] {
-    require(scene, "scene");
-    std::vector<bakegi::Material>& materials = scene->description.materials;
-    if (material >= materials.size()) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT, "material index " + std::to_string(material) +
-                                                     " is not below the material count " +
-                                                     std::to_string(materials.size()));
-    }
-    const size_t textures = scene->description.textures.size();
-    if (opacity_texture != BAKEGI_NO_TEXTURE && opacity_texture >= textures) {
-      throw Error(BAKEGI_ERROR_INVALID_ARGUMENT,
-                  "material " + std::to_string(material) + ": opacity texture index " +
-                      std::to_string(opacity_texture) + " is not below the texture count " +
-                      std::to_string(textures) + " (add the texture first)");
-    }
-    bakegi::Material m = materials[material];
+    bakegi::Material& stored = material_with_texture(scene, material, opacity_texture, "opacity");
+    bakegi::Material m = stored;
     m.opacity = opacity;
     m.opacity_texture = opacity_texture;
     m.transmission = transmission;
     m.transmission_ior = transmission_ior;
     bakegi::check_material(m, material);
-    materials[material] = m;
+    stored = m;
   });
 }
 
