@@ -207,6 +207,24 @@ class SeeThrough(common.AddonCase):
         self.assertTrue(any("Pane" in w and "thin glass" in w for w in report["warnings"]),
                         report["warnings"])
 
+    def test_methods_other_than_the_path_tracer_say_so(self):
+        """Antiradiance's links and meshless' basis carry light between surfaces without rays
+        in parts: with a see-through surface in the scene their report says so; the path
+        tracer's does not."""
+        material, node = principled_material("Veil")
+        node.inputs["Alpha"].default_value = 0.5
+        self.set_blocker_material(material)
+        objects = self.receivers + [self.blocker]
+        for method in ("antiradiance", "pathtrace"):
+            report = self.bakegi.bake(method=method, samples=16, target="CORNER",
+                                      objects=objects, estimate_error=False)
+            said = [w for w in report["warnings"] if "see-through surfaces" in w]
+            if method == "pathtrace":
+                self.assertFalse(said, report["warnings"])
+            else:
+                self.assertTrue(any(w.startswith(method) and "path tracer" in w for w in said),
+                                report["warnings"])
+
     def test_a_glass_window_against_cycles(self):
         import cycles_bake
         means = {}
