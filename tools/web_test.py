@@ -7,8 +7,9 @@ trilinear), shown flat by Workbench with the Standard view
 transform. Then addon/web/test/run.mjs streams the folder with `bakegi serve` into Debian's
 Chromium (playwright-core) and checks the page against it. A second scene (a box on a floor
 under a sun 45 degrees from the zenith) checks the page's shadows and the sun's direction: a
-floor point in the box's shadow against one in the open; and a tile textured red and blue
-beside it, that textures reach the page.
+floor point in the box's shadow against one in the open; a tile textured red and blue
+beside it, that textures reach the page; and a pane of clear glass in the sun, that the page
+draws it see-through, casting no shadow.
 
     /usr/bin/python3 tools/web_test.py [--work out/web_tests] [--build build] [--fig6]
         [--cells 16] [--size 480x360] [--junit out.xml]
@@ -116,6 +117,15 @@ else:
 spot.location = (2.0, 2.5, 0.5)
 spot.rotation_euler = (0.0, 0.7853981633974483, 0.0)  # its -Z towards (-1, 0, -1)
 scene.collection.objects.link(spot)
+# A pane of clear glass (Principled transmission 1) held 0.6 m over the floor in the sun: the
+# floor it would shade if it were opaque (Blender (0.1, -2.5, 0)) stays sunlit.
+bpy.ops.mesh.primitive_plane_add(size=0.6, location=(-0.5, -2.5, 0.6))
+glass = bpy.data.materials.new("Glass")
+glass.use_nodes = True
+bsdf = glass.node_tree.nodes["Principled BSDF"]
+(bsdf.inputs.get("Transmission Weight") or bsdf.inputs["Transmission"]).default_value = 1.0
+bsdf.inputs["Roughness"].default_value = 0.0
+bpy.context.active_object.data.materials.append(glass)
 # A sun shining towards +x, 45 degrees from the zenith (a sun points along its local -Z).
 lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
 lamp.data.energy = 3.0
@@ -151,7 +161,8 @@ json.dump({{"sky": 0.02, "sky_floor": [-2.25, 0.0, -2.25],
            "red": [-1.7, 0.01, -1.5], "blue": [-1.3, 0.01, -1.5],
            "area_shadowed": [1.15, 0.0, 1.5], "area_lit": [2.5, 0.0, 1.5],
            "wall_lit": [-2.0, 0.0, 1.5], "wall_shadowed": [-1.45, 0.0, 1.5],
-           "unshadowed_behind": [1.15, 0.0, -2.5], "unshadowed_beside": [1.5, 0.0, -1.95]}}, open({points!r}, "w"))
+           "unshadowed_behind": [1.15, 0.0, -2.5], "unshadowed_beside": [1.5, 0.0, -1.95],
+           "under_glass": [0.1, 0.0, 2.5]}}, open({points!r}, "w"))
 """
 
 

@@ -15,6 +15,11 @@
 
 #include <glm/geometric.hpp>
 
+// stb_image (Debian's libstb-dev), compiled here, private to this file: reads the exported PNGs.
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
 #include "api/handles.h"
 #include "capi_test_scene.h"
 #include "grid/grid_visibility_volume.h"
@@ -259,6 +264,48 @@ TEST(WebExport, SaysWhichLightsCastNoShadowAndNotesANarrowSpread) {
   json = export_json();
   EXPECT_NE(json.find("\"cast_shadow\":false}]"), std::string::npos);
   EXPECT_NE(json.find("an area light's Spread is under 180 degrees"), std::string::npos);
+  std::filesystem::remove_all(folder);
+}
+
+TEST(WebExport, WritesSeeThroughMaterialsAndTheirAlphaMaps) {
+  // A glass (passing 75%) and a half-present leaf card (cut out by a 2 x 1 texture: a hole and a
+  // solid texel) beside the box's opaque grey: the page gets each one's opacity and transmission,
+  // and the leaf's alpha map as linear grey, opacity x the texture's red channel.
+  const test::ScenePtr scene = test::new_box_scene();
+  const float texels[6] = {0.0f, 0.3f, 0.3f, 1.0f, 0.3f, 0.3f};
+  uint32_t mask = 0, glass = 0, leaf = 0;
+  ASSERT_EQ(bakegi_scene_add_texture(scene.get(), 2, 1, texels, &mask), BAKEGI_OK);
+  const bakegi_material_desc black = test::grey_material(0.0f);
+  ASSERT_EQ(bakegi_scene_add_material(scene.get(), &black, &glass), BAKEGI_OK);
+  ASSERT_EQ(bakegi_scene_add_material(scene.get(), &black, &leaf), BAKEGI_OK);
+  ASSERT_EQ(
+      bakegi_scene_set_material_passing(scene.get(), glass, 1.0f, BAKEGI_NO_TEXTURE, 0.75f, 1.5f),
+      BAKEGI_OK);
+  ASSERT_EQ(bakegi_scene_set_material_passing(scene.get(), leaf, 0.5f, mask, 0.0f, 0.0f),
+            BAKEGI_OK);
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / "bakegi_web_export_see_through_test";
+  std::filesystem::remove_all(folder);
+  ASSERT_EQ(bakegi_web_export(scene.get(), nullptr, folder.string().c_str(), nullptr), BAKEGI_OK)
+      << bakegi_last_error();
+  std::ifstream json_file(folder / "scene.gltf");
+  const std::string json((std::istreambuf_iterator<char>(json_file)), {});
+  EXPECT_NE(json.find("\"see_through\":{\"opacity\":1,\"transmission\":0.75}"), std::string::npos)
+      << json.substr(0, 2000);
+  EXPECT_NE(json.find("\"see_through\":{\"opacity\":0.5,\"transmission\":0,\"opacity_texture\":0}"),
+            std::string::npos);
+  EXPECT_EQ(json.find("\"see_through\":{\"opacity\":1,\"transmission\":0}"), std::string::npos)
+      << "the opaque grey has no see-through part";
+  int width = 0, height = 0, channels = 0;
+  const std::string png = (folder / "opacity_2.png").string();
+  unsigned char* pixels = stbi_load(png.c_str(), &width, &height, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << png;
+  EXPECT_EQ(width, 2);
+  EXPECT_EQ(height, 1);
+  EXPECT_EQ(pixels[0], 0);    // the hole
+  EXPECT_EQ(pixels[3], 128);  // 0.5 x 1 of 255, linear
+  EXPECT_EQ(pixels[4], 128);  // three.js reads the green channel
+  stbi_image_free(pixels);
   std::filesystem::remove_all(folder);
 }
 

@@ -11,22 +11,22 @@ import { RectAreaLightUniformsLib } from "three/examples/jsm/lights/RectAreaLigh
 export function makeMaterial(description, gltf = {}, imageUrl = (uri) => uri) {
   const base = description.pbrMetallicRoughness?.baseColorFactor ?? [0.8, 0.8, 0.8, 1];
   const textureIndex = description.pbrMetallicRoughness?.baseColorTexture?.index;
-  let map = null;
-  if (textureIndex !== undefined) {
-    const image = gltf.images[gltf.textures[textureIndex].source];
-    let settle;
-    pendingTextures.push(new Promise((resolve) => (settle = resolve)));
-    // A texture that fails to load leaves the material's colour alone, as before it came.
-    map = new THREE.TextureLoader().load(imageUrl(image.uri), () => { onTextureLoaded(); settle(); }, undefined, settle);
-    map.colorSpace = THREE.SRGBColorSpace; // glTF base colour textures are sRGB
-    map.flipY = false; // glTF's v runs down the image
-    map.wrapS = map.wrapT = THREE.RepeatWrapping;
-  }
+  // glTF base colour textures are sRGB.
+  const map = textureIndex === undefined ? null : loadTexture(gltf, textureIndex, imageUrl, THREE.SRGBColorSpace);
   const radiance = description.extras?.emission_radiance ?? [0, 0, 0];
   const peak = Math.max(...radiance);
+  // See-through surfaces (the export's see_through extras): a cut-out's alpha map (opacity x
+  // its texture, linear), tested at 0.5 as its holes are 0 and its leaves 1 (three.js' shadow
+  // maps test it too); a share passing everywhere (glass, a veil) drawn that transparent, and
+  // casting no shadow where it passes most light.
+  const seeThrough = description.extras?.see_through;
+  const alphaIndex = seeThrough?.opacity_texture;
+  const alphaMap = alphaIndex === undefined ? null : loadTexture(gltf, alphaIndex, imageUrl, THREE.NoColorSpace);
+  const opacity = seeThrough ? (alphaMap ? 1 : seeThrough.opacity) * (1 - seeThrough.transmission) : 1;
+  const transparent = opacity < 1;
   // Lambert only (specularIntensity 0), as the core's diffuse materials; the colours are
   // linear, as glTF's factors.
-  return new THREE.MeshPhysicalMaterial({
+  const material = new THREE.MeshPhysicalMaterial({
     color: new THREE.Color(base[0], base[1], base[2]),
     map,
     roughness: 1,
@@ -36,7 +36,28 @@ export function makeMaterial(description, gltf = {}, imageUrl = (uri) => uri) {
     emissiveIntensity: peak,
     // Both sides, as Blender draws and bakes them (backface culling off by default).
     side: THREE.DoubleSide,
+    alphaMap,
+    alphaTest: alphaMap ? 0.5 : 0,
+    transparent,
+    opacity,
+    depthWrite: !transparent,
   });
+  material.userData.castsShadow = opacity >= 0.5;
+  return material;
+}
+
+// glTF texture `index` as a three.js texture of `colorSpace`, repeating, v down; the page
+// waits for it (pendingTextures) before it says it is done.
+function loadTexture(gltf, index, imageUrl, colorSpace) {
+  const image = gltf.images[gltf.textures[index].source];
+  let settle;
+  pendingTextures.push(new Promise((resolve) => (settle = resolve)));
+  // A texture that fails to load leaves the material as it was before the texture came.
+  const texture = new THREE.TextureLoader().load(imageUrl(image.uri), () => { onTextureLoaded(); settle(); }, undefined, settle);
+  texture.colorSpace = colorSpace;
+  texture.flipY = false; // glTF's v runs down the image
+  texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+  return texture;
 }
 
 function nodeTransform(object, node) {

@@ -129,7 +129,8 @@ function nameModesForEmittedLight() {
 }
 
 function shadowed(mesh) {
-  mesh.castShadow = mesh.receiveShadow = true;
+  mesh.receiveShadow = true;
+  mesh.castShadow = mesh.material.userData.castsShadow !== false; // glass and veils cast none
   return mesh;
 }
 

@@ -246,6 +246,14 @@ if (args["shadow-folder"] && !args["only-fig6"]) {
       check(Math.abs(behind - open) <= 6 && beside > open + 15,
         `the area light's direct light is shadowed: behind the box ${behind.toFixed(1)}, the sun alone ${open.toFixed(1)}, beside the box ${beside.toFixed(1)} (of 255)`);
     }
+    if (points.under_glass) {
+      // Under a clear glass pane in the sun the floor is lit as in the open (the bake lets
+      // 1 - F of the sun through; the page draws the pane transparent, casting no shadow).
+      const [underGlass] = await pixelAt(page, points.under_glass);
+      results.glass = { under_glass: underGlass, open };
+      check(underGlass > 0.8 * open,
+        `a glass pane casts no shadow: the floor under it reads ${underGlass.toFixed(1)}, in the open ${open.toFixed(1)} (of 255)`);
+    }
     if (points.unshadowed_behind && points.unshadowed_beside) {
       // Behind the third box from a spot light with Cast Shadow off, the floor gets the spot's
       // light (0.74 of what the floor beside it gets, by distance and angle) besides the sun's;

@@ -91,14 +91,7 @@ uint8_t srgb_byte(float linear) {
   return uint8_t(std::lround(encoded * 255.0f));
 }
 
-std::vector<uint8_t> encode_srgb_png(const Texture& texture) {
-  std::vector<uint8_t> rgb(size_t(texture.width) * texture.height * 3);
-  const auto& texels = texture.texels();
-  for (size_t i = 0; i < texels.size() && 3 * i + 2 < rgb.size(); ++i) {
-    rgb[3 * i] = srgb_byte(texels[i].x);
-    rgb[3 * i + 1] = srgb_byte(texels[i].y);
-    rgb[3 * i + 2] = srgb_byte(texels[i].z);
-  }
+std::vector<uint8_t> encode_png(const Texture& texture, const std::vector<uint8_t>& rgb) {
   std::vector<uint8_t> png;
   const int written = stbi_write_png_to_func(
       [](void* context, void* data, int size) {
@@ -109,6 +102,40 @@ std::vector<uint8_t> encode_srgb_png(const Texture& texture) {
       &png, int(texture.width), int(texture.height), 3, rgb.data(), int(texture.width) * 3);
   if (!written) throw Error(BAKEGI_ERROR_INTERNAL, "a texture could not be encoded as PNG");
   return png;
+}
+
+std::vector<uint8_t> encode_srgb_png(const Texture& texture) {
+  std::vector<uint8_t> rgb(size_t(texture.width) * texture.height * 3);
+  const auto& texels = texture.texels();
+  for (size_t i = 0; i < texels.size() && 3 * i + 2 < rgb.size(); ++i) {
+    rgb[3 * i] = srgb_byte(texels[i].x);
+    rgb[3 * i + 1] = srgb_byte(texels[i].y);
+    rgb[3 * i + 2] = srgb_byte(texels[i].z);
+  }
+  return encode_png(texture, rgb);
+}
+
+// A see-through material's opacity texture (its red channel x opacity) as linear grey, the
+// page's alpha map (three.js reads an alpha map's green channel, unconverted).
+std::vector<uint8_t> encode_opacity_png(const Texture& texture, float opacity) {
+  std::vector<uint8_t> rgb(size_t(texture.width) * texture.height * 3);
+  const auto& texels = texture.texels();
+  for (size_t i = 0; i < texels.size() && 3 * i + 2 < rgb.size(); ++i) {
+    const float value = std::clamp(texels[i].x * opacity, 0.0f, 1.0f);
+    rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = uint8_t(std::lround(value * 255.0f));
+  }
+  return encode_png(texture, rgb);
+}
+
+// The page's part of a see-through material (scene/scene.h): the share of light passing
+// where the surface is (transmission), its opacity where there is no texture, and the alpha
+// map's glTF texture; nothing for an opaque material.
+std::string see_through_extras(const Material& material, int opacity_texture) {
+  if (!material.lets_light_pass()) return "";
+  std::string extras = ",\"see_through\":{\"opacity\":" + json_number(material.opacity) +
+                       ",\"transmission\":" + json_number(material.transmission);
+  if (opacity_texture >= 0) extras += ",\"opacity_texture\":" + std::to_string(opacity_texture);
+  return extras + "}";
 }
 
 struct Primitive {
@@ -309,8 +336,22 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
     images.push_back("{\"uri\":" + json_quote(name) + "}");
   }
 
+  // See-through materials' opacity textures, one image per material (opacity x texture).
+  std::map<size_t, size_t> opacity_index;  // material -> glTF texture
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& material = scene.materials[m];
+    const uint32_t t = material.opacity_texture;
+    if (t == BAKEGI_NO_TEXTURE || t >= scene.textures.size()) continue;
+    const std::string name = "opacity_" + std::to_string(m) + ".png";
+    out.images.push_back({name, encode_opacity_png(scene.textures[t], material.opacity)});
+    opacity_index[m] = textures.size();
+    textures.push_back("{\"sampler\":0,\"source\":" + std::to_string(images.size()) + "}");
+    images.push_back("{\"uri\":" + json_quote(name) + "}");
+  }
+
   std::vector<std::string> materials;
-  for (const Material& material : scene.materials) {
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& material = scene.materials[m];
     const glm::vec3 base = glm::clamp(material.albedo, 0.0f, 1.0f);
     const auto texture = texture_index.find(material.albedo_texture);
     const std::string base_texture =
@@ -323,7 +364,8 @@ WebGltf encode_web_gltf(const SceneDescription& scene, const WebExportOptions& o
         "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[" + json_number(base.x) + "," +
         json_number(base.y) + "," + json_number(base.z) + ",1]" + base_texture +
         ",\"metallicFactor\":0,\"roughnessFactor\":1},\"emissiveFactor\":" + vec3(emissive) +
-        ",\"extras\":{\"emission_radiance\":" + vec3(material.emission) + "}}");
+        ",\"extras\":{\"emission_radiance\":" + vec3(material.emission) +
+        see_through_extras(material, opacity_index.count(m) ? int(opacity_index[m]) : -1) + "}}");
   }
 
   std::vector<std::string> lights, area_lights;
