@@ -162,11 +162,11 @@ def image_opacity(image, channel, warnings, math=()):
         if rgb is None:
             return None
         alpha = rgb @ np.asarray(LUMINANCE, np.float32)
-    alpha = np.nan_to_num(alpha, nan=1.0, posinf=1.0, neginf=0.0)
-    alpha = np.ascontiguousarray(np.clip(alpha, 0.0, 1.0), dtype=np.float32)
-    if math:
-        alpha = np.nan_to_num(apply_alpha_math(alpha, math), nan=1.0, posinf=1.0, neginf=0.0)
-    return np.ascontiguousarray(np.clip(alpha, 0.0, 1.0), dtype=np.float32)
+    alpha = np.clip(np.nan_to_num(alpha, nan=1.0, posinf=1.0, neginf=0.0), 0.0, 1.0)
+    if math:  # Math nodes may leave [0, 1] (or divide by 0): cleaned the same way after
+        alpha = np.clip(np.nan_to_num(apply_alpha_math(alpha, math), nan=1.0, posinf=1.0,
+                                      neginf=0.0), 0.0, 1.0)
+    return np.ascontiguousarray(alpha, dtype=np.float32)
 
 
 def _float_input(node, names, fallback, info, what):
@@ -441,7 +441,8 @@ def _read_principled(node, info, what):
     dielectric = max(0.0, 1.0 - metallic) * (1.0 - transmission)
     _warn_unmodelled_layers(node, info, what)
     roughness = _float_input(node, ("Roughness",), 0.5, info, what)
-    f_avg = fresnel_hemispherical_average(_principled_f0(node, info, what))
+    f0 = _principled_f0(node, info, what)  # once: a linked IOR or Specular warns
+    f_avg = fresnel_hemispherical_average(f0)
     if texture is not None and metallic > 0.0:
         info.warnings.append(f"{what}: a textured metallic color is read as the base "
                              "color's default value for the glossy lobe")
@@ -468,7 +469,6 @@ def _read_principled(node, info, what):
     alpha = input_socket(node, "Alpha")
     if alpha is not None:
         opacity, opacity_texture = _opacity_source(alpha, info, what)
-    f0 = _principled_f0(node, info, what)
     return _Shader(_scaled(base, factor), texture, emission, color_socket, factor, glossy,
                    emission_texture, opacity, opacity_texture, passing,
                    _ior_of_f0(f0) if passing > 0.0 else 0.0)
@@ -707,7 +707,7 @@ def read_material(material):
         # lobe gives way (the diffuse albedo is what the bake's output is defined with).
         info.glossy = tuple(max(0.0, min(float(g), 1.0 - a)) for g, a in zip(glossy[0], info.albedo))
         info.glossy_exponent = float(glossy[1]) if max(info.glossy) > 0.0 else 0.0
-        reflectance = sum(w * g for w, g in zip((0.2126, 0.7152, 0.0722), info.glossy))
+        reflectance = _luminance(info.glossy)
         if reflectance > STRONG_GLOSSY_REFLECTANCE:
             info.warnings.append(
                 f"{what}: glossy reflectance {reflectance:.2f} (a metal or a Glossy BSDF) is "

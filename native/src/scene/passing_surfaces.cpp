@@ -46,19 +46,17 @@ bool PassingSurfaces::passes(uint32_t index, float b1, float b2, uint32_t seed,
                              const glm::vec3& origin, const glm::vec3& direction) const {
   const Triangle& t = triangles_[index];
   const Material& material = materials_[t.material];
-  float probability;
+  float transmission = material.transmission;
   if (material.transmission_ior > 0.0f) {
     // Glass: the share passing at this angle, transmission x (1 - F) / (1 - F_avg).
     const float cosine = std::abs(glm::dot(direction, t.face_normal)) / glm::length(direction);
     const float reflected = fresnel_dielectric(cosine, material.transmission_ior);
     const float average = fresnel_averages_[t.material];
-    Material at_angle = material;
-    at_angle.transmission = std::clamp(
-        material.transmission * (1.0f - reflected) / std::max(1.0f - average, 1e-6f), 0.0f, 1.0f);
-    probability = pass_probability_at(at_angle, textures_, t, b1, b2);
-  } else {
-    probability = pass_probability_at(material, textures_, t, b1, b2);
+    transmission =
+        std::clamp(transmission * (1.0f - reflected) / std::max(1.0f - average, 1e-6f), 0.0f, 1.0f);
   }
+  const float present = presence_at(material, textures_, t, b1, b2);
+  const float probability = 1.0f - present * (1.0f - transmission);
   if (probability <= 0.0f) return false;
   if (probability >= 1.0f) return true;
   return pass_number(index, seed, origin, direction) < probability;

@@ -41,19 +41,15 @@ glm::vec3 Scene::albedo_at(const Triangle& t, float b1, float b2) const {
   return glm::clamp(material.albedo * sample_bilinear(texture, uv), 0.0f, 1.0f);
 }
 
-float Scene::pass_probability_at(const Triangle& t, float b1, float b2) const {
-  return bakegi::pass_probability_at(material_of(t), description.textures, t, b1, b2);
-}
-
-float pass_probability_at(const Material& material, const std::vector<Texture>& textures,
-                          const Triangle& t, float b1, float b2) {
+float presence_at(const Material& material, const std::vector<Texture>& textures, const Triangle& t,
+                  float b1, float b2) {
   float present = material.opacity;
   if (material.opacity_texture != BAKEGI_NO_TEXTURE) {
     const Texture& texture = textures[material.opacity_texture];
     const glm::vec2 uv = (1.0f - b1 - b2) * t.uv[0] + b1 * t.uv[1] + b2 * t.uv[2];
     present *= glm::clamp(sample_bilinear(texture, uv).x, 0.0f, 1.0f);
   }
-  return material.pass_probability(present);
+  return present;
 }
 
 glm::vec3 Scene::emission_at(const Triangle& t, float b1, float b2) const {

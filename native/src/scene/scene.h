@@ -50,7 +50,8 @@ struct Material {
   float glossy_exponent = 0.0f;
   // See-through surfaces (bakegi_scene_set_material_passing): where present (opacity x the
   // opacity texture's red channel), a `transmission` share of rays passes straight through; a
-  // ray passes with probability pass_probability() and otherwise stops and reflects as above.
+  // ray passes with probability 1 - present x (1 - transmission) and otherwise stops and
+  // reflects as above (scene/passing_surfaces.h).
   float opacity = 1.0f;
   uint32_t opacity_texture = BAKEGI_NO_TEXTURE;
   float transmission = 0.0f;
@@ -61,7 +62,6 @@ struct Material {
   bool lets_light_pass() const {
     return opacity < 1.0f || opacity_texture != BAKEGI_NO_TEXTURE || transmission > 0.0f;
   }
-  float pass_probability(float present) const { return 1.0f - present * (1.0f - transmission); }
   bool has_glossy() const { return glossy.x > 0 || glossy.y > 0 || glossy.z > 0; }
   bool is_emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
   bool operator==(const Material&) const = default;
@@ -156,12 +156,12 @@ struct Scene {
   // Emitted radiance at a point of a triangle (emission texture applied), on its emitting
   // side(s); W/(m^2 sr).
   glm::vec3 emission_at(const Triangle& t, float b1, float b2) const;
-  // The probability that a ray meeting a triangle at (b1, b2) passes it (0 where opaque).
-  float pass_probability_at(const Triangle& t, float b1, float b2) const;
 };
 
-// The same for a material and the textures its opacity_texture indexes.
-float pass_probability_at(const Material& material, const std::vector<Texture>& textures,
-                          const Triangle& t, float b1, float b2);
+// The share of a see-through material's surface present at a point of a triangle: opacity x
+// its opacity texture's red channel there (1 for an opaque material); `textures` are those
+// opacity_texture indexes.
+float presence_at(const Material& material, const std::vector<Texture>& textures, const Triangle& t,
+                  float b1, float b2);
 
 }  // namespace bakegi
