@@ -1,6 +1,7 @@
 // The Embree wrapper: exact hits on known triangles (distance and barycentrics), both
 // sides of a triangle, occlusion, misses, watertightness of a closed box, packets agreeing
-// with single rays, and the memory budget and cancel hooks of the build.
+// with single rays, the hit's own point and normal, the per-triangle shading records, and the
+// memory budget and cancel hooks of the build.
 #include <cmath>
 #include <random>
 
@@ -115,7 +116,38 @@ TEST(RayTracer, ClosedCubeIsWatertight) {
     const Triangle& t = scene.triangles[hit.triangle];
     const glm::vec3 p = (1 - hit.b1 - hit.b2) * t.p[0] + hit.b1 * t.p[1] + hit.b2 * t.p[2];
     ASSERT_NEAR(glm::length(p - (origin + hit.t * direction)), 0.0f, 1e-5f);
+    // The hit carries its point and Embree's normal, so shading need not load the Triangle.
+    ASSERT_NEAR(glm::length(hit.position - p), 0.0f, 1e-5f) << "ray " << i;
+    const glm::vec3 normal = glm::normalize(hit.normal);
+    ASSERT_NEAR(std::abs(glm::dot(normal, t.face_normal)), 1.0f, 1e-6f) << "ray " << i;
   }
+}
+
+// Shading reads TriangleShading: the material, and whether the corners' normals differ from
+// the face's (only then does a hit load the Triangle's normals).
+TEST(RayTracer, ShadingRecordsMatchTriangles) {
+  SceneDescription d = lit_description();
+  d.materials.push_back(Material{});
+  Mesh flat;
+  flat.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  flat.indices = {0, 1, 2};
+  flat.material = 1;
+  Mesh smooth = flat;
+  smooth.material = 0;
+  smooth.corner_normals = {{0, 0, 1}, {0, 0.6f, 0.8f}, {0, 0, 1}};
+  Mesh given_flat = flat;  // normals given, all equal to the face's
+  given_flat.corner_normals = {{0, 0, 2}, {0, 0, 1}, {0, 0, 1}};
+  d.meshes.push_back(flat);
+  d.meshes.push_back(smooth);
+  d.meshes.push_back(given_flat);
+  const Scene scene = build_scene(d);
+  ASSERT_EQ(scene.shading.size(), scene.triangles.size());
+  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    EXPECT_EQ(scene.shading[i].material, scene.triangles[i].material);
+  }
+  EXPECT_EQ(scene.shading[0].smooth, 0u);
+  EXPECT_EQ(scene.shading[1].smooth, 1u);
+  EXPECT_EQ(scene.shading[2].smooth, 0u);
 }
 
 TEST(RayTracer, PacketsAgreeWithSingleRays) {
@@ -138,6 +170,9 @@ TEST(RayTracer, PacketsAgreeWithSingleRays) {
     ++hit_count;
     EXPECT_EQ(single.triangle, hits[i].triangle);
     EXPECT_NEAR(single.t, hits[i].t, 1e-5f * single.t);
+    EXPECT_NEAR(glm::length(single.position - hits[i].position), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(glm::normalize(single.normal), glm::normalize(hits[i].normal)), 1.0f,
+                1e-6f);
   }
   EXPECT_GT(hit_count, 300);  // origins inside the cube always hit: about 30% of them
   EXPECT_GT(tracer.memory_bytes(), 0u);

@@ -259,6 +259,8 @@ Hit RayTracer::intersect(const Ray& ray) const {
   hit.triangle = impl_->triangle_of(rayhit.hit.geomID, rayhit.hit.primID);
   hit.b1 = rayhit.hit.u;
   hit.b2 = rayhit.hit.v;
+  hit.position = ray.origin + hit.t * ray.direction;
+  hit.normal = glm::vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z);
   return hit;
 }
 
@@ -321,6 +323,8 @@ void RayTracer::intersect_many(const Ray* rays, Hit* hits, size_t count) const {
             hit.triangle = impl_->triangle_of(rayhit.hit.geomID[i], rayhit.hit.primID[i]);
             hit.b1 = rayhit.hit.u[i];
             hit.b2 = rayhit.hit.v[i];
+            hit.position = rays[first + i].origin + hit.t * rays[first + i].direction;
+            hit.normal = glm::vec3(rayhit.hit.Ng_x[i], rayhit.hit.Ng_y[i], rayhit.hit.Ng_z[i]);
           }
         }
       });

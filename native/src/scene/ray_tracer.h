@@ -30,6 +30,11 @@ struct Hit {
   float t = 0.0f;
   uint32_t triangle = 0;       // index into Scene::triangles
   float b1 = 0.0f, b2 = 0.0f;  // barycentrics of corners 1 and 2
+  // From the ray and Embree, so that a hit's surface point needs no load of its Triangle
+  // (a cache miss after every ray): origin + t * direction, and Embree's geometric normal
+  // (not unit; either side).
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};
 };
 
 // A ray as traced, for the benchmark that replays a solver's own rays through Embree alone.

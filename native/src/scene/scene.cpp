@@ -41,6 +41,12 @@ glm::vec3 Scene::albedo_at(const Triangle& t, float b1, float b2) const {
   return glm::clamp(material.albedo * sample_bilinear(texture, uv), 0.0f, 1.0f);
 }
 
+glm::vec3 Scene::albedo_at(uint32_t triangle, float b1, float b2) const {
+  const Material& material = description.materials[shading[triangle].material];
+  if (material.albedo_texture == BAKEGI_NO_TEXTURE) return material.albedo;
+  return albedo_at(triangles[triangle], b1, b2);
+}
+
 float presence_at(const Material& material, const std::vector<Texture>& textures, const Triangle& t,
                   float b1, float b2) {
   float present = material.opacity;

@@ -136,11 +136,20 @@ struct Triangle {
   uint32_t mesh_triangle = 0;
 };
 
+// What shading a ray's hit needs of its triangle, 8 bytes beside Triangle's 124: a hit on a
+// flat, untextured triangle reads only this (and the Hit's own position and normal), so the
+// path tracer does not wait on a cache miss after every ray (docs/benchmarks.md, 0h).
+struct TriangleShading {
+  uint32_t material = 0;
+  uint32_t smooth = 0;  // 1 where the corners' shading normals differ from the face normal
+};
+
 // The validated, flattened scene solvers work on. Degenerate triangles are dropped here
 // (with a warning); everything else that is wrong is an error (see scene_validation.h).
 struct Scene {
   SceneDescription description;
   std::vector<Triangle> triangles;
+  std::vector<TriangleShading> shading;      // per triangle, as triangles
   std::vector<uint32_t> emissive_triangles;  // indices into triangles
   EmissionCells emission_cells;              // per emissive triangle (emission_cells.h)
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
@@ -153,6 +162,8 @@ struct Scene {
   float extent() const { return glm::length(bounds_max - bounds_min); }
   // Diffuse albedo at a point of a triangle (texture applied), barycentrics (b1, b2).
   glm::vec3 albedo_at(const Triangle& t, float b1, float b2) const;
+  // The same by index: reads the Triangle only where the material has a texture.
+  glm::vec3 albedo_at(uint32_t triangle, float b1, float b2) const;
   // Emitted radiance at a point of a triangle (emission texture applied), on its emitting
   // side(s); W/(m^2 sr).
   glm::vec3 emission_at(const Triangle& t, float b1, float b2) const;

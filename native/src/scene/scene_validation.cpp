@@ -503,6 +503,9 @@ size_t append_mesh_triangles(Scene& scene, size_t m) {
     if (material.is_emissive()) {
       scene.emissive_triangles.push_back(uint32_t(scene.triangles.size()));
     }
+    const bool smooth =
+        tri.n[0] != tri.face_normal || tri.n[1] != tri.face_normal || tri.n[2] != tri.face_normal;
+    scene.shading.push_back({tri.material, smooth ? 1u : 0u});
     scene.triangles.push_back(tri);
   }
   if (dropped > 0) {
@@ -535,6 +538,7 @@ Scene build_scene(const SceneDescription& description) {
   Scene scene;
   scene.description = description;
   scene.triangles.reserve(checked_triangle_count(description));
+  scene.shading.reserve(scene.triangles.capacity());
 
   size_t dropped_total = 0;
   for (size_t m = 0; m < description.meshes.size(); ++m) {

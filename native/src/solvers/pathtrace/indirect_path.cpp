@@ -36,8 +36,7 @@ DirectionSample sample_cosine(const SurfacePoint& x, RandomStream& rng) {
 
 }  // namespace
 
-FirstRay sample_first_ray(const DirectLight& direct, const SurfacePoint& point,
-                          RandomStream& rng) {
+FirstRay sample_first_ray(const DirectLight& direct, const SurfacePoint& point, RandomStream& rng) {
   const DirectionSample first = sample_cosine(point, rng);
   return {direct.ray_origin(point), first.direction, first.pdf};
 }
@@ -57,9 +56,8 @@ PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hi
   glm::vec3 throughput(1.0f);
   for (int bounce = 1; hit.hit; ++bounce) {
     const SurfacePoint x = surface_at_hit(scene, hit, direction);
-    const Triangle& triangle = scene.triangles[hit.triangle];
-    const glm::vec3 albedo = scene.albedo_at(triangle, hit.b1, hit.b2);
-    const Material& material = scene.material_of(triangle);
+    const glm::vec3 albedo = scene.albedo_at(hit.triangle, hit.b1, hit.b2);
+    const Material& material = scene.description.materials[scene.shading[hit.triangle].material];
 
     // Light sampling (next-event estimation).
     std::optional<SurfaceBsdf> bsdf;
@@ -69,8 +67,7 @@ PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hi
       radiance += throughput * albedo * (kInvPi * direct.sample_lights(x, rng, rays));
     } else {
       // Diffuse + Phong: the same two strategies with the mixture's f cos and density.
-      bsdf.emplace(x.shading_normal, -direction, albedo, material.glossy,
-                   material.glossy_exponent);
+      bsdf.emplace(x.shading_normal, -direction, albedo, material.glossy, material.glossy_exponent);
       radiance += throughput * direct.sample_lights(x, *bsdf, rng, rays);
     }
     if (bounce == 1) {
@@ -120,8 +117,8 @@ glm::vec3 sample_indirect(const DirectLight& direct, const SurfacePoint& point, 
   if (!(first.pdf > 0.0f)) return glm::vec3(0.0f);
   ++rays;
   const Hit hit = direct.tracer().intersect(Ray{first.origin, first.direction, 0.0f, 1e30f});
-  const PathRadiance path = trace_from_first_hit(direct, hit, first.direction, rng, max_bounces,
-                                                 rays);
+  const PathRadiance path =
+      trace_from_first_hit(direct, hit, first.direction, rng, max_bounces, rays);
   return path.first_light + path.rest;
 }
 
