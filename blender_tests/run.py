@@ -80,6 +80,11 @@ def prepare_environment(arguments, scratch):
     env = dict(os.environ)
     env["BAKEGI_TEST_OUTPUT"] = os.path.abspath(arguments.output)
     env["BAKEGI_REPO"] = ROOT
+    # Temporary files of the tests and of Blender itself (its session folders, which a
+    # bpy process leaves behind) go in the scratch folder, removed after the run.
+    temporary = os.path.join(scratch, "tmp")
+    os.makedirs(temporary, exist_ok=True)
+    env["TMPDIR"] = temporary
     if arguments.library:
         library = os.path.abspath(arguments.library)
         if not os.path.isfile(library):
