@@ -631,6 +631,7 @@ MemoryBudget BakeJob::solver_memory() const {
 size_t BakeJob::held_bytes() const {
   return tracer_->memory_bytes() + description_bytes(description_) +
          scene_->triangles.capacity() * sizeof(Triangle) +
+         scene_->shading.capacity() * sizeof(TriangleShading) +
          points_.size() * (kBytesPerPoint + kBytesPerResult);
 }
 

@@ -370,7 +370,7 @@ void check_world_texture(const WorldTexture& world) {
 size_t estimate_scene_bytes(const SceneDescription& description) {
   size_t triangles = 0;
   for (const Mesh& mesh : description.meshes) triangles += mesh.indices.size() / 3;
-  size_t bytes = triangles * (sizeof(Triangle) + sizeof(uint32_t));
+  size_t bytes = triangles * (sizeof(Triangle) + sizeof(TriangleShading) + sizeof(uint32_t));
   // A world image's sampling tables: about two floats per texel (lights/environment_light.h).
   const WorldTexture& world = description.world_texture;
   if (world.is_set() && world.texture < description.textures.size()) {
