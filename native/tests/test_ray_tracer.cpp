@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "lights/surface_point.h"
 #include "scene/ray_tracer.h"
 #include "scene/scene.h"
 #include "scene/scene_validation.h"
@@ -148,6 +149,35 @@ TEST(RayTracer, ShadingRecordsMatchTriangles) {
   EXPECT_EQ(scene.shading[0].smooth, 0u);
   EXPECT_EQ(scene.shading[1].smooth, 1u);
   EXPECT_EQ(scene.shading[2].smooth, 0u);
+  for (const TriangleShading& s : scene.shading) EXPECT_EQ(s.sliver, 0u);
+}
+
+// A sliver on a tilted plane (twice its area 5e-7 of its longest edge squared, kept by
+// validation): float's cross product of its edges loses most of its digits, so the hit's
+// surface reads the face normal computed in double.
+TEST(RayTracer, ASliverKeepsItsExactNormal) {
+  SceneDescription d = lit_description();
+  const glm::vec3 n = glm::normalize(glm::vec3(1, 2, 3));
+  const glm::vec3 u = glm::normalize(glm::vec3(2, -1, 0));
+  const glm::vec3 v = glm::cross(n, u);
+  const glm::vec3 base(1.0f, 2.0f, 3.0f);
+  Mesh sliver;
+  sliver.positions = {base, base + u, base + 0.5f * u + 5e-7f * v};
+  sliver.indices = {0, 1, 2};
+  d.meshes.push_back(sliver);
+  const Scene scene = build_scene(d);
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  EXPECT_EQ(scene.shading[0].sliver, 1u);
+  const RayTracer tracer(scene);
+  const glm::vec3 direction = -n;
+  const Hit hit = tracer.intersect({base + 0.5f * u + 2.5e-7f * v + n, direction});
+  ASSERT_TRUE(hit.hit);
+  const SurfacePoint x = surface_at_hit(scene, hit, direction);
+  const glm::vec3 exact = scene.triangles[0].face_normal;
+  EXPECT_NEAR(std::abs(glm::dot(x.geometric_normal, exact)), 1.0f, 1e-7f);
+  // Facing the ray's side (the rounded vertices tilt the stored plane by a few degrees).
+  EXPECT_GT(glm::dot(x.geometric_normal, n), 0.9f);
+  EXPECT_NEAR(glm::dot(x.shading_normal, x.geometric_normal), 1.0f, 1e-7f);
 }
 
 TEST(RayTracer, PacketsAgreeWithSingleRays) {

@@ -6,9 +6,11 @@ SurfacePoint surface_at_hit(const Scene& scene, const Hit& hit, const glm::vec3&
   SurfacePoint x;
   // From the hit, not the Triangle: its load is a cache miss (Hit::position).
   x.position = hit.position;
-  const glm::vec3 face_normal = glm::normalize(hit.normal);
+  const TriangleShading& record = scene.shading[hit.triangle];
+  const glm::vec3 face_normal =
+      record.sliver ? scene.triangles[hit.triangle].face_normal : glm::normalize(hit.normal);
   x.geometric_normal = glm::dot(face_normal, ray_direction) > 0.0f ? -face_normal : face_normal;
-  if (!scene.shading[hit.triangle].smooth) {
+  if (!record.smooth) {
     x.shading_normal = x.geometric_normal;
     return x;
   }

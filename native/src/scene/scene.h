@@ -141,8 +141,13 @@ struct Triangle {
 // path tracer does not wait on a cache miss after every ray (docs/benchmarks.md, 0h).
 struct TriangleShading {
   uint32_t material = 0;
-  uint32_t smooth = 0;  // 1 where the corners' shading normals differ from the face normal
+  uint8_t smooth = 0;  // 1 where the corners' shading normals differ from the face normal
+  // 1 where the triangle is so thin (twice its area under kSliverRelativeArea times its
+  // longest edge squared) that Embree's float normal may point anywhere: the hit reads the
+  // Triangle's face normal, computed in double.
+  uint8_t sliver = 0;
 };
+inline constexpr double kSliverRelativeArea = 1e-3;
 
 // The validated, flattened scene solvers work on. Degenerate triangles are dropped here
 // (with a warning); everything else that is wrong is an error (see scene_validation.h).

@@ -505,7 +505,8 @@ size_t append_mesh_triangles(Scene& scene, size_t m) {
     }
     const bool smooth =
         tri.n[0] != tri.face_normal || tri.n[1] != tri.face_normal || tri.n[2] != tri.face_normal;
-    scene.shading.push_back({tri.material, smooth ? 1u : 0u});
+    const bool sliver = twice_area < kSliverRelativeArea * longest2;
+    scene.shading.push_back({tri.material, uint8_t(smooth ? 1 : 0), uint8_t(sliver ? 1 : 0)});
     scene.triangles.push_back(tri);
   }
   if (dropped > 0) {
