@@ -78,7 +78,7 @@ glm::vec3 EmissiveTriangles::emitted(uint32_t triangle, float b1, float b2,
                                      const glm::vec3& direction) const {
   // The material first: most hits are on surfaces that emit nothing, and the Triangle's
   // load is a cache miss.
-  const Material& m = scene_.description.materials[scene_.shading[triangle].material];
+  const Material& m = scene_.material_of(triangle);
   if (!m.is_emissive()) return glm::vec3(0.0f);
   const Triangle& t = scene_.triangles[triangle];
   if (!m.emission_two_sided && glm::dot(t.face_normal, direction) >= 0.0f) return glm::vec3(0.0f);

@@ -42,7 +42,7 @@ glm::vec3 Scene::albedo_at(const Triangle& t, float b1, float b2) const {
 }
 
 glm::vec3 Scene::albedo_at(uint32_t triangle, float b1, float b2) const {
-  const Material& material = description.materials[shading[triangle].material];
+  const Material& material = material_of(triangle);
   if (material.albedo_texture == BAKEGI_NO_TEXTURE) return material.albedo;
   return albedo_at(triangles[triangle], b1, b2);
 }

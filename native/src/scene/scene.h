@@ -164,6 +164,10 @@ struct Scene {
   std::shared_ptr<const EnvironmentLight> environment;
 
   const Material& material_of(const Triangle& t) const { return description.materials[t.material]; }
+  // The same by index, from the compact shading record (no load of the Triangle).
+  const Material& material_of(uint32_t triangle) const {
+    return description.materials[shading[triangle].material];
+  }
   float extent() const { return glm::length(bounds_max - bounds_min); }
   // Diffuse albedo at a point of a triangle (texture applied), barycentrics (b1, b2).
   glm::vec3 albedo_at(const Triangle& t, float b1, float b2) const;

@@ -57,7 +57,7 @@ PathRadiance trace_from_first_hit(const DirectLight& direct, const Hit& first_hi
   for (int bounce = 1; hit.hit; ++bounce) {
     const SurfacePoint x = surface_at_hit(scene, hit, direction);
     const glm::vec3 albedo = scene.albedo_at(hit.triangle, hit.b1, hit.b2);
-    const Material& material = scene.description.materials[scene.shading[hit.triangle].material];
+    const Material& material = scene.material_of(hit.triangle);
 
     // Light sampling (next-event estimation).
     std::optional<SurfaceBsdf> bsdf;
