@@ -70,5 +70,36 @@ void BM_EmbreePathTracerRays(benchmark::State& state) {
 
 BENCHMARK(BM_EmbreePathTracerRays)->Apply(at_one_and_two_threads);
 
+// The same rays split by kind (closest hits, then shadow rays, each in the order traced),
+// one thread, one ray at a time (stream 0) or through Embree's stream interface `stream`
+// rays a call: whether a path tracer that traces its rays in batches (a point's paths
+// vertex by vertex, or wavefronts) would gain from the stream interface itself.
+void BM_EmbreePathTracerRaysByKind(benchmark::State& state) {
+  const size_t stream = size_t(state.range(0));
+  const RayTracer& tracer = *bench_scene().tracer;
+  std::vector<Ray> closest, shadow;
+  for (const RecordedRay& r : path_rays()) (r.occlusion ? shadow : closest).push_back(r.ray);
+  std::vector<Hit> hits(closest.size());
+  std::vector<uint8_t> blocked(shadow.size());
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+  for (auto _ : state) {
+    if (stream) {
+      tracer.intersect_stream(closest.data(), hits.data(), closest.size(), stream);
+      tracer.occluded_stream(shadow.data(), blocked.data(), shadow.size(), stream);
+    } else {
+      for (size_t i = 0; i < closest.size(); ++i) hits[i] = tracer.intersect(closest[i]);
+      for (size_t i = 0; i < shadow.size(); ++i) blocked[i] = tracer.occluded(shadow[i]);
+    }
+    benchmark::DoNotOptimize(hits.data());
+    benchmark::DoNotOptimize(blocked.data());
+  }
+  state.counters["rays/s"] =
+      benchmark::Counter(double(state.iterations()) * double(closest.size() + shadow.size()),
+                         benchmark::Counter::kIsRate);
+  state.SetLabel(bench_scene().name);
+}
+
+BENCHMARK(BM_EmbreePathTracerRaysByKind)->ArgName("stream")->Arg(0)->Arg(16)->Arg(256);
+
 }  // namespace
 }  // namespace bakegi::bench

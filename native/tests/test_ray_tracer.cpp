@@ -208,6 +208,44 @@ TEST(RayTracer, PacketsAgreeWithSingleRays) {
   EXPECT_GT(tracer.memory_bytes(), 0u);
 }
 
+// The stream interface (benchmarks) returns what single rays return, ray by ray, at any chunk
+// size, the last chunk partial; shadow rays with limited intervals.
+TEST(RayTracer, StreamsAgreeWithSingleRays) {
+  const Scene scene = cube_scene();
+  const RayTracer tracer(scene);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> uniform(-1.5f, 1.5f);
+  std::uniform_real_distribution<float> length(0.0f, 3.0f);
+  std::vector<Ray> rays(1000);
+  for (Ray& ray : rays) {
+    ray.origin = {uniform(rng), uniform(rng), uniform(rng)};
+    ray.direction = glm::normalize(glm::vec3(uniform(rng), uniform(rng), uniform(rng)));
+  }
+  std::vector<Ray> segments = rays;
+  for (Ray& segment : segments) segment.tfar = length(rng);
+  for (const size_t chunk : {size_t(1), size_t(16), size_t(300), RayTracer::kMaxStreamChunk}) {
+    std::vector<Hit> hits(rays.size());
+    std::vector<uint8_t> blocked(segments.size(), 2);
+    tracer.intersect_stream(rays.data(), hits.data(), rays.size(), chunk);
+    tracer.occluded_stream(segments.data(), blocked.data(), segments.size(), chunk);
+    int hit_count = 0, blocked_count = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const Hit single = tracer.intersect(rays[i]);
+      ASSERT_EQ(single.hit, hits[i].hit) << chunk << " " << i;
+      ASSERT_EQ(tracer.occluded(segments[i]) ? 1 : 0, blocked[i]) << chunk << " " << i;
+      blocked_count += blocked[i];
+      if (!single.hit) continue;
+      ++hit_count;
+      EXPECT_EQ(single.triangle, hits[i].triangle);
+      EXPECT_NEAR(single.t, hits[i].t, 1e-5f * single.t);
+      EXPECT_NEAR(glm::length(single.position - hits[i].position), 0.0f, 1e-5f);
+    }
+    EXPECT_GT(hit_count, 300);
+    EXPECT_GT(blocked_count, 100);
+    EXPECT_LT(blocked_count, 900);  // both answers occur
+  }
+}
+
 // A grid of n x n quads in the plane z = 0: enough triangles for Embree to report build
 // progress and allocate real memory.
 Scene grid_scene(int n) {

@@ -3,6 +3,7 @@
 // handled here and nowhere else.
 #include "scene/ray_tracer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
 #include <mutex>
@@ -276,6 +277,58 @@ bool RayTracer::occluded(const Ray& ray) const {
 #endif
   // Embree marks an occluded ray by setting tfar to -inf.
   return r.tfar < 0.0f;
+}
+
+void RayTracer::intersect_stream(const Ray* rays, Hit* hits, size_t count, size_t chunk) const {
+#if BAKEGI_EMBREE_MAJOR >= 4
+  for (size_t i = 0; i < count; ++i) hits[i] = intersect(rays[i]);
+#else
+  const size_t kChunk = std::clamp<size_t>(chunk, 1, kMaxStreamChunk);
+  std::vector<RTCRayHit> rayhits(kChunk);
+  for (size_t first = 0; first < count; first += kChunk) {
+    const size_t n = std::min(kChunk, count - first);
+    for (size_t i = 0; i < n; ++i) {
+      rayhits[i].ray = to_rtc_ray(rays[first + i]);
+      rayhits[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rayhits[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1M(impl_->scene, &context, rayhits.data(), unsigned(n), sizeof(RTCRayHit));
+    for (size_t i = 0; i < n; ++i) {
+      const RTCRayHit& rayhit = rayhits[i];
+      Hit& hit = hits[first + i];
+      hit = Hit{};
+      if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      const Ray& ray = rays[first + i];
+      hit.hit = true;
+      hit.t = rayhit.ray.tfar;
+      hit.triangle = impl_->triangle_of(rayhit.hit.geomID, rayhit.hit.primID);
+      hit.b1 = rayhit.hit.u;
+      hit.b2 = rayhit.hit.v;
+      hit.position = ray.origin + hit.t * ray.direction;
+      hit.normal = glm::vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z);
+    }
+  }
+#endif
+}
+
+void RayTracer::occluded_stream(const Ray* rays, uint8_t* occluded, size_t count,
+                                size_t chunk) const {
+#if BAKEGI_EMBREE_MAJOR >= 4
+  for (size_t i = 0; i < count; ++i) occluded[i] = this->occluded(rays[i]) ? 1 : 0;
+#else
+  const size_t kChunk = std::clamp<size_t>(chunk, 1, kMaxStreamChunk);
+  std::vector<RTCRay> r(kChunk);
+  for (size_t first = 0; first < count; first += kChunk) {
+    const size_t n = std::min(kChunk, count - first);
+    for (size_t i = 0; i < n; ++i) r[i] = to_rtc_ray(rays[first + i]);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1M(impl_->scene, &context, r.data(), unsigned(n), sizeof(RTCRay));
+    for (size_t i = 0; i < n; ++i) occluded[first + i] = r[i].tfar < 0.0f ? 1 : 0;
+  }
+#endif
 }
 
 void RayTracer::intersect_many(const Ray* rays, Hit* hits, size_t count) const {
