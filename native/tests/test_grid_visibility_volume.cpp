@@ -136,7 +136,7 @@ TEST(GridVisibilityVolume, ASurfaceFacingOutOfTheGridReadsWhatTheWorldGives) {
   EXPECT_TRUE(unsure);
 }
 
-// Subvoxels of about 1/64 of the grid's longest side, 2 to 8 a cell, even.
+// 8 subvoxels a cell up to 16 cells, then about 1/64 of the grid's longest side, even.
 TEST(GridVisibilityVolume, TheWebExportsSubdivisionFollowsTheGridsCells) {
   const auto subdivision = [](uint32_t cells) {
     return page_visibility_subdivision(
@@ -145,8 +145,9 @@ TEST(GridVisibilityVolume, TheWebExportsSubdivisionFollowsTheGridsCells) {
   EXPECT_EQ(subdivision(64), 2u);
   EXPECT_EQ(subdivision(32), 2u);
   EXPECT_EQ(subdivision(24), 4u);
-  EXPECT_EQ(subdivision(16), 4u);
-  EXPECT_EQ(subdivision(12), 6u);
+  EXPECT_EQ(subdivision(17), 4u);
+  EXPECT_EQ(subdivision(16), 8u);
+  EXPECT_EQ(subdivision(12), 8u);
   EXPECT_EQ(subdivision(8), 8u);
   EXPECT_EQ(subdivision(4), 8u);
 }

@@ -45,10 +45,11 @@ class RayTracer;
 struct Scene;
 
 inline constexpr uint8_t kNoFallback = 0xff;
-// What the web export builds: subvoxels about 1/64 of the grid's longest side (2 for a grid
-// of 32 cells or more, 4 for 16, 8 for 8 or fewer). Measured (docs/ivg.md): at 16 cells 4
-// reads far better than 2 (maze 146% -> 100% NRMSE, two rooms 37% -> 20%); at 32 cells 4 is
-// no better than 2 and worse in the maze.
+// What the web export builds: 8 subvoxels a cell for grids of 16 cells or fewer, above that
+// about 1/64 of the grid's longest side (4 from 17 to 31 cells, 2 from 32). Measured
+// (docs/ivg.md): at 16 cells 4 reads far better than 2 (maze 146% -> 100% NRMSE, two rooms
+// 37% -> 20%) and 8 better again where gaps are thin (office wRRMSE 73% -> 51%, the other
+// scenes within 0.2 points); at 32 cells 4 is no better than 2 and worse in the maze.
 uint32_t page_visibility_subdivision(const GridLayout& layout);
 // The most subvoxels a volume may hold (32 MB of codes; a 128^3 grid at 2 a cell). Larger
 // grids are past what a page uploads anyway; the web export leaves their volume out.
