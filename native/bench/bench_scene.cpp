@@ -23,7 +23,8 @@ bakegi_scene* to_c_api(const SceneDescription& d) {
   check(bakegi_scene_create(&scene), "bakegi_scene_create");
   for (const Texture& t : d.textures) {
     uint32_t id = 0;
-    check(bakegi_scene_add_texture(scene, t.width, t.height, &t.texels()[0].x, &id), "texture");
+    const std::vector<glm::vec3> texels = t.texels();
+    check(bakegi_scene_add_texture(scene, t.width, t.height, &texels[0].x, &id), "texture");
   }
   for (const Material& m : d.materials) {
     bakegi_material_desc desc{{m.albedo.x, m.albedo.y, m.albedo.z},

@@ -61,7 +61,7 @@ std::string percent(double fraction) {
 
 size_t description_bytes(const SceneDescription& d) {
   size_t bytes = d.materials.size() * sizeof(Material) + d.lights.size() * sizeof(Light);
-  for (const Texture& t : d.textures) bytes += t.texels().size() * sizeof(glm::vec3);
+  for (const Texture& t : d.textures) bytes += t.bytes();
   for (const Mesh& m : d.meshes) {
     bytes += m.positions.size() * sizeof(glm::vec3) + m.indices.size() * sizeof(uint32_t) +
              m.corner_normals.size() * sizeof(glm::vec3) + m.corner_uvs.size() * sizeof(glm::vec2) +

@@ -132,9 +132,17 @@ CacheKey precomputation_key(uint32_t codec_version, const SceneDescription& scen
     const std::vector<uint8_t> encoded = encode_scene_sections(shapes);
     add_hash(w, geometry_and_materials(encoded));
     for (const Texture& texture : scene.textures) {
-      const std::vector<glm::vec3>& texels = texture.texels();
-      add_hash(w, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(texels.data()),
-                                           texels.size() * sizeof(glm::vec3)));
+      // The texels as held (texel_palette.h), without a copy of them as floats.
+      if (const TexelPalette* palette = texture.palette()) {
+        add_hash(w,
+                 std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(palette->values.data()),
+                                          sizeof(palette->values)));
+        add_hash(w, palette->indices);
+      } else {
+        add_hash(w,
+                 std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(texture.float_texels()),
+                                          texture.texel_count() * sizeof(glm::vec3)));
+      }
     }
   }
   for (const auto& [key, value] : used_settings) {

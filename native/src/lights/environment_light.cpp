@@ -37,7 +37,6 @@ EnvironmentLight::EnvironmentLight(const WorldTexture& world, const std::vector<
       rotation_(world.rotation),
       width_(texture_.width),
       height_(texture_.height) {
-  const std::vector<glm::vec3>& texels = texture_.texels();
   const size_t w = width_, h = height_;
   std::vector<float> texel_luminance(w * h);
   glm::dvec3 weighted_sum(0.0);
@@ -45,7 +44,7 @@ EnvironmentLight::EnvironmentLight(const WorldTexture& world, const std::vector<
   for (size_t j = 0; j < h; ++j) {
     const double sine = row_sine(uint32_t(j), height_);
     for (size_t i = 0; i < w; ++i) {
-      const glm::vec3 radiance = scale_ * texels[j * w + i];
+      const glm::vec3 radiance = scale_ * texture_.texel(j * w + i);
       texel_luminance[j * w + i] = std::max(0.0f, float(luminance(radiance)));
       weighted_sum += sine * glm::dvec3(radiance);
       sine_sum += sine;
@@ -129,10 +128,11 @@ glm::vec3 EnvironmentLight::lookup(const glm::vec2& uv) const {
   const auto row = [&](double j) {
     return size_t(std::clamp<int64_t>(int64_t(j), 0, int64_t(height_) - 1));
   };
-  const std::vector<glm::vec3>& texels = texture_.texels();
   const size_t i0 = column(x0), i1 = column(x0 + 1), j0 = row(y0), j1 = row(y0 + 1);
-  const glm::vec3 bottom = glm::mix(texels[j0 * width_ + i0], texels[j0 * width_ + i1], fx);
-  const glm::vec3 top = glm::mix(texels[j1 * width_ + i0], texels[j1 * width_ + i1], fx);
+  const glm::vec3 bottom =
+      glm::mix(texture_.texel(j0 * width_ + i0), texture_.texel(j0 * width_ + i1), fx);
+  const glm::vec3 top =
+      glm::mix(texture_.texel(j1 * width_ + i0), texture_.texel(j1 * width_ + i1), fx);
   return scale_ * glm::mix(bottom, top, fy);
 }
 

@@ -21,15 +21,43 @@ glm::vec3 sample_bilinear(const Texture& texture, glm::vec2 uv) {
   };
   const uint32_t i0 = wrap(x0, texture.width), i1 = wrap(x0 + 1, texture.width);
   const uint32_t j0 = wrap(y0, texture.height), j1 = wrap(y0 + 1, texture.height);
-  auto texel = [&](uint32_t i, uint32_t j) {
-    return texture.texels()[size_t(j) * texture.width + i];
+  const auto blend = [&](const auto& texel) {
+    const glm::vec3 bottom = glm::mix(texel(i0, j0), texel(i1, j0), fx);
+    const glm::vec3 top = glm::mix(texel(i0, j1), texel(i1, j1), fx);
+    return glm::mix(bottom, top, fy);
   };
-  const glm::vec3 bottom = glm::mix(texel(i0, j0), texel(i1, j0), fx);
-  const glm::vec3 top = glm::mix(texel(i0, j1), texel(i1, j1), fx);
-  return glm::mix(bottom, top, fy);
+  const size_t width = texture.width;
+  if (const TexelPalette* palette = texture.palette()) {
+    return blend([&](uint32_t i, uint32_t j) { return palette->texel(size_t(j) * width + i); });
+  }
+  const glm::vec3* texels = texture.float_texels();
+  return blend([&](uint32_t i, uint32_t j) { return texels[size_t(j) * width + i]; });
 }
 
 }  // namespace
+
+void Texture::set_texels(std::vector<glm::vec3> values, bool allow_palette) {
+  // Under 128 texels the palette's 1 KB of values outweighs the floats.
+  palette_ = allow_palette && values.size() >= 128 ? make_texel_palette(values) : nullptr;
+  floats_ = palette_ ? nullptr : std::make_shared<const std::vector<glm::vec3>>(std::move(values));
+}
+
+std::vector<glm::vec3> Texture::texels() const {
+  if (floats_) return *floats_;
+  std::vector<glm::vec3> out(texel_count());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = texel(i);
+  return out;
+}
+
+bool Texture::operator==(const Texture& other) const {
+  if (width != other.width || height != other.height) return false;
+  if (floats_ == other.floats_ && palette_ == other.palette_) return true;
+  if (texel_count() != other.texel_count()) return false;
+  for (size_t i = 0, n = texel_count(); i < n; ++i) {
+    if (texel(i) != other.texel(i)) return false;
+  }
+  return true;
+}
 
 glm::vec3 Scene::albedo_at(const Triangle& t, float b1, float b2) const {
   const Material& material = material_of(t);

@@ -14,28 +14,36 @@
 #include "scene/emission_cells.h"
 #include "scene/mesh_topology.h"
 #include "scene/shared_vector.h"
+#include "scene/texel_palette.h"
 
 namespace bakegi {
 
 struct Texture {
   uint32_t width = 0, height = 0;
 
-  // Linear RGB, row 0 at v = 0.
-  const std::vector<glm::vec3>& texels() const { return shared_texels ? *shared_texels : kNone; }
-  void set_texels(std::vector<glm::vec3> values) {
-    shared_texels = std::make_shared<const std::vector<glm::vec3>>(std::move(values));
+  // Linear RGB, row 0 at v = 0. Held as 8-bit indices into a palette where the texture has
+  // at most 256 distinct values (every 8-bit image; texel_palette.h: exact, a quarter of the
+  // bytes), else as floats (allow_palette false, or under 128 texels: floats always). Immutable
+  // once set and shared by copies: every job copies the scene it bakes, and a relight compares it
+  // with the previous one; Sponza's textures are 300 MB as floats, 75 MB as palettes.
+  void set_texels(std::vector<glm::vec3> values, bool allow_palette = true);
+  size_t texel_count() const {
+    return palette_ ? palette_->indices.size() / 3 : floats_ ? floats_->size() : 0;
   }
-  // Immutable once set and shared by copies: every job copies the scene it bakes, and a relight
-  // compares it with the previous one; Sponza's textures are 300 MB.
-  std::shared_ptr<const std::vector<glm::vec3>> shared_texels;
+  glm::vec3 texel(size_t i) const { return palette_ ? palette_->texel(i) : (*floats_)[i]; }
+  // A copy of every texel (writing files, exports; lookups read texel()).
+  std::vector<glm::vec3> texels() const;
+  const TexelPalette* palette() const { return palette_.get(); }
+  const glm::vec3* float_texels() const { return floats_ ? floats_->data() : nullptr; }
+  size_t bytes() const {
+    return palette_ ? palette_->bytes() : floats_ ? floats_->size() * sizeof(glm::vec3) : 0;
+  }
 
-  bool operator==(const Texture& other) const {
-    return width == other.width && height == other.height &&
-           (shared_texels == other.shared_texels || texels() == other.texels());
-  }
+  bool operator==(const Texture& other) const;
 
  private:
-  static inline const std::vector<glm::vec3> kNone{};
+  std::shared_ptr<const std::vector<glm::vec3>> floats_;
+  std::shared_ptr<const TexelPalette> palette_;
 };
 
 struct Material {

@@ -76,7 +76,7 @@ void write_scene(Writer& w, const SceneDescription& scene) {
   for (const Texture& t : scene.textures) {
     w.u32(t.width);
     w.u32(t.height);
-    for (const glm::vec3& p : t.texels()) w.vec3(p);
+    for (size_t i = 0, n = t.texel_count(); i < n; ++i) w.vec3(t.texel(i));
   }
   w.end_section(at);
 

@@ -106,11 +106,11 @@ std::vector<uint8_t> encode_png(const Texture& texture, const std::vector<uint8_
 
 std::vector<uint8_t> encode_srgb_png(const Texture& texture) {
   std::vector<uint8_t> rgb(size_t(texture.width) * texture.height * 3);
-  const auto& texels = texture.texels();
-  for (size_t i = 0; i < texels.size() && 3 * i + 2 < rgb.size(); ++i) {
-    rgb[3 * i] = srgb_byte(texels[i].x);
-    rgb[3 * i + 1] = srgb_byte(texels[i].y);
-    rgb[3 * i + 2] = srgb_byte(texels[i].z);
+  for (size_t i = 0; i < texture.texel_count() && 3 * i + 2 < rgb.size(); ++i) {
+    const glm::vec3 texel = texture.texel(i);
+    rgb[3 * i] = srgb_byte(texel.x);
+    rgb[3 * i + 1] = srgb_byte(texel.y);
+    rgb[3 * i + 2] = srgb_byte(texel.z);
   }
   return encode_png(texture, rgb);
 }
@@ -119,9 +119,8 @@ std::vector<uint8_t> encode_srgb_png(const Texture& texture) {
 // page's alpha map (three.js reads an alpha map's green channel, unconverted).
 std::vector<uint8_t> encode_opacity_png(const Texture& texture, float opacity) {
   std::vector<uint8_t> rgb(size_t(texture.width) * texture.height * 3);
-  const auto& texels = texture.texels();
-  for (size_t i = 0; i < texels.size() && 3 * i + 2 < rgb.size(); ++i) {
-    const float value = std::clamp(texels[i].x * opacity, 0.0f, 1.0f);
+  for (size_t i = 0; i < texture.texel_count() && 3 * i + 2 < rgb.size(); ++i) {
+    const float value = std::clamp(texture.texel(i).x * opacity, 0.0f, 1.0f);
     rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = uint8_t(std::lround(value * 255.0f));
   }
   return encode_png(texture, rgb);
