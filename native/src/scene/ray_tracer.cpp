@@ -42,6 +42,15 @@ RTCRay to_rtc_ray(const Ray& ray) {
   return r;
 }
 
+// A ray and an empty hit record, as rtcIntersect1 and rtcIntersect1M take them.
+RTCRayHit to_rtc_ray_hit(const Ray& ray) {
+  RTCRayHit rayhit;
+  rayhit.ray = to_rtc_ray(ray);
+  rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rayhit;
+}
+
 const char* rtc_error_name(RTCError code) {
   switch (code) {
     case RTC_ERROR_NONE:
@@ -85,6 +94,20 @@ struct RayTracer::Impl {
   uint32_t triangle_of(unsigned geometry, unsigned primitive) const {
     if (geometry == 1) return passing->triangle_indices()[primitive];
     return opaque_triangles.empty() ? primitive : opaque_triangles[primitive];
+  }
+
+  // The Hit of `ray` from Embree's record of it.
+  Hit hit_of(const Ray& ray, const RTCRayHit& rayhit) const {
+    Hit hit;
+    if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.hit = true;
+    hit.t = rayhit.ray.tfar;
+    hit.triangle = triangle_of(rayhit.hit.geomID, rayhit.hit.primID);
+    hit.b1 = rayhit.hit.u;
+    hit.b2 = rayhit.hit.v;
+    hit.position = ray.origin + hit.t * ray.direction;
+    hit.normal = glm::vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z);
+    return hit;
   }
 
   // Embree's filter for geometry 1: a hit the ray passes is rejected, so traversal goes on.
@@ -242,10 +265,7 @@ bool RayTracer::has_passing_surfaces() const {
 
 Hit RayTracer::intersect(const Ray& ray) const {
   if (log_) log_->push_back({ray, false});
-  RTCRayHit rayhit;
-  rayhit.ray = to_rtc_ray(ray);
-  rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rayhit = to_rtc_ray_hit(ray);
 #if BAKEGI_EMBREE_MAJOR >= 4
   rtcIntersect1(impl_->scene, &rayhit);
 #else
@@ -253,16 +273,7 @@ Hit RayTracer::intersect(const Ray& ray) const {
   rtcInitIntersectContext(&context);
   rtcIntersect1(impl_->scene, &context, &rayhit);
 #endif
-  Hit hit;
-  if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-  hit.hit = true;
-  hit.t = rayhit.ray.tfar;
-  hit.triangle = impl_->triangle_of(rayhit.hit.geomID, rayhit.hit.primID);
-  hit.b1 = rayhit.hit.u;
-  hit.b2 = rayhit.hit.v;
-  hit.position = ray.origin + hit.t * ray.direction;
-  hit.normal = glm::vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z);
-  return hit;
+  return impl_->hit_of(ray, rayhit);
 }
 
 bool RayTracer::occluded(const Ray& ray) const {
@@ -279,37 +290,33 @@ bool RayTracer::occluded(const Ray& ray) const {
   return r.tfar < 0.0f;
 }
 
+#if BAKEGI_EMBREE_MAJOR < 4
+namespace {
+
+// body(first, n) over [0, count) in pieces of n <= chunk (clamped to 1..kMaxStreamChunk), with
+// `records` sized for the largest piece.
+template <typename Record, typename Body>
+void in_chunks(size_t count, size_t chunk, std::vector<Record>& records, const Body& body) {
+  const size_t size = std::clamp<size_t>(chunk, 1, RayTracer::kMaxStreamChunk);
+  records.resize(size);
+  for (size_t first = 0; first < count; first += size) body(first, std::min(size, count - first));
+}
+
+}  // namespace
+#endif
+
 void RayTracer::intersect_stream(const Ray* rays, Hit* hits, size_t count, size_t chunk) const {
 #if BAKEGI_EMBREE_MAJOR >= 4
   for (size_t i = 0; i < count; ++i) hits[i] = intersect(rays[i]);
 #else
-  const size_t kChunk = std::clamp<size_t>(chunk, 1, kMaxStreamChunk);
-  std::vector<RTCRayHit> rayhits(kChunk);
-  for (size_t first = 0; first < count; first += kChunk) {
-    const size_t n = std::min(kChunk, count - first);
-    for (size_t i = 0; i < n; ++i) {
-      rayhits[i].ray = to_rtc_ray(rays[first + i]);
-      rayhits[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rayhits[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    }
+  std::vector<RTCRayHit> rayhits;
+  in_chunks(count, chunk, rayhits, [&](size_t first, size_t n) {
+    for (size_t i = 0; i < n; ++i) rayhits[i] = to_rtc_ray_hit(rays[first + i]);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcIntersect1M(impl_->scene, &context, rayhits.data(), unsigned(n), sizeof(RTCRayHit));
-    for (size_t i = 0; i < n; ++i) {
-      const RTCRayHit& rayhit = rayhits[i];
-      Hit& hit = hits[first + i];
-      hit = Hit{};
-      if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-      const Ray& ray = rays[first + i];
-      hit.hit = true;
-      hit.t = rayhit.ray.tfar;
-      hit.triangle = impl_->triangle_of(rayhit.hit.geomID, rayhit.hit.primID);
-      hit.b1 = rayhit.hit.u;
-      hit.b2 = rayhit.hit.v;
-      hit.position = ray.origin + hit.t * ray.direction;
-      hit.normal = glm::vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z);
-    }
-  }
+    for (size_t i = 0; i < n; ++i) hits[first + i] = impl_->hit_of(rays[first + i], rayhits[i]);
+  });
 #endif
 }
 
@@ -318,16 +325,14 @@ void RayTracer::occluded_stream(const Ray* rays, uint8_t* occluded, size_t count
 #if BAKEGI_EMBREE_MAJOR >= 4
   for (size_t i = 0; i < count; ++i) occluded[i] = this->occluded(rays[i]) ? 1 : 0;
 #else
-  const size_t kChunk = std::clamp<size_t>(chunk, 1, kMaxStreamChunk);
-  std::vector<RTCRay> r(kChunk);
-  for (size_t first = 0; first < count; first += kChunk) {
-    const size_t n = std::min(kChunk, count - first);
+  std::vector<RTCRay> r;
+  in_chunks(count, chunk, r, [&](size_t first, size_t n) {
     for (size_t i = 0; i < n; ++i) r[i] = to_rtc_ray(rays[first + i]);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcOccluded1M(impl_->scene, &context, r.data(), unsigned(n), sizeof(RTCRay));
     for (size_t i = 0; i < n; ++i) occluded[first + i] = r[i].tfar < 0.0f ? 1 : 0;
-  }
+  });
 #endif
 }
 
