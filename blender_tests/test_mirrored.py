@@ -65,11 +65,12 @@ class MirroredObjects(common.AddonCase):
     """Each method on the small Cornell box (open walls, solid boxes), the office (closed
     solids, sun and sky) and the closed two rooms, original against mirrored."""
 
-    def compare(self, build, method, **settings):
+    def compare(self, build, method, floor=0.002, **settings):
         """Bakes seed 0 and seed 1 of the original and seed 0 of the mirrored copy. Another
         corner order changes which random numbers each patch, point or path gets (they are
         keyed by element index), so the mirrored bake must agree with the original as closely
-        as another seed does; the bug this pins changed whole objects by 15% to 100%."""
+        as another seed does, or within `floor` where the order changes more than the
+        numbers; the bug this pins changed whole objects by 15% to 100%."""
         build()
         original, _ = bake_points(self.bakegi, method, seed=0, **settings)
         other_seed, _ = bake_points(self.bakegi, method, seed=1, **settings)
@@ -84,7 +85,8 @@ class MirroredObjects(common.AddonCase):
               f"{100 * seed_spread:.3f}%; means {numpy.mean(original):.5f} / {numpy.mean(mirrored):.5f}")
         # 1.5x: the spread of one RMSE over a thousand points or more is a few percent of it;
         # 0.2% absolute covers methods whose seed changes almost nothing.
-        self.assertLess(error, 1.5 * seed_spread + 0.002, f"{method}: a mirrored scene bakes differently")
+        self.assertLess(error, max(1.5 * seed_spread + 0.002, floor),
+                        f"{method}: a mirrored scene bakes differently")
 
     def test_cornell_box(self):
         def cornell():
@@ -121,16 +123,20 @@ class MirroredObjects(common.AddonCase):
     def test_office(self):
         """The office: closed solids with a window, sun and sky, at a coarse grid (0.5 m cells)
         to keep the three bakes per method short, antiradiance with 48 bins (2 s a bake instead
-        of 16 s; mirrored against original 4.2%, seed against seed 3.7%). Meshless keeps its
+        of 16 s). Meshless keeps its
         defaults: with 64 gather rays instead of 256 its seed spread reached 22%, too wide to
-        tell the 15-100% a wrong winding makes."""
+        tell the 15-100% a wrong winding makes. Antiradiance's patches follow the triangles'
+        corner order, so the mirrored office gets other patches, not only other numbers: 4.4%
+        apart, where a vertex's value (the mean of its corners) moves 1.9% from seed to seed,
+        hence its floor of 6%, far under what a wrong winding makes."""
         def office():
             import office as office_scene
             common.new_empty_scene()
             office_scene.build_office(cell=0.5, resolution=64)
-        for method, settings in (("antiradiance", {"bins": 48}), ("meshless", {})):
+        for method, settings, floor in (("antiradiance", {"bins": 48}, 0.06),
+                                        ("meshless", {}, 0.002)):
             with self.subTest(method=method):
-                self.compare(office, method, method_settings=settings)
+                self.compare(office, method, floor=floor, method_settings=settings)
 
     @unittest.skipUnless(CLOSED_ROOMS_HERE, CLOSED_ROOMS_ELSEWHERE)
     def test_closed_room(self):

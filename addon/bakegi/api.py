@@ -140,7 +140,7 @@ def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
                context=None):
     """Writes BakeGI_Indirect on `objects` ('SELECTED', 'VISIBLE', or a list of objects or
     names) from a baked grid: the grid's indirect light at their face corners (target
-    'CORNER') or vertices ('POINT'), as they stand now (moved, added, decimated or
+    'CORNER') or vertices ('POINT': the mean of its corners), as they stand now (moved, added, decimated or
     subdivided meshes all work; no bake runs). path None: the scene's newest grid (the last
     GRID bake's file). interpolation 'TRILINEAR' or 'TRICUBIC'. directional: 'ABSOLUTE' (|n|
     weights between the axis hemispheres: exact under uniform light for any normal; a lower

@@ -1,9 +1,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The bake points of a target: one per face corner ('CORNER') or vertex ('POINT') of the
-ORIGINAL mesh (where the attribute is written), from the evaluated mesh when it has the
-original's element counts (deforming modifiers), else from the original in world space
-(with a warning); points nudged into their faces, normals repaired, and the display probes
-inside faces that the error estimate adds."""
+"""The bake points of a target: one per face corner of the ORIGINAL mesh (where the
+attribute is written), from the evaluated mesh when it has the original's element counts
+(deforming modifiers), else from the original in world space (with a warning); points nudged
+into their faces, normals repaired, and the display probes inside faces that the error
+estimate adds.
+
+A vertex ('POINT') target is baked at its face corners too, and each vertex gets the mean of
+its corners (write/attributes.py), as Cycles bakes a vertex colour: a vertex between faces
+of different normals (every corner of a flat-shaded box) has no single normal to bake with,
+and one point at the vertex with the faces' mean normal sat inside the solid, 0 on every
+corner of a box. Where the corners share the vertex's normal (smooth shading) point sharing
+bakes them once."""
 
 from dataclasses import dataclass
 
@@ -46,14 +53,6 @@ def nudge_into_faces(positions, inward_targets):
     return positions + INWARD_FRACTION * (inward_targets - positions)
 
 
-def _mean_face_center_per_vertex(vertices, loop_vertex, loop_face_center):
-    """Mean of the centres of the faces around each vertex (the vertex itself if loose)."""
-    sums = np.zeros_like(vertices, dtype=np.float64)
-    np.add.at(sums, loop_vertex, loop_face_center)
-    counts = np.bincount(loop_vertex, minlength=len(vertices))[:, None]
-    return np.where(counts > 0, sums / np.maximum(counts, 1), vertices).astype(np.float32)
-
-
 # Display probes (points inside faces where the bake checks what a viewer sees between bake
 # points, interpolation included): this many per target object, fewer when there are many
 # targets, so that the check costs about the same on any scene.
@@ -79,10 +78,11 @@ class DisplayProbes:
     weights: np.ndarray  # (k, 3)
 
 
-def _display_probes(source, domain, normals, count, rng):
+def _display_probes(source, normals, count, rng):
     """`count` points spread uniformly over the area of `source`'s faces (loop triangles),
-    each with the corner (or vertex) bake points and weights that interpolate the color
-    attribute there, as the viewport does."""
+    each with the corner bake points and weights that interpolate the color attribute there,
+    as the viewport does (for a vertex target the viewport interpolates the corners' means:
+    the probes check the corners, not the mean)."""
     source.calc_loop_triangles()
     tris = len(source.loop_triangles)
     if count <= 0 or tris == 0:
@@ -101,8 +101,7 @@ def _display_probes(source, domain, normals, count, rng):
     r1, r2 = np.sqrt(rng.random(count)), rng.random(count)
     weights = np.stack([1.0 - r1, r1 * (1.0 - r2), r1 * r2], axis=1)
     positions = np.einsum("kj,kjc->kc", weights, corners[chosen])
-    loops = tri_loops[chosen]
-    points = loops if domain == "CORNER" else loop_vertex[loops]
+    points = tri_loops[chosen]
     corner_normals = normals[points].astype(np.float64)
     probe_normals = np.einsum("kj,kjc->kc", weights, corner_normals)
     return DisplayProbes(positions.astype(np.float32), probe_normals.astype(np.float32),
@@ -133,15 +132,27 @@ def repair_normals(normals, fallback, name, warnings):
     return repaired
 
 
+@dataclass
+class TargetPoints:
+    """One target's bake points, one per face corner, in world space."""
+    positions: np.ndarray  # (corners, 3)
+    normals: np.ndarray  # (corners, 3)
+    probes: object  # DisplayProbes or None
+    share_candidates: np.ndarray  # (corners,) point_sharing.share_candidates
+    # A vertex ('POINT') target: the vertex of each corner, and the vertex count; None, 0 for
+    # 'CORNER'.
+    vertex_of_point: object = None
+    vertex_count: int = 0
+
+
 def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0, first_index=0):
-    """World-space (positions, normals, display probes or None, share candidates) of one
-    target's bake points on its original mesh's domain, and `probe_count` display probes
-    inside its faces (positions and normals in world space, bake point indices within the
-    target). The target's points are numbered from first_index (point_sharing.py)."""
+    """TargetPoints of one target on its original mesh ('CORNER' or 'POINT': corners either
+    way), and `probe_count` display probes inside its faces (positions and normals in world
+    space, bake point indices within the target). The target's points are numbered from
+    first_index (point_sharing.py)."""
     original = obj.data
     obj_eval = obj.evaluated_get(depsgraph)
     matrix = matrix_array(obj_eval.matrix_world)
-    want = len(original.loops) if domain == "CORNER" else len(original.vertices)
     mesh = obj_eval.to_mesh()
     try:
         same = (mesh is not None and len(mesh.vertices) == len(original.vertices) and
@@ -157,21 +168,12 @@ def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0, first
         loop_face = np.repeat(np.arange(polys),
                               get_array(source.polygons, "loop_total", polys, np.int32))
         face_normals = get_array(source.polygons, "normal", polys, np.float32, 3)
-        if domain == "CORNER":
-            positions = vertices[loop_vertex]
-            inward = face_centers[loop_face]
-            normals = corner_normals(source) if same else _original_corner_normals(source)
-            fallback = face_normals[loop_face]
-        else:
-            positions = vertices
-            inward = _mean_face_center_per_vertex(vertices, loop_vertex, face_centers[loop_face])
-            normals = get_array(source.vertices, "normal", want, np.float32, 3)
-            fallback = np.zeros((len(vertices), 3), np.float64)
-            np.add.at(fallback, loop_vertex, face_normals[loop_face])
-        normals = repair_normals(normals, fallback, obj.name, warnings)
+        positions = vertices[loop_vertex]
+        normals = corner_normals(source) if same else _original_corner_normals(source)
+        normals = repair_normals(normals, face_normals[loop_face], obj.name, warnings)
         candidates = point_sharing.share_candidates(positions, normals, first_index)
-        positions = nudge_into_faces(positions, inward)
-        probes = _display_probes(source, domain, normals, probe_count,
+        positions = nudge_into_faces(positions, face_centers[loop_face])
+        probes = _display_probes(source, normals, probe_count,
                                  np.random.default_rng(seed)) if probe_count else None
     finally:
         obj_eval.to_mesh_clear()
@@ -179,8 +181,10 @@ def target_points(obj, depsgraph, domain, warnings, probe_count=0, seed=0, first
     if probes is not None:
         probes.positions = positions_to_world(matrix, probes.positions)
         probes.normals = normals_to_world(matrix, probes.normals)
-    return (positions_to_world(matrix, positions), normals_to_world(matrix, normals), probes,
-            candidates)
+    vertex_point = domain == "POINT"
+    return TargetPoints(positions_to_world(matrix, positions), normals_to_world(matrix, normals),
+                        probes, candidates, loop_vertex if vertex_point else None,
+                        len(original.vertices) if vertex_point else 0)
 
 
 def mesh_facts(mesh):

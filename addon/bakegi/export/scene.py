@@ -7,8 +7,9 @@ transforms, instances (depsgraph.object_instances). Meshes are triangulated
 (loop_triangles) with the corner normals Blender shades with (smooth, flat, custom).
 Lights go through light_units, materials through materials.read_material.
 
-Bake points live on the ORIGINAL mesh's domain (the attribute is written there): one per
-face corner ('CORNER') or per vertex ('POINT'). When the evaluated mesh has the original's
+Bake points live on the ORIGINAL mesh (the attribute is written there): one per face corner,
+also for a vertex ('POINT') target, whose vertices get their corners' mean when written (as
+Cycles bakes vertex colours; export/points.py). When the evaluated mesh has the original's
 element counts, its positions and normals are used (deforming modifiers, armatures);
 when modifiers change the topology, the original mesh is baked in world space (with a
 warning).
@@ -535,7 +536,11 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
                 if not is_target and exporter.is_volume_only(obj):
                     volumes.add(obj.name)
                     continue
-                exporter.add_instance(obj, instance.matrix_world, instance.is_instance)
+                # A curve, text, surface or metaball comes twice: as itself and as its
+                # evaluated mesh, an instance of its own; like Cycles, take the mesh only
+                # (both doubled every triangle).
+                if obj.type == "MESH":
+                    exporter.add_instance(obj, instance.matrix_world, instance.is_instance)
                 if not instance.is_instance:
                     not_baked.update(f"'{obj.name}' (strands '{name}')"
                                      for name in render_visibility.rendered_strands(obj.original))
@@ -604,17 +609,19 @@ def _export(context, target, targets, skipped, depsgraph, lightmap, created_uv_m
         offset = 0
         per_object = display_probes_per_object(len(targets)) if display_probes else 0
         for index, obj in enumerate(targets):
-            p, n, object_probes, shares = target_points(obj, depsgraph, target, warnings,
-                                                        per_object, seed=index,
-                                                        first_index=offset)
-            candidates.append(shares)
-            positions.append(p)
-            normals.append(n)
-            ids.append(np.full(len(p), index, np.uint32))
-            if object_probes is not None:
-                probes.append((index, offset, object_probes))
-            bake_targets.append(BakeTarget(obj.name, obj.data.name_full, target, offset, len(p)))
-            offset += len(p)
+            points_of = target_points(obj, depsgraph, target, warnings, per_object, seed=index,
+                                      first_index=offset)
+            count = len(points_of.positions)
+            candidates.append(points_of.share_candidates)
+            positions.append(points_of.positions)
+            normals.append(points_of.normals)
+            ids.append(np.full(count, index, np.uint32))
+            if points_of.probes is not None:
+                probes.append((index, offset, points_of.probes))
+            bake_targets.append(BakeTarget(obj.name, obj.data.name_full, target, offset, count,
+                                           vertex_of_point=points_of.vertex_of_point,
+                                           vertex_count=points_of.vertex_count))
+            offset += count
         points = native.Points(np.concatenate(positions), np.concatenate(normals),
                                np.concatenate(ids))
         points.set_share_candidates(np.concatenate(candidates))

@@ -22,11 +22,15 @@ class BakeTarget:
     mesh_name: str  # name_full of the original mesh, where the attribute goes
     domain: str
     start: int
-    count: int
+    count: int  # bake points: face corners for 'CORNER' and 'POINT', texels for 'LIGHTMAP'
     # LIGHTMAP only: (scale_u, scale_v, offset_u, offset_v) of its tile in the atlas, and the
     # tile's side in texels.
     atlas_scale_offset: tuple = ()
     tile_side: int = 0
+    # 'POINT' only: the vertex of each of its points (corners), whose mean the vertex gets,
+    # and the mesh's vertex count.
+    vertex_of_point: object = None
+    vertex_count: int = 0
 
 
 def name_objects(message, object_names):

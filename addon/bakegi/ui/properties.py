@@ -32,7 +32,8 @@ METHOD_ITEMS = [
 
 TARGET_ITEMS = [
     ("CORNER", "Face Corners", "One value per face corner: hard edges stay hard"),
-    ("POINT", "Vertices", "One value per vertex: smooth across edges, fewer points"),
+    ("POINT", "Vertices", "One value per vertex, the mean of its face corners (as Cycles): "
+              "smooth across edges"),
     ("LIGHTMAP", "Lightmap Textures", "An OpenEXR lightmap atlas on a lightmap UV map: "
      "detail independent of the mesh, for export to game engines and the web"),
     ("GRID", "Irradiance Grid", "An Irradiance Vector Grid over a box (a .bgivg file next to "

@@ -43,14 +43,34 @@ def look_up_targets(data, targets):
         if t.domain == "LIGHTMAP":  # texels on the UV map: any topology still takes them
             resolved.append((t, obj, mesh))
             continue
-        count = len(mesh.loops) if t.domain == "CORNER" else len(mesh.vertices)
-        if count != t.count:
+        changed = [(what, then, len(now)) for what, then, now in (
+            ("corners", t.count, mesh.loops),
+            ("vertices", t.vertex_count if t.domain == "POINT" else None, mesh.vertices))
+            if then is not None and then != len(now)]
+        if changed:
+            what, then, now = changed[0]
             raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                              f"'{t.object_name}': its mesh changed during the bake ({t.count} "
-                              f"{'corners' if t.domain == 'CORNER' else 'vertices'} then, "
-                              f"{count} now); nothing was written")
+                              f"'{t.object_name}': its mesh changed during the bake ({then} "
+                              f"{what} then, {now} now); nothing was written")
         resolved.append((t, obj, mesh))
     return resolved
+
+
+def vertex_means(values, vertex_of_point, vertex_count):
+    """Each vertex's mean of its points' values (0 for a vertex of no face), as Cycles
+    writes a vertex colour from the face corners it bakes."""
+    sums = np.stack([np.bincount(vertex_of_point, weights=values[:, c], minlength=vertex_count)
+                     for c in range(3)], axis=1)
+    counts = np.bincount(vertex_of_point, minlength=vertex_count)[:, None]
+    return (sums / np.maximum(counts, 1)).astype(np.float32)
+
+
+def target_values(t, rgb):
+    """A target's values on its domain: its slice of the bake, per vertex for 'POINT'."""
+    values = rgb[t.start:t.start + t.count]
+    if t.domain == "POINT":
+        values = vertex_means(values, t.vertex_of_point, t.vertex_count)
+    return values
 
 
 def write_results(data, targets, rgb):
@@ -60,8 +80,9 @@ def write_results(data, targets, rgb):
     rgb = np.asarray(rgb, np.float32).reshape(-1, 3)
     for t, obj, mesh in resolved:
         drop_lightmap(obj)
-        rgba = np.ones((t.count, 4), np.float32)
-        rgba[:, :3] = rgb[t.start:t.start + t.count]
+        values = target_values(t, rgb)
+        rgba = np.ones((len(values), 4), np.float32)
+        rgba[:, :3] = values
         attributes = mesh.color_attributes
         existing = attributes.get(ATTRIBUTE_NAME)
         if existing is not None and (existing.domain != t.domain or

@@ -65,11 +65,14 @@ def apply_grid(data, depsgraph, objects, path, interpolation="TRILINEAR", domain
         warnings, targets, positions, normals = [], [], [], []
         offset = 0
         for obj in objects:
-            p, n, _, _ = export_points.target_points(obj, depsgraph, domain, warnings)
-            targets.append(BakeTarget(obj.name, obj.data.name_full, domain, offset, len(p)))
-            positions.append(p)
-            normals.append(n)
-            offset += len(p)
+            points_of = export_points.target_points(obj, depsgraph, domain, warnings)
+            count = len(points_of.positions)
+            targets.append(BakeTarget(obj.name, obj.data.name_full, domain, offset, count,
+                                      vertex_of_point=points_of.vertex_of_point,
+                                      vertex_count=points_of.vertex_count))
+            positions.append(points_of.positions)
+            normals.append(points_of.normals)
+            offset += count
         read = time.perf_counter()
         codes = np.zeros(offset, np.uint8)
         if not offset:
