@@ -46,6 +46,48 @@ class ErrorPaths(common.SmallCornellCase):
         self.assertIn("Floor", str(caught.exception))
         self.assertSceneUnchanged(before)
 
+    def test_a_target_scaled_to_zero_is_named_and_skipped(self):
+        """Scaling an object to 0 is a common way to hide it in an animation: it has no
+        surface and no normals, and the whole bake used to fail on "bake point N: normal
+        is the zero vector". It is named and left out; the rest is baked."""
+        box = self.objects["ShortBox"]
+        box.scale = (0.0, 0.0, 0.0)
+        bpy.context.view_layer.update()
+        report = self.bakegi.bake(method="pathtrace", samples=4, target="CORNER",
+                                  objects="VISIBLE", estimate_error=False)
+        self.assertTrue(any("'ShortBox'" in w and "scale is 0" in w for w in report["warnings"]),
+                        report["warnings"])
+        self.assertNotIn("ShortBox", report["objects"])
+        self.assertIn("TallBox", report["objects"])
+
+    def test_a_bad_material_or_light_is_named(self):
+        """The core checks every material and light; its message names them by Blender's
+        names, not by its own numbers ("material 1", "light 0")."""
+        material = bpy.data.materials.new("TooHot")
+        material.use_nodes = True
+        bsdf = material.node_tree.nodes["Principled BSDF"]
+        emission = "Emission Color" if "Emission Color" in bsdf.inputs else "Emission"
+        bsdf.inputs[emission].default_value = (1.0, 1.0, 1.0, 1.0)
+        bsdf.inputs["Emission Strength"].default_value = 1e30
+        self.objects["ShortBox"].data.materials.clear()
+        self.objects["ShortBox"].data.materials.append(material)
+        before = common.scene_snapshot()
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects="VISIBLE")
+        print("bad material message:", caught.exception)
+        self.assertIn("material 'TooHot'", str(caught.exception))
+        self.assertSceneUnchanged(before)
+        self.objects["ShortBox"].data.materials.clear()
+        light = next(o for o in bpy.context.scene.objects if o.type == "LIGHT")
+        light.data.energy = 1e38
+        light.data.color = (1e38, 1e38, 1e38)
+        before = common.scene_snapshot()
+        with self.assertRaises(self.bakegi.BakeGIError) as caught:
+            self.bakegi.bake(method="pathtrace", samples=4, target="CORNER", objects="VISIBLE")
+        print("bad light message:", caught.exception)
+        self.assertIn(f"light '{light.name}'", str(caught.exception))
+        self.assertSceneUnchanged(before)
+
     def test_bake_points_without_a_normal_get_their_faces(self):
         """Imported meshes carry corners whose normal is zero (a real living-room scene: a
         face without area holding custom normals; the whole export failed with "bake point

@@ -431,8 +431,8 @@ class BakeSession:
         return self.finish()
 
     def _named(self, error):
-        names = self.exported.object_names if self.exported is not None else []
-        message = export_targets.name_objects(error.message, names)
+        message = (self.exported.named(error.message) if self.exported is not None
+                   else error.message)
         if "no light" in message and self.exported is not None:
             # Say which lights the export left out (ray visibility, render toggles), which
             # is why the core saw none.
@@ -471,9 +471,9 @@ class BakeSession:
         report["hooked_materials"] = hooked
         report["counts"] = dict(self.exported.counts) if self.exported else {}
         core_warnings = core.get("warnings") if isinstance(core.get("warnings"), list) else []
-        names = self.exported.object_names if self.exported is not None else []
+        named = self.exported.named if self.exported is not None else (lambda w: w)
         report["warnings"] = (list(self.exported.warnings) + list(self.exported.skipped) +
-                              [export_targets.name_objects(w, names) for w in core_warnings])
+                              [named(w) for w in core_warnings])
         self._check_error(report, targets)
         return report
 

@@ -20,7 +20,9 @@ cleared again.
 
 import hashlib
 import math
+import re
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Dict, List
 
@@ -36,7 +38,8 @@ from .node_tree import linked_from
 from .mesh_arrays import (check_finite, corner_normals, get_array, invalid_scene,
                           matrix_array, normals_to_world, positions_to_world)
 from .points import display_probes_per_object, target_points
-from .targets import MESH_LIKE, BakeTarget, name_objects, resolve_targets, some_names
+from .targets import (MESH_LIKE, BakeTarget, name_elements, name_objects, resolve_targets,
+                      some_names)
 from . import render_visibility
 from .render_visibility import RenderVisibility
 from .world import world_light
@@ -55,6 +58,14 @@ class ExportedScene:
     seconds: float = 0.0
     object_names: List[str] = field(default_factory=list)  # by the core's object id
     lightmaps: ExportedLightmaps = None  # LIGHTMAP bakes only
+    material_names: List[str] = field(default_factory=list)  # by the core's material id
+    light_names: List[str] = field(default_factory=list)  # by the core's light index
+
+    def named(self, message):
+        """A core message with Blender's names for its objects, materials, lights and bake
+        points (targets.name_elements)."""
+        return name_elements(message, self.object_names, self.material_names, self.light_names,
+                             self.targets)
 
     def close(self):
         self.scene.close()
@@ -62,6 +73,15 @@ class ExportedScene:
             self.points.close()
         if self.lightmaps is not None:
             self.lightmaps.close()
+
+
+@contextmanager
+def _named_in_errors(pattern, name):
+    """Re-raises a core error with `name` in place of the core's number (`pattern`)."""
+    try:
+        yield
+    except BakeGIError as error:
+        raise BakeGIError(error.status, re.sub(r"\b" + pattern, name, error.message)) from None
 
 
 @dataclass
@@ -105,6 +125,8 @@ class SceneExporter:
         self.triangles = 0
         self.meshes = 0
         self.lights = 0
+        self.light_names = []  # by the core's light index
+        self.material_names = []  # by the core's material id
         self.portals = 0  # Cycles' window portals: guide the world's light samples
         self.object_names = []
 
@@ -179,10 +201,13 @@ class SceneExporter:
                 emission_texture, scale = self._emission_texture(info.emission_texture.image)
                 if emission_texture is None:  # no pixels (warned): emission as read, untextured
                     info.emission_texture = None
-            self.material_ids[key] = self.scene.add_material(
-                info.albedo, tuple(scale * e for e in info.emission), texture,
-                emission_two_sided=True, glossy=info.glossy,
-                glossy_exponent=info.glossy_exponent, emission_texture=emission_texture)
+            name = key if key is not None else "(no material)"
+            with _named_in_errors(r"material \d+", f"material '{name}'"):
+                self.material_ids[key] = self.scene.add_material(
+                    info.albedo, tuple(scale * e for e in info.emission), texture,
+                    emission_two_sided=True, glossy=info.glossy,
+                    glossy_exponent=info.glossy_exponent, emission_texture=emission_texture)
+            self._name(self.material_names, self.material_ids[key], name)
             if info.lets_light_pass():
                 opacity_texture = None
                 if info.opacity_texture is not None:
@@ -196,6 +221,11 @@ class SceneExporter:
                 self.material_infos[key] = info
         info = self.material_infos[key] if key is not None else materials.MaterialInfo()
         return self.material_ids[key], info
+
+    @staticmethod
+    def _name(names, index, name):
+        names.extend([""] * (index + 1 - len(names)))
+        names[index] = name
 
     # meshes
     def _local_mesh(self, obj):
@@ -350,7 +380,9 @@ class SceneExporter:
         conversion = light_units.convert_light(settings)
         self.warnings.extend(conversion.warnings)
         if conversion.light is not None:
-            self.scene.add_light(**vars(conversion.light))
+            with _named_in_errors(r"light \d+", f"light '{obj.name}'"):
+                self.scene.add_light(**vars(conversion.light))
+            self.light_names.append(obj.name)
             self.lights += 1
             bounces = getattr(getattr(obj.original.data, "cycles", None), "max_bounces", 1024)
             if bounces < MAX_BOUNCES_MODELLED:
@@ -372,6 +404,7 @@ class SceneExporter:
         for direction, angle, irradiance in light.suns:
             self.scene.add_light("SUN", direction=tuple(-c for c in direction), color=irradiance,
                                  angle=angle)
+            self.light_names.append("the world's sun")
             self.lights += 1
         if light.image is None:
             self.scene.set_world_texture(None)
@@ -469,6 +502,7 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
         # A grid has no target objects: every visible object lights it.
         return _export(context, target, [], [], depsgraph, lightmap, [], start)
     targets, skipped = resolve_targets(context, objects, shared_meshes=target == "LIGHTMAP")
+    targets = _with_surface(targets, skipped)
     if not targets:
         why = "; ".join(skipped) if skipped else "no mesh object is " + (
             "selected" if objects == "SELECTED" else "visible" if objects == "VISIBLE" else
@@ -489,6 +523,22 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
         uv_maps.remove(context.blend_data, created_uv_maps,
                             lightmap.uv_map if lightmap else "")
         raise
+
+
+def _with_surface(targets, skipped):
+    """The targets whose transform keeps a surface: one scaled to 0 along an axis (a common
+    way to hide an object in an animation) has no area and no normals to bake with; it is
+    named in `skipped` and still takes part in the scene (as nothing)."""
+    kept = []
+    for obj in targets:
+        m3 = np.array(obj.matrix_world, np.float64)[:3, :3]
+        scale = max(float(np.abs(m3).max()), 1e-300)
+        if abs(float(np.linalg.det(m3))) <= 1e-12 * scale ** 3:
+            skipped.append(f"'{obj.name}' not baked: its scale is 0 along an axis, so it has no "
+                           "surface to bake")
+        else:
+            kept.append(obj)
+    return kept
 
 
 def _check_lightmap_options(options):
@@ -670,7 +720,8 @@ def _exported(exporter, points, bake_targets, warnings, skipped, offset, start,
                       lightmap_rejected_samples=exported_lightmaps.rejected_samples)
     return ExportedScene(exporter.scene, points, bake_targets, exporter.material_infos,
                          _unique(warnings), skipped, counts, time.perf_counter() - start,
-                         exporter.object_names, exported_lightmaps)
+                         exporter.object_names, exported_lightmaps, exporter.material_names,
+                         exporter.light_names)
 
 
 def export_lights(context, scene, depsgraph=None):

@@ -41,6 +41,28 @@ def name_objects(message, object_names):
     return re.sub(r"\bobject (\d+)", name, message)
 
 
+def name_elements(message, object_names, material_names=(), light_names=(), targets=()):
+    """name_objects, and the core's other numbers for Blender's names: "material 1" ->
+    "material 'Glass'", "light 0" -> "light 'Area'" (by the core's ids), "bake point 600" ->
+    "bake point 600 (object 'Cube')" (by the targets' slices)."""
+    message = name_objects(message, object_names)
+
+    def by_index(names, kind):
+        def name(match):
+            i = int(match.group(1))
+            return f"{kind} '{names[i]}'" if i < len(names) else match.group(0)
+        return name
+
+    message = re.sub(r"\bmaterial (\d+)", by_index(material_names, "material"), message)
+    message = re.sub(r"\blight (\d+)", by_index(light_names, "light"), message)
+
+    def point(match):
+        i = int(match.group(1))
+        owner = next((t.object_name for t in targets if t.start <= i < t.start + t.count), None)
+        return match.group(0) + (f" (object '{owner}')" if owner is not None else "")
+    return re.sub(r"\bbake point (\d+)", point, message)
+
+
 def some_names(names, shown=5):
     """The first `shown` of `names` in order, joined for a report line ("A, B, C ...")."""
     names = sorted(names)
