@@ -141,8 +141,8 @@ def apply_grid(objects, path=None, interpolation="TRILINEAR", target="CORNER",
     """Writes BakeGI_Indirect on `objects` ('SELECTED', 'VISIBLE', or a list of objects or
     names) from a baked grid: the grid's indirect light at their face corners (target
     'CORNER') or vertices ('POINT': the mean of their corners), as they stand now (moved,
-    added, decimated or subdivided meshes all work; no bake runs). path None: the scene's newest grid (the last
-    GRID bake's file). interpolation 'TRILINEAR' or 'TRICUBIC'. directional: 'ABSOLUTE' (|n|
+    added, decimated or subdivided meshes all work; no bake runs). path None: the scene's
+    newest grid (the last GRID bake's file). interpolation 'TRILINEAR' or 'TRICUBIC'. directional: 'ABSOLUTE' (|n|
     weights between the axis hemispheres: exact under uniform light for any normal; a lower
     or equal error than the paper's in 19 of the 20 suite runs of docs/ivg.md) or 'SQUARED' (the paper's
     n^2). hook_materials: Material
