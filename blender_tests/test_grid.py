@@ -100,6 +100,18 @@ class GridCase(common.SmallCornellCase):
         facing_red = normals[:, 0] < -0.7
         self.assertGreater(rgb[facing_red, 0].mean(), rgb[facing_red, 1].mean())
 
+    def test_a_prop_scaled_to_zero_is_named_not_lit(self):
+        """An object scaled to 0 (hidden that way in an animation) has no surface: Apply Grid
+        names it and lights the others (its zero normals used to fail the whole call)."""
+        self.bake_grid(grid_object=None)
+        self.addCleanup(bakegi.grid_follow.forget)  # what Follow Moves would re-apply
+        self.objects["TallBox"].scale = (0.0, 0.0, 0.0)
+        bpy.context.view_layer.update()
+        report = bakegi.apply_grid(["ShortBox", "TallBox"])
+        self.assertEqual(report["objects"], ["ShortBox"])
+        self.assertTrue(any("'TallBox'" in w and "scale is 0" in w for w in report["warnings"]),
+                        report["warnings"])
+
     def test_follow_moves_lights_a_moved_prop_again(self):
         self.bake_grid(grid_object=None)
         scene = bpy.context.scene

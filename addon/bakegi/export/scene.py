@@ -39,7 +39,7 @@ from .mesh_arrays import (check_finite, corner_normals, get_array, invalid_scene
                           matrix_array, normals_to_world, positions_to_world)
 from .points import display_probes_per_object, target_points
 from .targets import (MESH_LIKE, BakeTarget, name_elements, name_objects, resolve_targets,
-                      some_names)
+                      some_names, with_surface)
 from . import render_visibility
 from .render_visibility import RenderVisibility
 from .world import world_light
@@ -502,7 +502,7 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
         # A grid has no target objects: every visible object lights it.
         return _export(context, target, [], [], depsgraph, lightmap, [], start)
     targets, skipped = resolve_targets(context, objects, shared_meshes=target == "LIGHTMAP")
-    targets = _with_surface(targets, skipped)
+    targets = with_surface(targets, skipped)
     if not targets:
         why = "; ".join(skipped) if skipped else "no mesh object is " + (
             "selected" if objects == "SELECTED" else "visible" if objects == "VISIBLE" else
@@ -523,22 +523,6 @@ def export_scene(context, target="CORNER", objects="SELECTED", depsgraph=None, l
         uv_maps.remove(context.blend_data, created_uv_maps,
                             lightmap.uv_map if lightmap else "")
         raise
-
-
-def _with_surface(targets, skipped):
-    """The targets whose transform keeps a surface: one scaled to 0 along an axis (a common
-    way to hide an object in an animation) has no area and no normals to bake with; it is
-    named in `skipped` and still takes part in the scene (as nothing)."""
-    kept = []
-    for obj in targets:
-        m3 = np.array(obj.matrix_world, np.float64)[:3, :3]
-        scale = max(float(np.abs(m3).max()), 1e-300)
-        if abs(float(np.linalg.det(m3))) <= 1e-12 * scale ** 3:
-            skipped.append(f"'{obj.name}' not baked: its scale is 0 along an axis, so it has no "
-                           "surface to bake")
-        else:
-            kept.append(obj)
-    return kept
 
 
 def _check_lightmap_options(options):

@@ -5,6 +5,8 @@ objects; the reasons others are skipped), linked duplicates and Make Single User
 import re
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..native import BakeGIError
 
 
@@ -61,6 +63,22 @@ def name_elements(message, object_names, material_names=(), light_names=(), targ
         owner = next((t.object_name for t in targets if t.start <= i < t.start + t.count), None)
         return match.group(0) + (f" (object '{owner}')" if owner is not None else "")
     return re.sub(r"\bbake point (\d+)", point, message)
+
+
+def with_surface(targets, skipped):
+    """The targets whose transform keeps a surface: one scaled to 0 along an axis (a common
+    way to hide an object in an animation) has no area and no normals to bake with; it is
+    named in `skipped` (a list of reasons) and still takes part in the scene (as nothing)."""
+    kept = []
+    for obj in targets:
+        m3 = np.array(obj.matrix_world, np.float64)[:3, :3]
+        scale = max(float(np.abs(m3).max()), 1e-300)
+        if abs(float(np.linalg.det(m3))) <= 1e-12 * scale ** 3:
+            skipped.append(f"'{obj.name}' not baked: its scale is 0 along an axis, so it has no "
+                           "surface to bake")
+        else:
+            kept.append(obj)
+    return kept
 
 
 def some_names(names, shown=5):

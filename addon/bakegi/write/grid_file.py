@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import native
 from ..export import materials, points as export_points
-from ..export.targets import BakeTarget
+from ..export.targets import BakeTarget, with_surface
 from . import attributes, material_hook
 from .file_names import baked_file_name
 
@@ -64,7 +64,7 @@ def apply_grid(data, depsgraph, objects, path, interpolation="TRILINEAR", domain
         info = grid.info()
         warnings, targets, positions, normals = [], [], [], []
         offset = 0
-        for obj in objects:
+        for obj in with_surface(objects, warnings):
             points_of = export_points.target_points(obj, depsgraph, domain, warnings)
             count = len(points_of.positions)
             targets.append(BakeTarget(obj.name, obj.data.name_full, domain, offset, count,
