@@ -35,12 +35,17 @@ class BakeTarget:
     vertex_count: int = 0
 
 
-def name_objects(message, object_names):
-    """Puts Blender object names into a core message: "(object 3)" -> "(object 'Cube')"."""
+def _by_index(names, kind):
+    """A re.sub replacement: "<kind> 3" -> "<kind> '<names[3]>'" (left as it is past the end)."""
     def name(match):
         i = int(match.group(1))
-        return f"object '{object_names[i]}'" if i < len(object_names) else match.group(0)
-    return re.sub(r"\bobject (\d+)", name, message)
+        return f"{kind} '{names[i]}'" if i < len(names) else match.group(0)
+    return name
+
+
+def name_objects(message, object_names):
+    """Puts Blender object names into a core message: "(object 3)" -> "(object 'Cube')"."""
+    return re.sub(r"\bobject (\d+)", _by_index(object_names, "object"), message)
 
 
 def name_elements(message, object_names, material_names=(), light_names=(), targets=()):
@@ -48,15 +53,8 @@ def name_elements(message, object_names, material_names=(), light_names=(), targ
     "material 'Glass'", "light 0" -> "light 'Area'" (by the core's ids), "bake point 600" ->
     "bake point 600 (object 'Cube')" (by the targets' slices)."""
     message = name_objects(message, object_names)
-
-    def by_index(names, kind):
-        def name(match):
-            i = int(match.group(1))
-            return f"{kind} '{names[i]}'" if i < len(names) else match.group(0)
-        return name
-
-    message = re.sub(r"\bmaterial (\d+)", by_index(material_names, "material"), message)
-    message = re.sub(r"\blight (\d+)", by_index(light_names, "light"), message)
+    message = re.sub(r"\bmaterial (\d+)", _by_index(material_names, "material"), message)
+    message = re.sub(r"\blight (\d+)", _by_index(light_names, "light"), message)
 
     def point(match):
         i = int(match.group(1))

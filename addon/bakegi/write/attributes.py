@@ -43,15 +43,15 @@ def look_up_targets(data, targets):
         if t.domain == "LIGHTMAP":  # texels on the UV map: any topology still takes them
             resolved.append((t, obj, mesh))
             continue
-        changed = [(what, then, len(now)) for what, then, now in (
-            ("corners", t.count, mesh.loops),
-            ("vertices", t.vertex_count if t.domain == "POINT" else None, mesh.vertices))
-            if then is not None and then != len(now)]
-        if changed:
-            what, then, now = changed[0]
-            raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
-                              f"'{t.object_name}': its mesh changed during the bake ({then} "
-                              f"{what} then, {now} now); nothing was written")
+        # Both targets are baked at corners; a vertex target also writes per vertex.
+        counts = [("corners", t.count, len(mesh.loops))]
+        if t.domain == "POINT":
+            counts.append(("vertices", t.vertex_count, len(mesh.vertices)))
+        for what, then, now in counts:
+            if then != now:
+                raise BakeGIError("BAKEGI_ERROR_INVALID_ARGUMENT",
+                                  f"'{t.object_name}': its mesh changed during the bake ({then} "
+                                  f"{what} then, {now} now); nothing was written")
         resolved.append((t, obj, mesh))
     return resolved
 
