@@ -91,32 +91,23 @@ void for_each_point(size_t count, JobContext& context, double from, double to, P
 
 }  // namespace
 
-// The second pass's kernel, one sparse row per point: row i holds k_ij for i's admissible
-// neighbours j (at most kDenoiseNeighbours), so that it can be applied again.
+// The second pass's kernel, one sparse row per point: k_ij for i's admissible neighbours j,
+// in the order PointDenoiser holds them (a neighbour the pass leaves out has weight 0), so
+// that it can be applied again.
 struct KernelRows {
-  std::vector<uint32_t> members;
+  std::span<const uint32_t> neighbours;  // kDenoiseNeighbours per point
+  std::span<const uint8_t> counts;
   std::vector<float> weights;
-  std::vector<uint8_t> sizes;
 
-  explicit KernelRows(size_t count)
-      : members(count * kDenoiseNeighbours, 0),
-        weights(count * kDenoiseNeighbours, 0.0f),
-        sizes(count, 0) {}
-
-  void set(size_t i, std::span<const uint32_t> row_members, std::span<const double> kernel) {
-    sizes[i] = uint8_t(row_members.size());
-    for (size_t m = 0; m < row_members.size(); ++m) {
-      members[i * kDenoiseNeighbours + m] = row_members[m];
-      weights[i * kDenoiseNeighbours + m] = float(kernel[m]);
-    }
-  }
+  KernelRows(std::span<const uint32_t> neighbours, std::span<const uint8_t> counts)
+      : neighbours(neighbours), counts(counts), weights(neighbours.size(), 0.0f) {}
 
   // (K x)_i.
   template <typename T>
   T apply_row(size_t i, const std::vector<T>& x) const {
     T sum(0.0f);
-    for (size_t m = 0; m < sizes[i]; ++m) {
-      sum += weights[i * kDenoiseNeighbours + m] * x[members[i * kDenoiseNeighbours + m]];
+    for (size_t m = 0; m < counts[i]; ++m) {
+      sum += weights[i * kDenoiseNeighbours + m] * x[neighbours[i * kDenoiseNeighbours + m]];
     }
     return sum;
   }
@@ -282,7 +273,10 @@ FilteredLuminances PointDenoiser::filter_luminances(const std::vector<float>& lu
       float w = 1.0f;
       if (j != i) {
         const float noise = guide_variance[i] + variance_of_mean[j];
-        if (!(noise > 0.0f)) continue;  // noise-free: nothing to trade
+        if (!(noise > 0.0f)) {  // noise-free: nothing to trade
+          s.add(0.0f, offset, j);
+          continue;
+        }
         // Against the guide's plane at j: against its value at i a gradient would favour the
         // neighbours whose noise leans towards i (measured: a bias at a ramp's rim).
         const float difference = guide[i] + glm::dot(guide_slope[i], offset) - luminances[j];
@@ -292,7 +286,7 @@ FilteredLuminances PointDenoiser::filter_luminances(const std::vector<float>& lu
       s.add(w, offset, j);
     }
     local_linear_kernel(s.weights, s.offsets, s.kernel);
-    rows.set(i, s.members, s.kernel);
+    std::copy(s.kernel.begin(), s.kernel.end(), rows.weights.begin() + i * kDenoiseNeighbours);
     double value = 0.0;
     for (size_t m = 0; m < s.members.size(); ++m) {
       value += s.kernel[m] * double(luminances[s.members[m]]);
@@ -325,7 +319,7 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
 
   std::vector<float> luminances(count);
   for (size_t i = 0; i < count; ++i) luminances[i] = float(luminance(values[i]));
-  KernelRows rows(count);
+  KernelRows rows(neighbours_, neighbour_count_);
   const FilteredLuminances result =
       filter_luminances(luminances, variance_of_mean, rows, context, report_progress ? 1.0 : 0.0);
   if (filtered) {
@@ -371,8 +365,8 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   double mean = 0.0, before = 0.0, after = 0.0, filtered_mean = 0.0, bias = 0.0;
   for (size_t i = 0; i < count; ++i) {
     double change_variance = 0.0;
-    for (size_t m = 0; m < rows.sizes[i]; ++m) {
-      const uint32_t j = rows.members[i * kDenoiseNeighbours + m];
+    for (size_t m = 0; m < rows.counts[i]; ++m) {
+      const uint32_t j = rows.neighbours[i * kDenoiseNeighbours + m];
       const double weight = double(rows.weights[i * kDenoiseNeighbours + m]) - (j == i ? 1.0 : 0.0);
       change_variance += weight * weight * double(variance_of_mean[j]);
     }

@@ -78,10 +78,10 @@ inline constexpr float kRangeStrength = 1.0f;
 // What the filter holds per point at its peak (the R-tree's entry and nodes while the
 // neighbourhoods are found; kDenoiseNeighbours neighbour indices; luminance, guide, filtered
 // value and variance; the squared bias, and the bake's copy of the raw values; the second
-// pass's kernel rows, 8 bytes a neighbour; the residual correction's and the noise probes'
+// pass's kernel, a float per neighbour; the residual correction's and the noise probes'
 // vectors), for the job's memory estimate.
 inline constexpr size_t kDenoiseBytesPerPoint =
-    64 + 4 * kDenoiseNeighbours + 48 + 4 + 12 + (8 * kDenoiseNeighbours + 1) + 48 + 24;
+    64 + 4 * kDenoiseNeighbours + 48 + 4 + 12 + 4 * kDenoiseNeighbours + 48 + 24;
 
 class PointDenoiser : public NoiseFilter {
  public:
