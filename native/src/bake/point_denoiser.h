@@ -17,7 +17,7 @@
 //
 // The weighted fit of a plane (bake/local_linear_fit.h) over those weights cuts the peaks of
 // curved light; the residual y - f, smoothed by the same weights twice more, is added back
-// (twicing: the default bake of a closed room 3.6% dark before, 1.9% after).
+// (twicing: the default bake of a closed room 3.6% dark before, 1.8% after).
 //
 // The noise after filtering is predicted for the filter as a whole with the weights taken as
 // fixed, its bias from how far the plane fit moves each value beyond what the noise explains
@@ -60,13 +60,14 @@ struct DenoiseStatistics {
   // Path-traced noise is heavy-tailed: the range kernel shuts out a neighbour's rare bright
   // sample more often than a dark one, so the filtered mean falls (measured 1-3%).
   double mean_shift = 0.0;
-  // The root mean square of the filter's bias over the points, relative to the mean y: the
-  // unbiased raw y_i is the filter's reference. With f_i = Σ_j k_ij y_j and the weights taken
-  // as fixed, E[(f_i - y_i)²] = b_i² + Σ_j (k_ij - δ_ij)² v_j, so the mean of
+  // The root mean square of the plane fit's bias over the points, relative to the mean y:
+  // the unbiased raw y_i is the reference. With f_i = Σ_j k_ij y_j (the second pass) and the
+  // weights taken as fixed, E[(f_i - y_i)²] = b_i² + Σ_j (k_ij - δ_ij)² v_j, so the mean of
   // (f_i - y_i)² - Σ_j (k_ij - δ_ij)² v_j estimates mean b_i² (Stein's unbiased risk
   // estimate, as Li, Wu and Chuang 2012 use it for Monte Carlo filters). Where the filter
   // blurs a gradient or an edge its weights cannot see, this grows; the mean shift is its
-  // mean's part.
+  // mean's part. The residual correction takes part of the plane's bias out, so for the
+  // filter as a whole this errs high.
   double local_bias = 0.0;
   uint64_t rays = 0;  // visibility rays between neighbours
 };
