@@ -437,6 +437,7 @@ void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& point
   report.set_number("denoise_noise_after", statistics.noise_after);
   report.set_number("denoise_mean_shift", statistics.mean_shift);
   report.set_number("denoise_local_bias", statistics.local_bias);
+  report.set_number("denoise_residual_share", statistics.residual_share);
 }
 
 const Scene& BakeJob::build_scene_and_report(Report& report,
