@@ -21,11 +21,12 @@ SceneDescription floor_scene(bool wall) {
   const uint32_t grey = test::add_material(d, glm::vec3(0.5f));
   if (wall) {
     d.meshes.push_back(test::make_cube(glm::vec3(-0.01f, -2.0f, -1.0f),
-                                       glm::vec3(0.01f, 2.0f, 1.0f), test::Facing::kOutward, grey));
+                                       glm::vec3(0.01f, 2.0f, 1.0f), test::Facing::kOutward,
+                                       grey));
   } else {
     // A box far away: the tracer needs some geometry.
-    d.meshes.push_back(
-        test::make_cube(glm::vec3(10.0f), glm::vec3(11.0f), test::Facing::kOutward, grey));
+    d.meshes.push_back(test::make_cube(glm::vec3(10.0f), glm::vec3(11.0f),
+                                       test::Facing::kOutward, grey));
   }
   d.lights.push_back(test::point_light(glm::vec3(0.0f, 0.0f, 3.0f), glm::vec3(1.0f)));
   return d;
@@ -47,13 +48,12 @@ BakePoints floor_points(int side) {
 }
 
 // Luminance of grey values is the value.
-float grey(const glm::vec3& v) {
-  return v.y;
-}
+float grey(const glm::vec3& v) { return v.y; }
 
 // truth(x) plus Gaussian noise of standard deviation sigma(x); variances as a sampler reports.
 void make_noisy(const BakePoints& points, float (*truth)(float), float (*sigma)(float),
-                std::vector<glm::vec3>& values, std::vector<float>& variance, uint64_t seed = 11) {
+                std::vector<glm::vec3>& values, std::vector<float>& variance,
+                uint64_t seed = 11) {
   Pcg32 rng(seed, 7);
   values.clear();
   variance.clear();
@@ -135,8 +135,8 @@ TEST(PointDenoiser, FollowsAGradientToTheRim) {
         ++n;
       }
     }
-    std::printf("rim %g: mean error of the input %.4f, filtered %.4f (%d values)\n", rim, input / n,
-                bias / n, n);
+    std::printf("rim %g: mean error of the input %.4f, filtered %.4f (%d values)\n", rim,
+                input / n, bias / n, n);
     EXPECT_NEAR(bias / n, 0.0, 0.03) << "rim at x = " << rim;
   }
 }

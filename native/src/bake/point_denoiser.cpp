@@ -7,11 +7,11 @@
 #include <utility>
 #include <vector>
 
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 
 #include "bake/local_linear_fit.h"
 #include "scene/mutual_visibility.h"
@@ -31,9 +31,7 @@ using TreePoint = bg::model::point<float, 3, bg::cs::cartesian>;
 using Entry = std::pair<TreePoint, uint32_t>;
 using Tree = bgi::rtree<Entry, bgi::quadratic<16>>;
 
-TreePoint tree_point(const glm::vec3& p) {
-  return TreePoint(p.x, p.y, p.z);
-}
+TreePoint tree_point(const glm::vec3& p) { return TreePoint(p.x, p.y, p.z); }
 
 constexpr size_t kPointsPerBlock = 64;
 // A guide plane whose weighted squared residuals exceed this many times the samples' noise
@@ -77,7 +75,8 @@ float spatial_weight(const Neighbour& neighbour, float h2) {
 // Parallel over blocks of points, cancellable, progress from `from` to `to` (none when
 // `from` == `to`).
 template <typename PerPoint>
-void for_each_point(size_t count, JobContext& context, double from, double to, PerPoint per_point) {
+void for_each_point(size_t count, JobContext& context, double from, double to,
+                    PerPoint per_point) {
   std::atomic<size_t> done{0};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, kPointsPerBlock),
                     [&](const tbb::blocked_range<size_t>& block) {
@@ -85,7 +84,8 @@ void for_each_point(size_t count, JobContext& context, double from, double to, P
                       for (size_t i = block.begin(); i != block.end(); ++i) per_point(i);
                       if (from == to) return;
                       const size_t now = done.fetch_add(block.size()) + block.size();
-                      context.set_stage_progress(from + (to - from) * double(now) / double(count));
+                      context.set_stage_progress(from + (to - from) * double(now) /
+                                                            double(count));
                     });
 }
 
@@ -138,8 +138,8 @@ float probe_sign(size_t j, size_t r) {
 
 }  // namespace
 
-PointDenoiser::PointDenoiser(const BakePoints& points, const RayTracer& tracer, float ray_epsilon,
-                             JobContext& context, bool report_progress)
+PointDenoiser::PointDenoiser(const BakePoints& points, const RayTracer& tracer,
+                             float ray_epsilon, JobContext& context, bool report_progress)
     : points_(points) {
   const size_t count = points.size();
   neighbour_count_.assign(count, 0);
@@ -248,7 +248,8 @@ FilteredLuminances PointDenoiser::filter_luminances(const std::vector<float>& lu
     // step it would pass for a ramp and let the other side in.
     double residual = 0.0, noise = 0.0;
     for (size_t m = 0; m < s.members.size(); ++m) {
-      const double r = luminances[s.members[m]] - value - glm::dot(slope, glm::dvec2(s.offsets[m]));
+      const double r =
+          luminances[s.members[m]] - value - glm::dot(slope, glm::dvec2(s.offsets[m]));
       residual += s.weights[m] * r * r;
       noise += s.weights[m] * double(variance_of_mean[s.members[m]]);
     }
@@ -425,13 +426,13 @@ FilteredNoise PointDenoiser::predict(std::span<const glm::vec3> values,
 }
 
 DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> values,
-                                 std::span<const float> variance_of_mean, const RayTracer& tracer,
-                                 float ray_epsilon, JobContext& context) {
+                                 std::span<const float> variance_of_mean,
+                                 const RayTracer& tracer, float ray_epsilon, JobContext& context) {
   if (values.size() != points.size() || variance_of_mean.size() != points.size()) {
     throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
   }
-  return PointDenoiser(points, tracer, ray_epsilon, context)
-      .filter(values, variance_of_mean, context);
+  return PointDenoiser(points, tracer, ray_epsilon, context).filter(values, variance_of_mean,
+                                                                     context);
 }
 
 }  // namespace bakegi

@@ -134,7 +134,7 @@ class PointDenoiser : public NoiseFilter {
 
 // PointDenoiser(points, ...).filter(values, ...): one filtering pass.
 DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> values,
-                                 std::span<const float> variance_of_mean, const RayTracer& tracer,
-                                 float ray_epsilon, JobContext& context);
+                                 std::span<const float> variance_of_mean,
+                                 const RayTracer& tracer, float ray_epsilon, JobContext& context);
 
 }  // namespace bakegi
