@@ -50,6 +50,12 @@ BakePoints floor_points(int side) {
 // Luminance of grey values is the value.
 float grey(const glm::vec3& v) { return v.y; }
 
+// A standard normal number (Box-Muller).
+float gaussian(Pcg32& rng) {
+  const float u1 = std::max(rng.next_float(), 1e-7f), u2 = rng.next_float();
+  return std::sqrt(-2.0f * std::log(u1)) * std::cos(6.2831853f * u2);
+}
+
 // truth(x) plus Gaussian noise of standard deviation sigma(x); variances as a sampler reports.
 void make_noisy(const BakePoints& points, float (*truth)(float), float (*sigma)(float),
                 std::vector<glm::vec3>& values, std::vector<float>& variance,
@@ -58,8 +64,7 @@ void make_noisy(const BakePoints& points, float (*truth)(float), float (*sigma)(
   values.clear();
   variance.clear();
   for (const glm::vec3& p : points.positions) {
-    const float u1 = std::max(rng.next_float(), 1e-7f), u2 = rng.next_float();
-    const float gauss = std::sqrt(-2.0f * std::log(u1)) * std::cos(6.2831853f * u2);
+    const float gauss = gaussian(rng);
     const float s = sigma(p.x);
     values.push_back(glm::vec3(truth(p.x) + s * gauss));
     variance.push_back(s * s);
@@ -217,9 +222,7 @@ TEST(PointDenoiser, KeepsTheMeanWhereTheLightCurves) {
     std::vector<glm::vec3> values;
     std::vector<float> variance;
     for (const glm::vec3& p : points.positions) {
-      const float u1 = std::max(rng.next_float(), 1e-7f), u2 = rng.next_float();
-      const float gauss = std::sqrt(-2.0f * std::log(u1)) * std::cos(6.2831853f * u2);
-      values.push_back(glm::vec3(truth(p) + 0.1f * gauss));
+      values.push_back(glm::vec3(truth(p) + 0.1f * gaussian(rng)));
       variance.push_back(0.01f);
       truth_sum += truth(p);
     }
