@@ -212,12 +212,11 @@ TEST(AdaptiveSampling, APathTracedBakeStopsAtItsTarget) {
               error, samples, samples / 300.0);
 }
 
-// With the denoiser after it, the sampler stops when the noise the filter leaves (and the
-// shift of the mean it measures) meets the target: far fewer paths. The filter's local bias
-// is not in the prediction (the bake's error probes measure it): on these 300 sparse points,
-// wide neighbourhoods, it adds about 3% (measured: predicted 5.0%, true 6.1% against this
-// reference, 5.9% against one of 16,384 paths; 29,344 paths against 365,907 without the
-// filter), hence the margin x1.5.
+// With the denoiser after it, the sampler stops when the noise the filter leaves and the bias
+// it measures meet the target: far fewer paths. Measured: predicted 4.88%, true 5.17%, 30,593
+// paths against 366,474 without the filter (before the filter measured its bias on noisy
+// copies of its output, the prediction left out a 3% bias of these 300 sparse points: 5.0%
+// predicted, 6.1% true). The margin is the plain bake's, x1.25.
 TEST(AdaptiveSampling, ADenoisedBakeAimsAtTheNoiseLeftAfterTheFilter) {
   const std::vector<glm::vec3> reference = bake_room(4096, 0.0, nullptr);
   std::string plain_report, report;
@@ -234,7 +233,7 @@ TEST(AdaptiveSampling, ADenoisedBakeAimsAtTheNoiseLeftAfterTheFilter) {
   const double plain_samples = number_in(plain_report, "samples");
   EXPECT_LT(samples, 0.5 * plain_samples);
   const double error = nrmse(denoised, reference);
-  EXPECT_LT(error, 0.05 * 1.5) << "true NRMSE " << error << ", predicted " << predicted;
+  EXPECT_LT(error, 0.05 * 1.25) << "true NRMSE " << error << ", predicted " << predicted;
   std::printf("denoised adaptive: noise left %.2f, mean shift %.4f, predicted %.4f, true %.4f, "
               "%.0f paths (without the filter %.0f)\n",
               left, number_in(report, "denoise_mean_shift"), predicted, error, samples,

@@ -417,27 +417,28 @@ void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& point
   // Where the bias it adds outweighs the noise it takes out, the raw means are the better bake.
   const double bias = std::max(statistics.mean_shift, statistics.local_bias);
   const double filtered_error = std::hypot(statistics.noise_after, bias);
-  const bool applied =
-      !(statistics.noise_before > 0.0 && filtered_error >= statistics.noise_before);
+  const double raw_noise = statistics.noise_before * std::sqrt(statistics.variance_scale);
+  const bool applied = !(raw_noise > 0.0 && filtered_error >= raw_noise);
   if (!applied) {
     std::copy(raw.begin(), raw.end(), out.begin());
     report.warn("denoise: the filter would add more error (bias " + percent(bias) +
-                ") than it takes out (noise " + percent(statistics.noise_before) + " to " +
+                ") than it takes out (noise " + percent(raw_noise) + " to " +
                 percent(statistics.noise_after) + "); the values are not filtered");
     // The sampler predicted the filtered error; the raw means' is their noise.
     if (report.has_number("sampling_predicted_error")) {
-      report.set_number("sampling_predicted_error", statistics.noise_before);
+      report.set_number("sampling_predicted_error", raw_noise);
     }
   }
   report.set_number("denoise_applied", applied ? 1.0 : 0.0);
   // Finding the neighbourhoods and every prediction the sampler asked for count as denoising.
   report.add_seconds("denoise", seconds_since(start) + denoiser.seconds());
   report.add_count("rays", statistics.rays);
-  report.set_number("denoise_noise_before", statistics.noise_before);
+  report.set_number("denoise_noise_before", raw_noise);
   report.set_number("denoise_noise_after", statistics.noise_after);
   report.set_number("denoise_mean_shift", statistics.mean_shift);
   report.set_number("denoise_local_bias", statistics.local_bias);
   report.set_number("denoise_residual_share", statistics.residual_share);
+  report.set_number("denoise_variance_scale", statistics.variance_scale);
 }
 
 const Scene& BakeJob::build_scene_and_report(Report& report,

@@ -4,11 +4,12 @@
 #include <atomic>
 #include <cmath>
 #include <iterator>
+#include <numbers>
 #include <utility>
 #include <vector>
-
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -41,6 +42,14 @@ constexpr double kPlaneFitTolerance = 2.0;
 constexpr int kResidualPasses = 2;
 // Probes of the filter's noise: enough that count × probes reaches this (at least 4).
 constexpr size_t kProbeSamples = 32768;
+// Noisy copies the filter's bias is measured on: enough that count × copies reaches this,
+// between kMinBiasReplicas and kMaxBiasReplicas (each costs a pass over all points).
+constexpr size_t kBiasReplicaSamples = 8192;
+constexpr size_t kMinBiasReplicas = 2;
+constexpr size_t kMaxBiasReplicas = 4;
+// The residuals may show less noise than the samples' variances say (quasi-random samples),
+// never more; this keeps the scale off 0 where almost nothing is filtered.
+constexpr double kMinVarianceScale = 0.05;
 
 struct Neighbour {
   uint32_t index;
@@ -134,6 +143,17 @@ std::vector<T> residual_correction(const KernelRows& rows, const std::vector<T>&
 // Random signs ±1 of probe r at point j, the same on every run.
 float probe_sign(size_t j, size_t r) {
   return (mix64(mix64(uint64_t(j)) ^ (uint64_t(r) * 0x9E3779B97F4A7C15ull)) & 1) ? 1.0f : -1.0f;
+}
+
+// A standard normal number for point j of noisy copy r, the same on every run (Box-Muller
+// from two hashed uniforms).
+double replica_normal(size_t j, size_t r) {
+  const uint64_t a = mix64(mix64(uint64_t(j) ^ 0xA0761D6478BD642Full) ^
+                           ((uint64_t(r) + 1) * 0xD1B54A32D192ED03ull));
+  const uint64_t b = mix64(a ^ 0x8EBC6AF09C88C6E3ull);
+  const double u1 = (double(a >> 11) + 0.5) * 0x1.0p-53;  // (0, 1)
+  const double u2 = double(b >> 11) * 0x1.0p-53;          // [0, 1)
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
 }
 
 }  // namespace
@@ -323,13 +343,14 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   const FilteredLuminances result =
       filter_luminances(luminances, variance_of_mean, rows, context, report_progress ? 1.0 : 0.0);
 
-  // The noise, per point, of the plane (K z), of the correction (c(z) = K^p (I - K) z) and
-  // their product, the weights taken as fixed: means over random probes z_j = ±sqrt(v_j)
-  // (Hutchinson's estimator). Noisy per point, but only sums over the points are used, with
-  // enough probes that they hold on small bakes too.
+  // The noise, per point, of the plane (K z), of the correction (c(z) = K^p (I - K) z), of
+  // the plane's residual (K z - z) and their products, the weights taken as fixed: means over
+  // random probes z_j = ±sqrt(v_j) (Hutchinson's estimator). Noisy per point, but only sums
+  // over the points are used, with enough probes that they hold on small bakes too.
   const size_t probes = std::clamp<size_t>((kProbeSamples + count - 1) / count, 4, 64);
   std::vector<float> plane_variance(count, 0.0f), correction_variance(count, 0.0f),
-      covariance(count, 0.0f), probe(count), probe_plane(count);
+      covariance(count, 0.0f), residual_variance(count, 0.0f), residual_covariance(count, 0.0f),
+      probe(count), probe_plane(count);
   for (size_t r = 0; r < probes; ++r) {
     for (size_t j = 0; j < count; ++j) {
       probe[j] = probe_sign(j, r) * std::sqrt(std::max(0.0f, variance_of_mean[j]));
@@ -338,9 +359,12 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
                    [&](size_t i) { probe_plane[i] = rows.apply_row(i, probe); });
     const std::vector<float> correction = residual_correction(rows, probe, probe_plane, context);
     for (size_t i = 0; i < count; ++i) {
+      const float residual = probe_plane[i] - probe[i];
       plane_variance[i] += probe_plane[i] * probe_plane[i] / float(probes);
       correction_variance[i] += correction[i] * correction[i] / float(probes);
       covariance[i] += probe_plane[i] * correction[i] / float(probes);
+      residual_variance[i] += residual * residual / float(probes);
+      residual_covariance[i] += residual * correction[i] / float(probes);
     }
   }
   // How much of the correction to add: s = 1 - (its noise) / (its energy), at least 0 (the
@@ -356,6 +380,10 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   const float share =
       energy > 0.0 ? float(std::clamp(1.0 - noise_energy / energy, 0.0, 1.0)) : 0.0f;
   statistics.residual_share = share;
+  std::vector<float> truth(count);
+  for (size_t i = 0; i < count; ++i) {
+    truth[i] = std::max(0.0f, result.plane[i] + share * result.correction[i]);
+  }
 
   if (filtered) {
     // Colour with the weights the luminance chose.
@@ -370,34 +398,66 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
     }
   }
 
-  // The bias, as far as it can be measured: the plane fit's (pass 2 alone, K), from how far
-  // it moves each value beyond what the noise explains. With the weights taken as fixed,
-  // E[((K - I) y)_i²] = b_i² + Σ_j (k_ij - δ_ij)² v_j, so the mean of the difference
-  // estimates mean b_i² (Stein's unbiased risk estimate, as Li, Wu and Chuang 2012 use it for
-  // Monte Carlo filters). The residual correction takes part of that bias out (a wave:
-  // 0.050 -> 0.021, test_point_denoiser.cpp), so for the filter as a whole this errs high; the
-  // same estimate made for T misses the range kernel's response to the noise (measured on
-  // the wave: 6x too low).
+  // How much noise the values really carry: the filter's residuals f - y against what the
+  // variances predict for them. Owen-scrambled samples' means vary less than their sample
+  // variance says (measured 0.54-0.75 of it at the suite's points), which the residuals show
+  // and the variances cannot; a bias in the residuals only raises the scale (it errs safe).
+  double realized = 0.0, predicted = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const double residual =
+        double(result.plane[i] + share * result.correction[i]) - double(luminances[i]);
+    realized += residual * residual;
+    predicted += double(residual_variance[i]) + 2.0 * share * double(residual_covariance[i]) +
+                 double(share) * share * double(correction_variance[i]);
+  }
+  const double variance_scale =
+      predicted > 0.0 ? std::clamp(realized / predicted, kMinVarianceScale, 1.0) : 1.0;
+  statistics.variance_scale = variance_scale;
+
+  // The bias, measured on noisy copies of the filtered values (a parametric bootstrap): copy
+  // r is f + e_r, e_r Gaussian with the values' noise, filtered again with the same share;
+  // the copies' mean minus f is the filter's bias at f, the range kernel's answer to the
+  // noise included (what a bias estimate with the weights taken as fixed misses: it read 0
+  // where the filter moved the suite's corners by 1-2%). Less the noise of the copies' mean,
+  // measured from their spread.
+  const size_t replicas = std::clamp<size_t>((kBiasReplicaSamples + count - 1) / count,
+                                             kMinBiasReplicas, kMaxBiasReplicas);
+  std::vector<double> copy_sum(count, 0.0), copy_squares(count, 0.0);
+  std::vector<float> copy(count);
+  for (size_t r = 0; r < replicas; ++r) {
+    for (size_t j = 0; j < count; ++j) {
+      const double sigma = std::sqrt(variance_scale * std::max(0.0f, variance_of_mean[j]));
+      copy[j] = float(double(truth[j]) + sigma * replica_normal(j, r));
+    }
+    KernelRows copy_rows(neighbours_, neighbour_count_);
+    const FilteredLuminances copy_result =
+        filter_luminances(copy, variance_of_mean, copy_rows, context, 0.0);
+    for (size_t i = 0; i < count; ++i) {
+      const double value =
+          std::max(0.0, double(copy_result.plane[i] + share * copy_result.correction[i]));
+      copy_sum[i] += value;
+      copy_squares[i] += value * value;
+    }
+  }
+
   double mean = 0.0, before = 0.0, after = 0.0, filtered_mean = 0.0, bias = 0.0;
   for (size_t i = 0; i < count; ++i) {
-    double change_variance = 0.0;
-    for (size_t m = 0; m < rows.counts[i]; ++m) {
-      const uint32_t j = rows.neighbours[i * kDenoiseNeighbours + m];
-      const double weight = double(rows.weights[i * kDenoiseNeighbours + m]) - (j == i ? 1.0 : 0.0);
-      change_variance += weight * weight * double(variance_of_mean[j]);
-    }
-    const double change = double(result.plane[i]) - double(luminances[i]);
+    const double copies = double(replicas);
+    const double copy_mean = copy_sum[i] / copies;
+    const double copy_spread =
+        std::max(0.0, copy_squares[i] - copies * copy_mean * copy_mean) / (copies - 1.0);
+    const double offset = copy_mean - double(truth[i]);
+    bias += offset * offset - copy_spread / copies;
     mean += double(luminances[i]);
     before += double(variance_of_mean[i]);
     after += double(plane_variance[i]) + 2.0 * share * double(covariance[i]) +
              double(share) * share * double(correction_variance[i]);
-    filtered_mean += std::max(0.0, double(result.plane[i] + share * result.correction[i]));
-    bias += change * change - change_variance;
+    filtered_mean += double(truth[i]);
   }
   if (mean > 0.0) {
     const double mean_value = mean / double(count);
     statistics.noise_before = std::sqrt(before / double(count)) / mean_value;
-    statistics.noise_after = std::sqrt(after / double(count)) / mean_value;
+    statistics.noise_after = std::sqrt(variance_scale * after / double(count)) / mean_value;
     statistics.mean_shift = std::abs(filtered_mean - mean) / mean;
     statistics.local_bias = std::sqrt(std::max(0.0, bias / double(count))) / mean_value;
   }

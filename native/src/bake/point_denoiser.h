@@ -53,22 +53,26 @@ struct FilteredLuminances {
 };
 
 struct DenoiseStatistics {
-  // sqrt(mean v_i) / mean y_i before and after (the NRMSE the noise alone would give).
+  // sqrt(mean v_i) / mean y_i, the NRMSE the noise alone would give as the variances say it.
   double noise_before = 0.0;
+  // The same for the filtered values as their noise really is: the filter's noise for the
+  // weights taken as fixed, times sqrt(variance_scale).
   double noise_after = 0.0;
+  // The filter's residuals' energy over what the variances predict for it, in
+  // [kMinVarianceScale, 1]: the means of Owen-scrambled samples vary less than their sample
+  // variances say (0.54-0.75 of it measured on the suite), so noise_before overstates the
+  // raw noise by 1 / sqrt(variance_scale).
+  double variance_scale = 1.0;
   // |mean f_i - mean y_i| / mean y_i: how far the filter moved the mean, a part of its bias
   // that can be measured (the raw mean is unbiased and, over all points, nearly noise-free).
   // Path-traced noise is heavy-tailed: the range kernel shuts out a neighbour's rare bright
   // sample more often than a dark one, so the filtered mean falls (measured 1-3%).
   double mean_shift = 0.0;
-  // The root mean square of the plane fit's bias over the points, relative to the mean y:
-  // the unbiased raw y_i is the reference. With f_i = Σ_j k_ij y_j (the second pass) and the
-  // weights taken as fixed, E[(f_i - y_i)²] = b_i² + Σ_j (k_ij - δ_ij)² v_j, so the mean of
-  // (f_i - y_i)² - Σ_j (k_ij - δ_ij)² v_j estimates mean b_i² (Stein's unbiased risk
-  // estimate, as Li, Wu and Chuang 2012 use it for Monte Carlo filters). Where the filter
-  // blurs a gradient or an edge its weights cannot see, this grows; the mean shift is its
-  // mean's part. The residual correction takes part of the plane's bias out, so for the
-  // filter as a whole this errs high.
+  // The root mean square of the filter's bias over the points, relative to the mean y,
+  // measured on noisy copies of the filtered values (a parametric bootstrap, point_denoiser.cpp):
+  // the copies' filtered mean minus the values they were made from, the range kernel's
+  // answer to the noise included. On the suite's default bakes it read 0.8-1.7 times the
+  // bias measured between filtered and raw means over seeds (docs/benchmarks.md, 0q).
   double local_bias = 0.0;
   // The share of the smoothed residual put back, in [0, 1] (point_denoiser.cpp, pass 3).
   double residual_share = 0.0;
@@ -83,9 +87,11 @@ inline constexpr float kRangeStrength = 1.0f;
 // neighbourhoods are found; kDenoiseNeighbours neighbour indices; luminance, guide, filtered
 // value and variance; the squared bias, and the bake's copy of the raw values; the second
 // pass's kernel, a float per neighbour; the residual correction's and the noise probes'
-// vectors), for the job's memory estimate.
-inline constexpr size_t kDenoiseBytesPerPoint =
-    64 + 4 * kDenoiseNeighbours + 48 + 4 + 12 + 4 * kDenoiseNeighbours + 48 + 24;
+// vectors; the bias's noisy copy with its own kernel, filtered values and sums), for the
+// job's memory estimate.
+inline constexpr size_t kDenoiseBytesPerPoint = 64 + 4 * kDenoiseNeighbours + 48 + 4 + 12 +
+                                                4 * kDenoiseNeighbours + 48 + 32 +
+                                                4 * kDenoiseNeighbours + 32;
 
 class PointDenoiser : public NoiseFilter {
  public:

@@ -13,8 +13,10 @@ class JobContext;
 
 // What a filter would make of values with a given noise, both in the NRMSE's units.
 struct FilteredNoise {
-  double noise_left = 1.0;  // the noise it leaves over the noise it is given, in (0, 1]
-  double bias = 0.0;        // the error it adds as far as it can tell, relative to the mean
+  // The noise it leaves over the noise the variances it is given predict, in (0, 1] (below
+  // the noise it takes out where the variances overstate the noise).
+  double noise_left = 1.0;
+  double bias = 0.0;  // the error it adds as far as it can tell, relative to the mean
 };
 
 class NoiseFilter {
