@@ -15,7 +15,9 @@
 // A point's variance after few samples is itself noisy (a dark point that has not yet met a
 // rare bright path reports 0), so it is shrunk towards the mean variance of all points with
 // the weight of kPriorSamples samples. With quasi-random samples the true error falls faster
-// than v_i / n_i, so the prediction is an upper bound and the bake stops late, not early.
+// than v_i / n_i, so the prediction is an upper bound and the bake stops late, not early
+// (through the denoiser the filter's residuals measure by how much and the rounds aim at the
+// noise as it is: bake/point_denoiser.h, DenoiseStatistics::variance_scale).
 #pragma once
 
 #include <algorithm>
