@@ -7,9 +7,9 @@
 #include <numbers>
 #include <utility>
 #include <vector>
+
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
-
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

@@ -21,9 +21,10 @@
 // default bake of a closed room 3.6% dark before, about 2% after).
 //
 // The noise after filtering is predicted for the filter as a whole with the weights taken as
-// fixed, its bias from how far the plane fit moves each value beyond what the noise explains
-// (DenoiseStatistics::local_bias); the bake's error probes (bake/error_estimate.h) compare the
-// filtered values with the path tracer and measure both.
+// fixed, scaled by how much noise its residuals show (DenoiseStatistics::variance_scale: the
+// samples' variances overstate it); its bias is measured by filtering noisy copies of its
+// own output (DenoiseStatistics::local_bias). The bake's error probes (bake/error_estimate.h)
+// compare the filtered values with the path tracer and measure both.
 //
 // The neighbourhoods (nearest points, the surface tests, the visibility rays) depend on the
 // points only and are found once; filtering and predicting its noise (for an adaptive
@@ -71,7 +72,7 @@ struct DenoiseStatistics {
   // The root mean square of the filter's bias over the points, relative to the mean y,
   // measured on noisy copies of the filtered values (a parametric bootstrap, point_denoiser.cpp):
   // the copies' filtered mean minus the values they were made from, the range kernel's
-  // answer to the noise included. On the suite's default bakes it read 0.8-1.7 times the
+  // answer to the noise included. On the suite's default bakes it read 0.83-1.2 times the
   // bias measured between filtered and raw means over seeds (docs/benchmarks.md, 0q).
   double local_bias = 0.0;
   // The share of the smoothed residual put back, in [0, 1] (point_denoiser.cpp, pass 3).
