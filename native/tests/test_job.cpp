@@ -462,6 +462,11 @@ TEST(BakeJob, SettingsWithoutAMethodBakeWithTheDefault) {
   EXPECT_DOUBLE_EQ(report.members["target_error"].number, 0.1);
   EXPECT_GT(report.members["denoise_noise_after"].number, 0.0);
   EXPECT_LE(report.members["sampling_predicted_error"].number, 0.1);
+  // The noise as the filter's residuals show it: never more than the variances say.
+  const double scale = report.members["denoise_variance_scale"].number;
+  EXPECT_GT(scale, 0.0);
+  EXPECT_LE(scale, 1.0);
+  EXPECT_GE(report.members["denoise_local_bias"].number, 0.0);
 }
 
 TEST(BakeJob, KeepsItsOwnCopiesAndReportsWarnings) {
