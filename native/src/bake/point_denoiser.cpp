@@ -156,6 +156,16 @@ double replica_normal(size_t j, size_t r) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
 }
 
+// Point i of the filter's output before clamping: the plane plus the residual's share.
+float filtered_luminance(const FilteredLuminances& f, size_t i, float share) {
+  return f.plane[i] + share * f.correction[i];
+}
+
+// Var(a + s c) from Var a, Cov(a, c) and Var c.
+double variance_of_sum(double a, double covariance, double c, double share) {
+  return a + 2.0 * share * covariance + share * share * c;
+}
+
 }  // namespace
 
 PointDenoiser::PointDenoiser(const BakePoints& points, const RayTracer& tracer,
@@ -382,7 +392,7 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   statistics.residual_share = share;
   std::vector<float> truth(count);
   for (size_t i = 0; i < count; ++i) {
-    truth[i] = std::max(0.0f, result.plane[i] + share * result.correction[i]);
+    truth[i] = std::max(0.0f, filtered_luminance(result, i, share));
   }
 
   if (filtered) {
@@ -405,10 +415,10 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   double realized = 0.0, predicted = 0.0;
   for (size_t i = 0; i < count; ++i) {
     const double residual =
-        double(result.plane[i] + share * result.correction[i]) - double(luminances[i]);
+        double(filtered_luminance(result, i, share)) - double(luminances[i]);
     realized += residual * residual;
-    predicted += double(residual_variance[i]) + 2.0 * share * double(residual_covariance[i]) +
-                 double(share) * share * double(correction_variance[i]);
+    predicted += variance_of_sum(residual_variance[i], residual_covariance[i],
+                                 correction_variance[i], share);
   }
   const double variance_scale =
       predicted > 0.0 ? std::clamp(realized / predicted, kMinVarianceScale, 1.0) : 1.0;
@@ -424,17 +434,16 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
                                              kMinBiasReplicas, kMaxBiasReplicas);
   std::vector<double> copy_sum(count, 0.0), copy_squares(count, 0.0);
   std::vector<float> copy(count);
+  KernelRows copy_rows(neighbours_, neighbour_count_);  // every copy rewrites all its rows
   for (size_t r = 0; r < replicas; ++r) {
     for (size_t j = 0; j < count; ++j) {
       const double sigma = std::sqrt(variance_scale * std::max(0.0f, variance_of_mean[j]));
       copy[j] = float(double(truth[j]) + sigma * replica_normal(j, r));
     }
-    KernelRows copy_rows(neighbours_, neighbour_count_);
     const FilteredLuminances copy_result =
         filter_luminances(copy, variance_of_mean, copy_rows, context, 0.0);
     for (size_t i = 0; i < count; ++i) {
-      const double value =
-          std::max(0.0, double(copy_result.plane[i] + share * copy_result.correction[i]));
+      const double value = std::max(0.0f, filtered_luminance(copy_result, i, share));
       copy_sum[i] += value;
       copy_squares[i] += value * value;
     }
@@ -450,8 +459,7 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
     bias += offset * offset - copy_spread / copies;
     mean += double(luminances[i]);
     before += double(variance_of_mean[i]);
-    after += double(plane_variance[i]) + 2.0 * share * double(covariance[i]) +
-             double(share) * share * double(correction_variance[i]);
+    after += variance_of_sum(plane_variance[i], covariance[i], correction_variance[i], share);
     filtered_mean += double(truth[i]);
   }
   if (mean > 0.0) {
