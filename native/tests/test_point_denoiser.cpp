@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "bake/point_denoiser.h"
@@ -230,6 +231,45 @@ TEST(PointDenoiser, ReadsTheNoiseFromItsResidualsWhereTheVariancesOverstateIt) {
     EXPECT_GT(s.noise_after, after / 1.5);
     EXPECT_LT(s.noise_after, after * 1.5);
   }
+}
+
+TEST(PointDenoiser, FiltersWhatItLastPredictedAsAFreshFilterWould) {
+  // An adaptive bake ends on the values its last prediction measured, and filter() then
+  // reuses that measurement. Whatever it reuses, the result must be a fresh filter's, bit for
+  // bit; and values other than the last predicted are measured anew.
+  test::Baker baker(floor_scene(false));
+  const BakePoints points = floor_points(24);
+  auto truth = [](float x) { return 1.0f + 0.3f * x * x; };
+  auto sigma = [](float) { return 0.1f; };
+  std::vector<glm::vec3> first, second;
+  std::vector<float> first_variance, second_variance;
+  make_noisy(points, truth, sigma, first, first_variance, 5);
+  make_noisy(points, truth, sigma, second, second_variance, 6);
+  const auto fresh = [&](std::vector<glm::vec3> values, const std::vector<float>& variance) {
+    JobContext context;
+    const DenoiseStatistics s =
+        denoise_points(points, values, variance, baker.direct().tracer(), 1e-4f, context);
+    return std::make_pair(values, s);
+  };
+  const auto [fresh_first, fresh_first_statistics] = fresh(first, first_variance);
+  const auto [fresh_second, fresh_second_statistics] = fresh(second, second_variance);
+
+  JobContext context;
+  const PointDenoiser denoiser(points, baker.direct().tracer(), 1e-4f, context);
+  denoiser.predict(first, first_variance, context);
+  std::vector<glm::vec3> values = first;
+  const DenoiseStatistics reused = denoiser.filter(values, first_variance, context);
+  EXPECT_EQ(values, fresh_first);
+  EXPECT_EQ(reused.local_bias, fresh_first_statistics.local_bias);
+  EXPECT_EQ(reused.noise_after, fresh_first_statistics.noise_after);
+
+  // Predicted on the first values, filtering the second: measured again.
+  denoiser.predict(first, first_variance, context);
+  values = second;
+  const DenoiseStatistics measured = denoiser.filter(values, second_variance, context);
+  EXPECT_EQ(values, fresh_second);
+  EXPECT_EQ(measured.local_bias, fresh_second_statistics.local_bias);
+  ASSERT_NE(fresh_first, fresh_second);
 }
 
 TEST(PointDenoiser, KeepsTheMeanWhereTheLightCurves) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <iterator>
 #include <numbers>
 #include <utility>
@@ -106,10 +107,11 @@ void for_each_point(size_t count, JobContext& context, double from, double to,
 struct KernelRows {
   std::span<const uint32_t> neighbours;  // kDenoiseNeighbours per point
   std::span<const uint8_t> counts;
-  std::vector<float> weights;
+  std::vector<float>& weights;  // as many as neighbours
 
-  KernelRows(std::span<const uint32_t> neighbours, std::span<const uint8_t> counts)
-      : neighbours(neighbours), counts(counts), weights(neighbours.size(), 0.0f) {}
+  KernelRows(std::span<const uint32_t> neighbours, std::span<const uint8_t> counts,
+             std::vector<float>& weights)
+      : neighbours(neighbours), counts(counts), weights(weights) {}
 
   // (K x)_i.
   template <typename T>
@@ -159,6 +161,12 @@ double replica_normal(size_t j, size_t r) {
 // Point i of the filter's output before clamping: the plane plus the residual's share.
 float filtered_luminance(const FilteredLuminances& f, size_t i, float share) {
   return f.plane[i] + share * f.correction[i];
+}
+
+// Whether `a` and `b` hold the same numbers, bit for bit.
+template <typename T>
+bool same_bits(std::span<const T> a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size_bytes()) == 0;
 }
 
 // Var(a + s c) from Var a, Cov(a, c) and Var c.
@@ -312,7 +320,10 @@ FilteredLuminances PointDenoiser::filter_luminances(const std::vector<float>& lu
         // neighbours whose noise leans towards i (measured: a bias at a ramp's rim).
         const float difference = guide[i] + glm::dot(guide_slope[i], offset) - luminances[j];
         const float excess = std::max(0.0f, difference * difference - noise);
-        w = distance_weight(i, j) * std::exp(-excess / (kRangeStrength * kRangeStrength * noise));
+        w = distance_weight(i, j);
+        // Most neighbours lie within the noise (excess 0, a factor of exactly 1): exp only
+        // for the others.
+        if (excess > 0.0f) w *= std::exp(-excess / (kRangeStrength * kRangeStrength * noise));
       }
       s.add(w, offset, j);
     }
@@ -335,24 +346,19 @@ FilteredLuminances PointDenoiser::filter_luminances(const std::vector<float>& lu
   return result;
 }
 
-DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
-                                     std::span<const float> variance_of_mean,
-                                     std::vector<glm::vec3>* filtered, JobContext& context,
-                                     bool report_progress) const {
+PointDenoiser::Measurement PointDenoiser::measure(std::span<const glm::vec3> values,
+                                                  std::span<const float> variance_of_mean,
+                                                  JobContext& context, bool report_progress) const {
   const size_t count = points_.size();
-  if (values.size() != count || variance_of_mean.size() != count) {
-    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
-  }
-  DenoiseStatistics statistics;
+  Measurement measured;
+  DenoiseStatistics& statistics = measured.statistics;
   statistics.rays = rays_;
-  if (count == 0) return statistics;
-
   std::vector<float> luminances(count);
   for (size_t i = 0; i < count; ++i) luminances[i] = float(luminance(values[i]));
-  KernelRows rows(neighbours_, neighbour_count_);
+  measured.kernel_weights.assign(neighbours_.size(), 0.0f);
+  KernelRows rows(neighbours_, neighbour_count_, measured.kernel_weights);
   const FilteredLuminances result =
       filter_luminances(luminances, variance_of_mean, rows, context, report_progress ? 1.0 : 0.0);
-
   // The noise, per point, of the plane (K z), of the correction (c(z) = K^p (I - K) z), of
   // the plane's residual (K z - z) and their products, the weights taken as fixed: means over
   // random probes z_j = ±sqrt(v_j) (Hutchinson's estimator). Noisy per point, but only sums
@@ -362,20 +368,20 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
       covariance(count, 0.0f), residual_variance(count, 0.0f), residual_covariance(count, 0.0f),
       probe(count), probe_plane(count);
   for (size_t r = 0; r < probes; ++r) {
-    for (size_t j = 0; j < count; ++j) {
+    for_each_point(count, context, 0.0, 0.0, [&](size_t j) {
       probe[j] = probe_sign(j, r) * std::sqrt(std::max(0.0f, variance_of_mean[j]));
-    }
+    });
     for_each_point(count, context, 0.0, 0.0,
                    [&](size_t i) { probe_plane[i] = rows.apply_row(i, probe); });
     const std::vector<float> correction = residual_correction(rows, probe, probe_plane, context);
-    for (size_t i = 0; i < count; ++i) {
+    for_each_point(count, context, 0.0, 0.0, [&](size_t i) {
       const float residual = probe_plane[i] - probe[i];
       plane_variance[i] += probe_plane[i] * probe_plane[i] / float(probes);
       correction_variance[i] += correction[i] * correction[i] / float(probes);
       covariance[i] += probe_plane[i] * correction[i] / float(probes);
       residual_variance[i] += residual * residual / float(probes);
       residual_covariance[i] += residual * correction[i] / float(probes);
-    }
+    });
   }
   // How much of the correction to add: s = 1 - (its noise) / (its energy), at least 0 (the
   // positive-part James-Stein weight). Where the points sample the light densely (lightmap
@@ -389,23 +395,11 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   }
   const float share =
       energy > 0.0 ? float(std::clamp(1.0 - noise_energy / energy, 0.0, 1.0)) : 0.0f;
+  measured.share = share;
   statistics.residual_share = share;
   std::vector<float> truth(count);
   for (size_t i = 0; i < count; ++i) {
     truth[i] = std::max(0.0f, filtered_luminance(result, i, share));
-  }
-
-  if (filtered) {
-    // Colour with the weights the luminance chose.
-    const std::vector<glm::vec3> raw(values.begin(), values.end());
-    filtered->assign(count, glm::vec3(0.0f));
-    for_each_point(count, context, 0.0, 0.0,
-                   [&](size_t i) { (*filtered)[i] = rows.apply_row(i, raw); });
-    const std::vector<glm::vec3> correction = residual_correction(rows, raw, *filtered, context);
-    // A slope fitted from noise can extrapolate below zero; light cannot.
-    for (size_t i = 0; i < count; ++i) {
-      (*filtered)[i] = glm::max((*filtered)[i] + share * correction[i], glm::vec3(0.0f));
-    }
   }
 
   // How much noise the values really carry: the filter's residuals f - y against what the
@@ -434,19 +428,20 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
                                              kMinBiasReplicas, kMaxBiasReplicas);
   std::vector<double> copy_sum(count, 0.0), copy_squares(count, 0.0);
   std::vector<float> copy(count);
-  KernelRows copy_rows(neighbours_, neighbour_count_);  // every copy rewrites all its rows
+  std::vector<float> copy_weights(neighbours_.size(), 0.0f);
+  KernelRows copy_rows(neighbours_, neighbour_count_, copy_weights);  // every copy rewrites it
   for (size_t r = 0; r < replicas; ++r) {
-    for (size_t j = 0; j < count; ++j) {
+    for_each_point(count, context, 0.0, 0.0, [&](size_t j) {
       const double sigma = std::sqrt(variance_scale * std::max(0.0f, variance_of_mean[j]));
       copy[j] = float(double(truth[j]) + sigma * replica_normal(j, r));
-    }
+    });
     const FilteredLuminances copy_result =
         filter_luminances(copy, variance_of_mean, copy_rows, context, 0.0);
-    for (size_t i = 0; i < count; ++i) {
+    for_each_point(count, context, 0.0, 0.0, [&](size_t i) {
       const double value = std::max(0.0f, filtered_luminance(copy_result, i, share));
       copy_sum[i] += value;
       copy_squares[i] += value * value;
-    }
+    });
   }
 
   double mean = 0.0, before = 0.0, after = 0.0, filtered_mean = 0.0, bias = 0.0;
@@ -469,7 +464,48 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
     statistics.mean_shift = std::abs(filtered_mean - mean) / mean;
     statistics.local_bias = std::sqrt(std::max(0.0, bias / double(count))) / mean_value;
   }
-  return statistics;
+  measured.values.assign(values.begin(), values.end());
+  measured.variance_of_mean.assign(variance_of_mean.begin(), variance_of_mean.end());
+  return measured;
+}
+
+DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
+                                     std::span<const float> variance_of_mean,
+                                     std::vector<glm::vec3>* filtered, JobContext& context,
+                                     bool report_progress) const {
+  const size_t count = points_.size();
+  if (values.size() != count || variance_of_mean.size() != count) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
+  }
+  if (count == 0) {
+    DenoiseStatistics statistics;
+    statistics.rays = rays_;
+    return statistics;
+  }
+  // The sampler's last prediction measured these very values (the bake ends on them): the
+  // filter, the noise probes and the noisy copies need not run again.
+  const bool measured = last_ && same_bits(values, last_->values) &&
+                        same_bits(variance_of_mean, last_->variance_of_mean);
+  if (!measured) {
+    last_.reset();  // its kernel is not held next to the new one's
+    last_ = measure(values, variance_of_mean, context, report_progress);
+  }
+  if (filtered) {
+    // Colour with the weights the luminance chose.
+    KernelRows rows(neighbours_, neighbour_count_, last_->kernel_weights);
+    const float share = last_->share;
+    const std::vector<glm::vec3> raw(values.begin(), values.end());
+    filtered->assign(count, glm::vec3(0.0f));
+    for_each_point(count, context, 0.0, 0.0,
+                   [&](size_t i) { (*filtered)[i] = rows.apply_row(i, raw); });
+    const std::vector<glm::vec3> correction = residual_correction(rows, raw, *filtered, context);
+    // A slope fitted from noise can extrapolate below zero; light cannot.
+    for (size_t i = 0; i < count; ++i) {
+      (*filtered)[i] = glm::max((*filtered)[i] + share * correction[i], glm::vec3(0.0f));
+    }
+  }
+
+  return last_->statistics;
 }
 
 DenoiseStatistics PointDenoiser::filter(std::span<glm::vec3> values,

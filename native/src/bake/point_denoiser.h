@@ -33,6 +33,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -88,11 +89,11 @@ inline constexpr float kRangeStrength = 1.0f;
 // neighbourhoods are found; kDenoiseNeighbours neighbour indices; luminance, guide, filtered
 // value and variance; the squared bias, and the bake's copy of the raw values; the second
 // pass's kernel, a float per neighbour; the residual correction's and the noise probes'
-// vectors; the bias's noisy copy with its own kernel, filtered values and sums), for the
-// job's memory estimate.
+// vectors; the bias's noisy copy with its own kernel, filtered values and sums; the copy of
+// the measured values and variances kept for the final filter), for the job's memory estimate.
 inline constexpr size_t kDenoiseBytesPerPoint = 64 + 4 * kDenoiseNeighbours + 48 + 4 + 12 +
                                                 4 * kDenoiseNeighbours + 48 + 32 +
-                                                4 * kDenoiseNeighbours + 32;
+                                                4 * kDenoiseNeighbours + 32 + 16;
 
 class PointDenoiser : public NoiseFilter {
  public:
@@ -115,7 +116,21 @@ class PointDenoiser : public NoiseFilter {
   uint64_t rays() const { return rays_; }
 
  private:
-  // Filters into `filtered` (may be empty: only the variances) and returns the statistics.
+  // What the filter measured on one set of values: its second pass's kernel, the residual's
+  // share and the statistics. Kept from the sampler's last prediction, so that filter() on
+  // the very same values and variances (the bake ends on them) does not measure them again.
+  struct Measurement {
+    std::vector<glm::vec3> values;
+    std::vector<float> variance_of_mean;
+    std::vector<float> kernel_weights;  // kDenoiseNeighbours per point
+    float share = 0.0f;
+    DenoiseStatistics statistics;
+  };
+  Measurement measure(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
+                      JobContext& context, bool report_progress) const;
+
+  // Filters into `filtered` (may be null: only the statistics) and returns the statistics;
+  // measures the values unless the last call measured the same.
   DenoiseStatistics run(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
                         std::vector<glm::vec3>* filtered, JobContext& context,
                         bool report_progress) const;
@@ -137,6 +152,7 @@ class PointDenoiser : public NoiseFilter {
   std::vector<uint32_t> neighbours_;
   std::vector<float> bandwidth_squared_;  // h_i²
   uint64_t rays_ = 0;
+  mutable std::optional<Measurement> last_;
 };
 
 // PointDenoiser(points, ...).filter(values, ...): one filtering pass.
