@@ -98,7 +98,8 @@ class BakeJob {
   const BakePoints& points() const { return points_; }
 
   // Bytes a bake is expected to need (flattened scene, BVH, points and results, the
-  // denoiser's and the irradiance cache's work), before any of it is allocated.
+  // denoiser's and the irradiance cache's work), before any of it is allocated. `denoise`:
+  // the denoiser's neighbourhoods are made (to filter, or to read the noise's scale).
   static size_t estimate_memory(const SceneDescription& description, size_t point_count,
                                 bool denoise = false, bool irradiance_cache = false);
 
@@ -151,6 +152,9 @@ class BakeJob {
   int threads_ = 0;
   int64_t error_probes_ = 0;
   bool denoise_ = false;
+  // The path tracer to a target error: without the denoiser it still reads the noise's
+  // scale through the denoiser's neighbourhoods (bake_job.cpp, NoiseScaleOnDemand).
+  bool samples_to_target_ = false;
   bool irradiance_cache_ = false;      // the path tracer's irradiance_cache > 0
   bool shadow_cache_setting_ = false;  // setting shadow_cache (the path tracer)
   int64_t error_probe_samples_ = 0;

@@ -346,27 +346,30 @@ FilteredLuminances PointDenoiser::filter_luminances(const std::vector<float>& lu
   return result;
 }
 
-PointDenoiser::Measurement PointDenoiser::measure(std::span<const glm::vec3> values,
-                                                  std::span<const float> variance_of_mean,
-                                                  JobContext& context, bool report_progress) const {
+PointDenoiser::ScaledFilter PointDenoiser::filter_and_scale(std::span<const glm::vec3> values,
+                                                            std::span<const float> variance_of_mean,
+                                                            std::vector<float>& kernel_weights,
+                                                            JobContext& context,
+                                                            bool report_progress) const {
   const size_t count = points_.size();
-  Measurement measured;
-  DenoiseStatistics& statistics = measured.statistics;
-  statistics.rays = rays_;
-  std::vector<float> luminances(count);
-  for (size_t i = 0; i < count; ++i) luminances[i] = float(luminance(values[i]));
-  measured.kernel_weights.assign(neighbours_.size(), 0.0f);
-  KernelRows rows(neighbours_, neighbour_count_, measured.kernel_weights);
-  const FilteredLuminances result =
-      filter_luminances(luminances, variance_of_mean, rows, context, report_progress ? 1.0 : 0.0);
+  ScaledFilter f;
+  f.luminances.resize(count);
+  for (size_t i = 0; i < count; ++i) f.luminances[i] = float(luminance(values[i]));
+  kernel_weights.assign(neighbours_.size(), 0.0f);
+  KernelRows rows(neighbours_, neighbour_count_, kernel_weights);
+  f.result =
+      filter_luminances(f.luminances, variance_of_mean, rows, context, report_progress ? 1.0 : 0.0);
+  const FilteredLuminances& result = f.result;
   // The noise, per point, of the plane (K z), of the correction (c(z) = K^p (I - K) z), of
   // the plane's residual (K z - z) and their products, the weights taken as fixed: means over
   // random probes z_j = ±sqrt(v_j) (Hutchinson's estimator). Noisy per point, but only sums
   // over the points are used, with enough probes that they hold on small bakes too.
   const size_t probes = std::clamp<size_t>((kProbeSamples + count - 1) / count, 4, 64);
-  std::vector<float> plane_variance(count, 0.0f), correction_variance(count, 0.0f),
-      covariance(count, 0.0f), residual_variance(count, 0.0f), residual_covariance(count, 0.0f),
-      probe(count), probe_plane(count);
+  f.plane_variance.assign(count, 0.0f);
+  f.correction_variance.assign(count, 0.0f);
+  f.covariance.assign(count, 0.0f);
+  std::vector<float> residual_variance(count, 0.0f), residual_covariance(count, 0.0f), probe(count),
+      probe_plane(count);
   for (size_t r = 0; r < probes; ++r) {
     for_each_point(count, context, 0.0, 0.0, [&](size_t j) {
       probe[j] = probe_sign(j, r) * std::sqrt(std::max(0.0f, variance_of_mean[j]));
@@ -376,9 +379,9 @@ PointDenoiser::Measurement PointDenoiser::measure(std::span<const glm::vec3> val
     const std::vector<float> correction = residual_correction(rows, probe, probe_plane, context);
     for_each_point(count, context, 0.0, 0.0, [&](size_t i) {
       const float residual = probe_plane[i] - probe[i];
-      plane_variance[i] += probe_plane[i] * probe_plane[i] / float(probes);
-      correction_variance[i] += correction[i] * correction[i] / float(probes);
-      covariance[i] += probe_plane[i] * correction[i] / float(probes);
+      f.plane_variance[i] += probe_plane[i] * probe_plane[i] / float(probes);
+      f.correction_variance[i] += correction[i] * correction[i] / float(probes);
+      f.covariance[i] += probe_plane[i] * correction[i] / float(probes);
       residual_variance[i] += residual * residual / float(probes);
       residual_covariance[i] += residual * correction[i] / float(probes);
     });
@@ -391,16 +394,9 @@ PointDenoiser::Measurement PointDenoiser::measure(std::span<const glm::vec3> val
   double energy = 0.0, noise_energy = 0.0;
   for (size_t i = 0; i < count; ++i) {
     energy += double(result.correction[i]) * double(result.correction[i]);
-    noise_energy += double(correction_variance[i]);
+    noise_energy += double(f.correction_variance[i]);
   }
-  const float share =
-      energy > 0.0 ? float(std::clamp(1.0 - noise_energy / energy, 0.0, 1.0)) : 0.0f;
-  measured.share = share;
-  statistics.residual_share = share;
-  std::vector<float> truth(count);
-  for (size_t i = 0; i < count; ++i) {
-    truth[i] = std::max(0.0f, filtered_luminance(result, i, share));
-  }
+  f.share = energy > 0.0 ? float(std::clamp(1.0 - noise_energy / energy, 0.0, 1.0)) : 0.0f;
 
   // How much noise the values really carry: the filter's residuals f - y against what the
   // variances predict for them. Owen-scrambled samples' means vary less than their sample
@@ -409,14 +405,35 @@ PointDenoiser::Measurement PointDenoiser::measure(std::span<const glm::vec3> val
   double realized = 0.0, predicted = 0.0;
   for (size_t i = 0; i < count; ++i) {
     const double residual =
-        double(filtered_luminance(result, i, share)) - double(luminances[i]);
+        double(filtered_luminance(result, i, f.share)) - double(f.luminances[i]);
     realized += residual * residual;
     predicted += variance_of_sum(residual_variance[i], residual_covariance[i],
-                                 correction_variance[i], share);
+                                 f.correction_variance[i], f.share);
   }
-  const double variance_scale =
+  f.variance_scale =
       predicted > 0.0 ? std::clamp(realized / predicted, kMinVarianceScale, 1.0) : 1.0;
+  return f;
+}
+
+PointDenoiser::Measurement PointDenoiser::measure(std::span<const glm::vec3> values,
+                                                  std::span<const float> variance_of_mean,
+                                                  JobContext& context, bool report_progress) const {
+  const size_t count = points_.size();
+  Measurement measured;
+  DenoiseStatistics& statistics = measured.statistics;
+  statistics.rays = rays_;
+  const ScaledFilter f =
+      filter_and_scale(values, variance_of_mean, measured.kernel_weights, context, report_progress);
+  const std::vector<float>& luminances = f.luminances;
+  const float share = f.share;
+  const double variance_scale = f.variance_scale;
+  measured.share = share;
+  statistics.residual_share = share;
   statistics.variance_scale = variance_scale;
+  std::vector<float> truth(count);
+  for (size_t i = 0; i < count; ++i) {
+    truth[i] = std::max(0.0f, filtered_luminance(f.result, i, share));
+  }
 
   // The bias, measured on noisy copies of the filtered values (a parametric bootstrap): copy
   // r is f + e_r, e_r Gaussian with the values' noise, filtered again with the same share;
@@ -454,7 +471,7 @@ PointDenoiser::Measurement PointDenoiser::measure(std::span<const glm::vec3> val
     bias += offset * offset - copy_spread / copies;
     mean += double(luminances[i]);
     before += double(variance_of_mean[i]);
-    after += variance_of_sum(plane_variance[i], covariance[i], correction_variance[i], share);
+    after += variance_of_sum(f.plane_variance[i], f.covariance[i], f.correction_variance[i], share);
     filtered_mean += double(truth[i]);
   }
   if (mean > 0.0) {
@@ -506,6 +523,17 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
   }
 
   return last_->statistics;
+}
+
+double PointDenoiser::noise_scale(std::span<const glm::vec3> values,
+                                  std::span<const float> variance_of_mean,
+                                  JobContext& context) const {
+  if (values.size() != points_.size() || variance_of_mean.size() != points_.size()) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
+  }
+  if (values.empty()) return 1.0;
+  std::vector<float> kernel_weights;
+  return filter_and_scale(values, variance_of_mean, kernel_weights, context, false).variance_scale;
 }
 
 DenoiseStatistics PointDenoiser::filter(std::span<glm::vec3> values,

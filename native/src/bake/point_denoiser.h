@@ -113,6 +113,14 @@ class PointDenoiser : public NoiseFilter {
   FilteredNoise predict(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
                         JobContext& context) const override;
 
+  // How much the variances overstate the noise of these values, without filtering them:
+  // DenoiseStatistics::variance_scale as filter() would find it (the energy of the filter's
+  // residuals over what the variances predict for it), without the bias's noisy copies. For
+  // bakes that keep their raw means: the means of Owen-scrambled samples vary less than
+  // their sample variances say.
+  double noise_scale(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
+                     JobContext& context) const;
+
   uint64_t rays() const { return rays_; }
 
  private:
@@ -128,6 +136,21 @@ class PointDenoiser : public NoiseFilter {
   };
   Measurement measure(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
                       JobContext& context, bool report_progress) const;
+
+  // The filter's passes over the values' luminance, the noise of its parts from random probes
+  // (weights fixed), the residual's share and the noise's scale: what measure() and
+  // noise_scale() share. `kernel_weights` gets the second pass's kernel.
+  struct ScaledFilter {
+    std::vector<float> luminances;
+    FilteredLuminances result;
+    std::vector<float> plane_variance, correction_variance, covariance;  // per point
+    float share = 0.0f;
+    double variance_scale = 1.0;
+  };
+  ScaledFilter filter_and_scale(std::span<const glm::vec3> values,
+                                std::span<const float> variance_of_mean,
+                                std::vector<float>& kernel_weights, JobContext& context,
+                                bool report_progress) const;
 
   // Filters into `filtered` (may be null: only the statistics) and returns the statistics;
   // measures the values unless the last call measured the same.

@@ -1,6 +1,7 @@
 // What the bake does to a Monte Carlo field's noise after evaluating it (a denoiser,
 // bake/point_denoiser.h): an adaptive sampler (solvers/adaptive_sampling.h) that knows it
-// aims at the noise left after the filter, not at the noise of its raw means.
+// aims at the noise left after the filter, not at the noise of its raw means. Without a
+// denoiser the bake gives one that only reads the noise's scale (bake_job.cpp).
 #pragma once
 
 #include <span>
@@ -27,6 +28,9 @@ class NoiseFilter {
   virtual FilteredNoise predict(std::span<const glm::vec3> values,
                                 std::span<const float> variance_of_mean,
                                 JobContext& context) const = 0;
+  // False for a filter that leaves the values as they are and only reads how much their
+  // variances overstate their noise (noise_left, no bias): the bake keeps the raw means.
+  virtual bool changes_values() const { return true; }
 };
 
 }  // namespace bakegi

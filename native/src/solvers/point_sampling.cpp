@@ -151,7 +151,8 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
       // out, less what its bias adds (error² = (left · noise)² + bias²), both measured again
       // each round (the filter takes out less, and adds less, as the noise falls below the
       // differences between neighbours). Where its bias alone exceeds the target the rounds
-      // aim at the raw target, as without the filter.
+      // aim at the raw target, as without the filter. A filter that keeps the raw means
+      // (NoiseFilter::changes_values) only scales their noise: what the variances overstate.
       FilteredNoise filtered;
       double target = sampling.target_error;
       if (after) {
@@ -172,9 +173,11 @@ void estimate_at_points(const BakePoints& points, std::span<glm::vec3> out,
       const double noise = next.predicted_error * filtered.noise_left;
       report.set_number("sampling_predicted_error",
                         std::sqrt(noise * noise + filtered.bias * filtered.bias));
-      if (after) {
+      if (after && after->changes_values()) {
         report.set_number("sampling_noise_left_by_filter", filtered.noise_left);
         report.set_number("sampling_filter_bias", filtered.bias);
+      } else if (after) {
+        report.set_number("sampling_noise_scale", filtered.noise_left * filtered.noise_left);
       }
       if (next.done()) break;
       sample_round(
