@@ -274,30 +274,40 @@ namespace {
 
 // The denoiser as the filter an adaptive sampler aims through: its neighbourhoods (rays) are
 // found when the sampler first asks, or after the evaluation, so that a field without noise
-// estimates costs nothing.
+// estimates costs nothing. With `filters` false the bake keeps its raw means and the denoiser
+// only reads, each round, how much their variances overstate their noise
+// (PointDenoiser::noise_scale), so that a bake to a target error stops where its means meet
+// it rather than where their variances say they do (Owen-scrambled samples: 0.54-0.75 of it
+// in variance on the suite).
 class DenoiserOnDemand : public NoiseFilter {
  public:
-  DenoiserOnDemand(const BakePoints& points, const RayTracer& tracer, float ray_epsilon)
-      : points_(points), tracer_(tracer), ray_epsilon_(ray_epsilon) {}
+  DenoiserOnDemand(const BakePoints& points, const RayTracer& tracer, float ray_epsilon,
+                   bool filters)
+      : points_(points), tracer_(tracer), ray_epsilon_(ray_epsilon), filters_(filters) {}
 
   FilteredNoise predict(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
                         JobContext& context) const override {
-    if (!denoiser_) {
-      seconds_ += timed([&] {
-        denoiser_.emplace(points_, tracer_, ray_epsilon_, context, /*report_progress=*/false);
-      });
-    }
+    const PointDenoiser& denoiser = get(context, /*report_progress=*/false);
     FilteredNoise predicted;
-    seconds_ += timed([&] { predicted = denoiser_->predict(values, variance_of_mean, context); });
+    seconds_ += timed([&] {
+      if (filters_) {
+        predicted = denoiser.predict(values, variance_of_mean, context);
+      } else {
+        predicted.noise_left = std::sqrt(denoiser.noise_scale(values, variance_of_mean, context));
+      }
+    });
     return predicted;
   }
+  bool changes_values() const override { return filters_; }
 
-  const PointDenoiser& get(JobContext& context) const {
+  const PointDenoiser& get(JobContext& context, bool report_progress = true) const {
     if (!denoiser_) {
-      seconds_ += timed([&] { denoiser_.emplace(points_, tracer_, ray_epsilon_, context); });
+      seconds_ += timed(
+          [&] { denoiser_.emplace(points_, tracer_, ray_epsilon_, context, report_progress); });
     }
     return *denoiser_;
   }
+  bool made() const { return denoiser_.has_value(); }
   double seconds() const { return seconds_; }
 
  private:
@@ -311,44 +321,8 @@ class DenoiserOnDemand : public NoiseFilter {
   const BakePoints& points_;
   const RayTracer& tracer_;
   float ray_epsilon_;
+  bool filters_;
   mutable std::optional<PointDenoiser> denoiser_;
-  mutable double seconds_ = 0.0;
-};
-
-// For a bake that keeps its raw means: reads, each round the sampler asks, how much the
-// variances overstate the noise (PointDenoiser::noise_scale), so that a bake to a target
-// error stops where its means meet it rather than where their variances say they do
-// (Owen-scrambled samples: 0.54-0.75 of it in variance on the suite). The neighbourhoods are
-// found when the sampler first asks: a bake of fixed samples costs nothing.
-class NoiseScaleOnDemand : public NoiseFilter {
- public:
-  NoiseScaleOnDemand(const BakePoints& points, const RayTracer& tracer, float ray_epsilon)
-      : points_(points), tracer_(tracer), ray_epsilon_(ray_epsilon) {}
-
-  FilteredNoise predict(std::span<const glm::vec3> values, std::span<const float> variance_of_mean,
-                        JobContext& context) const override {
-    const auto start = std::chrono::steady_clock::now();
-    if (!denoiser_) {
-      denoiser_.emplace(points_, tracer_, ray_epsilon_, context, /*report_progress=*/false);
-    }
-    scale_ = denoiser_->noise_scale(values, variance_of_mean, context);
-    seconds_ += seconds_since(start);
-    FilteredNoise noise;
-    noise.noise_left = std::sqrt(scale_);
-    return noise;
-  }
-  bool changes_values() const override { return false; }
-
-  bool asked() const { return denoiser_.has_value(); }
-  double seconds() const { return seconds_; }
-  uint64_t rays() const { return denoiser_ ? denoiser_->rays() : 0; }
-
- private:
-  const BakePoints& points_;
-  const RayTracer& tracer_;
-  float ray_epsilon_;
-  mutable std::optional<PointDenoiser> denoiser_;
-  mutable double scale_ = 1.0;
   mutable double seconds_ = 0.0;
 };
 
@@ -442,16 +416,16 @@ void BakeJob::evaluate_field(const IndirectField& field, const BakePoints& point
       return;
     }
     std::vector<float> variance(points.size(), 0.0f);
-    const NoiseScaleOnDemand scale(points, *tracer_, direct_->ray_epsilon());
+    const DenoiserOnDemand scale(points, *tracer_, direct_->ray_epsilon(), /*filters=*/false);
     field.evaluate_with_variance(points, out, variance, &scale, context_);
-    if (scale.asked()) {
+    if (scale.made()) {
       report.add_seconds("noise_scale", scale.seconds());
-      report.add_count("rays", scale.rays());
+      report.add_count("rays", scale.get(context_).rays());
     }
     return;
   }
   std::vector<float> variance(points.size(), 0.0f);
-  const DenoiserOnDemand denoiser(points, *tracer_, direct_->ray_epsilon());
+  const DenoiserOnDemand denoiser(points, *tracer_, direct_->ray_epsilon(), /*filters=*/true);
   if (!field.evaluate_with_variance(points, out, variance, &denoiser, context_)) {
     report.warn("denoise: this method's result has no noise estimates and is not filtered");
     return;
