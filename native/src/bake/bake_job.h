@@ -153,7 +153,7 @@ class BakeJob {
   int64_t error_probes_ = 0;
   bool denoise_ = false;
   // The path tracer to a target error: without the denoiser it still reads the noise's
-  // scale through the denoiser's neighbourhoods (bake_job.cpp, NoiseScaleOnDemand).
+  // scale through the denoiser's neighbourhoods (bake_job.cpp, DenoiserOnDemand).
   bool samples_to_target_ = false;
   bool irradiance_cache_ = false;      // the path tracer's irradiance_cache > 0
   bool shadow_cache_setting_ = false;  // setting shadow_cache (the path tracer)
