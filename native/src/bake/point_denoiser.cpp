@@ -163,6 +163,13 @@ float filtered_luminance(const FilteredLuminances& f, size_t i, float share) {
   return f.plane[i] + share * f.correction[i];
 }
 
+// One value and one variance per point, or an internal error.
+void check_one_per_point(size_t points, size_t values, size_t variances) {
+  if (values != points || variances != points) {
+    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
+  }
+}
+
 // Whether `a` and `b` hold the same numbers, bit for bit.
 template <typename T>
 bool same_bits(std::span<const T> a, const std::vector<T>& b) {
@@ -491,9 +498,7 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
                                      std::vector<glm::vec3>* filtered, JobContext& context,
                                      bool report_progress) const {
   const size_t count = points_.size();
-  if (values.size() != count || variance_of_mean.size() != count) {
-    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
-  }
+  check_one_per_point(count, values.size(), variance_of_mean.size());
   if (count == 0) {
     DenoiseStatistics statistics;
     statistics.rays = rays_;
@@ -528,9 +533,7 @@ DenoiseStatistics PointDenoiser::run(std::span<const glm::vec3> values,
 double PointDenoiser::noise_scale(std::span<const glm::vec3> values,
                                   std::span<const float> variance_of_mean,
                                   JobContext& context) const {
-  if (values.size() != points_.size() || variance_of_mean.size() != points_.size()) {
-    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
-  }
+  check_one_per_point(points_.size(), values.size(), variance_of_mean.size());
   if (values.empty()) return 1.0;
   std::vector<float> kernel_weights;
   return filter_and_scale(values, variance_of_mean, kernel_weights, context, false).variance_scale;
@@ -560,9 +563,7 @@ FilteredNoise PointDenoiser::predict(std::span<const glm::vec3> values,
 DenoiseStatistics denoise_points(const BakePoints& points, std::span<glm::vec3> values,
                                  std::span<const float> variance_of_mean,
                                  const RayTracer& tracer, float ray_epsilon, JobContext& context) {
-  if (values.size() != points.size() || variance_of_mean.size() != points.size()) {
-    throw Error(BAKEGI_ERROR_INTERNAL, "denoise: one value and one variance per point expected");
-  }
+  check_one_per_point(points.size(), values.size(), variance_of_mean.size());
   return PointDenoiser(points, tracer, ray_epsilon, context).filter(values, variance_of_mean,
                                                                      context);
 }
